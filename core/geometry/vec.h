@@ -1,0 +1,36 @@
+// Small inline vector helpers on afmesh::Point (a 3-vector of doubles). Plain double arithmetic:
+// for exact signs use predicates.h.
+#pragma once
+
+#include <cmath>
+
+#include "core/mesh/mesh.h"
+
+namespace afmesh {
+
+inline Point add(const Point& a, const Point& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+
+inline Point sub(const Point& a, const Point& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+
+inline Point scale(const Point& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+
+inline double dot(const Point& a, const Point& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+inline Point cross(const Point& a, const Point& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+inline double squared_norm(const Point& a) { return dot(a, a); }
+
+inline double norm(const Point& a) { return std::sqrt(squared_norm(a)); }
+
+inline double squared_distance(const Point& a, const Point& b) { return squared_norm(sub(a, b)); }
+
+inline double distance(const Point& a, const Point& b) { return norm(sub(a, b)); }
+
+// a + t (b - a): a at t = 0, b at t = 1.
+inline Point lerp(const Point& a, const Point& b, double t) { return add(a, scale(sub(b, a), t)); }
+
+}  // namespace afmesh

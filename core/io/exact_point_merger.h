@@ -1,0 +1,33 @@
+// ExactPointMerger: gives identical points one index, for formats that repeat a point at every
+// element corner (STL). Points merge only when their coordinates are bit-identical, except that
+// -0.0 and +0.0 are the same coordinate; no tolerance is ever applied, so distinct points never
+// collapse. A hash table makes each insertion O(1) expected.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "absl/container/flat_hash_map.h"
+#include "core/mesh/mesh.h"
+
+namespace afmesh {
+
+class ExactPointMerger {
+ public:
+  // New points are appended to `points` (not owned); `expected_points` sizes the table.
+  ExactPointMerger(std::vector<Point>& points, std::size_t expected_points);
+
+  // The index in `points` of the point at (x, y, z), appending it (with -0.0 stored as +0.0)
+  // when no identical point is there yet.
+  Index insert(double x, double y, double z);
+
+ private:
+  using Key = std::array<std::uint64_t, 3>;  // bit patterns of x, y, z
+
+  std::vector<Point>& points_;
+  absl::flat_hash_map<Key, Index> index_of_;
+};
+
+}  // namespace afmesh

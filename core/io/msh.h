@@ -1,0 +1,48 @@
+// Gmsh MSH reading (4.1 ascii and binary, 2.x ascii) and writing (4.1 ascii).
+//
+// Reading
+//  - Nodes may be spread over any number of entity blocks with arbitrary, non-contiguous node
+//    tags; points come out in file order and element node tags are mapped to point indices.
+//  - Elements of type 2 (3-node triangle) and 4 (4-node tetrahedron) are read; type 15 (point)
+//    and 1 (2-node line) are passed over and counted in a note; any other type (second order,
+//    quadrangles, hexahedra, prisms, pyramids, ...) is an error naming the type.
+//  - Tags: an element's tag is the physical tag of its entity (4.1: from $Entities; 2.x: the
+//    element's first tag), 0 when it has none. An entity with several physical tags gives the
+//    first (as meshio does), with a note.
+//  - Elements come back in increasing element-tag order (gmsh's global numbering), so a mesh
+//    written by write_msh reads back in its original order even though the file groups
+//    elements by tag.
+//  - Sections other than $MeshFormat, $Entities, $Nodes, $Elements are skipped (with a note,
+//    except $Comments); $PartitionedEntities is an error (partitioned meshes are not read).
+//    MSH 4.0, 3 and binary 2.x are errors saying which versions are read.
+//  - Malformed input is INVALID_ARGUMENT naming the source and the line (ascii) or byte offset
+//    (binary): wrong counts, unknown node tags, non-finite coordinates, truncation, garbage.
+//
+// Writing (MSH 4.1 ascii, readable by gmsh and meshio)
+//  - One surface entity per distinct triangle tag and one volume entity per distinct tet tag;
+//    an entity whose tag is nonzero carries that physical tag, tag 0 gets no physical group.
+//    Tags must be >= 0 (gmsh physical tags are positive). gmsh reads files that mix tagged and
+//    untagged elements; meshio 5 does not (its gmsh:physical list loses step with the blocks).
+//  - All nodes in one block (tags 1..N in point order, coordinates as shortest round-trip
+//    doubles); element tags 1..M for triangles in order, then M+1..M+K for tets.
+#pragma once
+
+#include <string_view>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "core/io/output_buffer.h"
+#include "core/io/read_report.h"
+#include "core/mesh/mesh.h"
+
+namespace afmesh {
+
+// The mesh in the MSH file whose complete contents are `bytes`; `source_name` starts errors.
+absl::StatusOr<Mesh> parse_msh(std::string_view bytes, std::string_view source_name,
+                               ReadReport* report = nullptr);
+
+// Writes `mesh` (points N×3, triangles M×3, tets K×4, with tags) as MSH 4.1 ascii to `out` and
+// flushes it.
+absl::Status write_msh(const Mesh& mesh, OutputBuffer& out);
+
+}  // namespace afmesh

@@ -1,0 +1,232 @@
+#include "core/quality/measures.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string_view>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_format.h"
+#include "core/quality/compensated_sum.h"
+
+namespace afmesh {
+namespace {
+
+using Vec = Eigen::Vector3d;
+
+Vec vec(const Point& p) { return Vec(p[0], p[1], p[2]); }
+
+double degrees(double radians) { return radians * (180.0 / std::numbers::pi); }
+
+// Angle in [0, pi] between u and v, accurate also near 0 and pi; 0 when either is zero.
+double angle_between(const Vec& u, const Vec& v) {
+  const double sine = u.cross(v).norm();
+  const double cosine = u.dot(v);
+  if (sine == 0.0 && cosine == 0.0) return 0.0;
+  return std::atan2(sine, cosine);
+}
+
+// The 6 dihedral angles (radians) of tet (p0, p1, p2, p3). n[i] is the normal of the face
+// opposite p[i], all four pointing out of a positive tet (into an inverted one, which gives the
+// same angles). The dihedral angle along the edge shared by faces i and j is pi minus the angle
+// between their normals; it is taken as 0 when a face has no normal (coincident points).
+std::array<double, 6> dihedral_angles(const Vec& p0, const Vec& p1, const Vec& p2,
+                                      const Vec& p3) {
+  const std::array<Vec, 4> n = {(p2 - p1).cross(p3 - p1), (p3 - p0).cross(p2 - p0),
+                                (p1 - p0).cross(p3 - p0), (p2 - p0).cross(p1 - p0)};
+  std::array<double, 6> angles{};
+  int e = 0;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = i + 1; j < 4; ++j) {
+      const bool defined = n[i].squaredNorm() > 0.0 && n[j].squaredNorm() > 0.0;
+      angles[e++] = defined ? angle_between(n[i], -n[j]) : 0.0;
+    }
+  }
+  return angles;
+}
+
+// 3 r_in / r_circ = 108 V^2 / (A |m|), where A is the total face area and m the numerator of the
+// circumcentre offset from p0: c - p0 = m / (12 V) with
+// m = |b|^2 (c x d) + |c|^2 (d x b) + |d|^2 (b x c), (b, c, d) = (p1, p2, p3) - p0.
+// So r_circ = |m| / (12 |V|) and r_in = 3 |V| / A. Zero for a flat tet.
+double tet_radius_ratio(const Vec& p0, const Vec& p1, const Vec& p2, const Vec& p3,
+                        double volume) {
+  const Vec b = p1 - p0, c = p2 - p0, d = p3 - p0;
+  const double area = 0.5 * ((p2 - p1).cross(p3 - p1).norm() + c.cross(d).norm() +
+                             b.cross(d).norm() + b.cross(c).norm());
+  const Vec m = b.squaredNorm() * c.cross(d) + c.squaredNorm() * d.cross(b) +
+                d.squaredNorm() * b.cross(c);
+  const double denominator = area * m.norm();
+  if (volume == 0.0 || !(denominator > 0.0)) return 0.0;
+  return 108.0 * volume * volume / denominator;
+}
+
+// Error naming the first element of `elements` with an index outside [0, point_count).
+template <typename Element>
+absl::Status check_indices(const std::vector<Element>& elements, std::size_t point_count,
+                           std::string_view kind) {
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    for (Index v : elements[e]) {
+      if (v < 0 || static_cast<std::size_t>(v) >= point_count) {
+        return absl::InvalidArgumentError(absl::StrFormat(
+            "%s %d has point index %d outside [0, %d): fix the element array before measuring "
+            "quality",
+            kind, e, v, point_count));
+      }
+    }
+  }
+  return absl::OkStatus();
+}
+
+// Accumulates count, extremes and the compensated mean of one measure.
+class StatsAccumulator {
+ public:
+  void add(double x) {
+    if (stats_.count == 0) {
+      stats_.min = x;
+      stats_.max = x;
+    } else {
+      stats_.min = std::min(stats_.min, x);
+      stats_.max = std::max(stats_.max, x);
+    }
+    ++stats_.count;
+    sum_.add(x);
+  }
+  MeasureStats result() const {
+    MeasureStats s = stats_;
+    if (s.count > 0) s.mean = sum_.value() / static_cast<double>(s.count);
+    return s;
+  }
+
+ private:
+  MeasureStats stats_;
+  CompensatedSum sum_;
+};
+
+void summarize_tets(const Mesh& mesh, QualitySummary& summary) {
+  StatsAccumulator min_dihedral, max_dihedral, ratio, volume;
+  std::int64_t below_10 = 0, below_20 = 0;
+  for (const Tet& tet : mesh.tets) {
+    const TetQuality q = tet_quality(mesh.points, tet);
+    min_dihedral.add(q.min_dihedral_deg);
+    max_dihedral.add(q.max_dihedral_deg);
+    ratio.add(q.radius_ratio);
+    volume.add(q.volume);
+    if (q.volume <= 0.0) ++summary.tets_with_nonpositive_volume;
+    if (q.min_dihedral_deg < 10.0) ++below_10;
+    if (q.min_dihedral_deg < 20.0) ++below_20;
+    summary.tet_min_dihedral_hist.add(q.min_dihedral_deg);
+    summary.tet_max_dihedral_hist.add(q.max_dihedral_deg);
+    summary.tet_radius_ratio_hist.add(q.radius_ratio);
+  }
+  summary.tet_count = static_cast<std::int64_t>(mesh.tets.size());
+  summary.tet_min_dihedral_deg = min_dihedral.result();
+  summary.tet_max_dihedral_deg = max_dihedral.result();
+  summary.tet_radius_ratio = ratio.result();
+  summary.tet_volume = volume.result();
+  if (summary.tet_count > 0) {
+    summary.share_min_dihedral_below_10 = static_cast<double>(below_10) / summary.tet_count;
+    summary.share_min_dihedral_below_20 = static_cast<double>(below_20) / summary.tet_count;
+  }
+}
+
+void summarize_triangles(const Mesh& mesh, QualitySummary& summary) {
+  StatsAccumulator min_angle, ratio;
+  for (const Triangle& t : mesh.triangles) {
+    const TriangleQuality q = triangle_quality(mesh.points, t);
+    min_angle.add(q.min_angle_deg);
+    ratio.add(q.radius_ratio);
+    summary.triangle_min_angle_hist.add(q.min_angle_deg);
+    summary.triangle_radius_ratio_hist.add(q.radius_ratio);
+  }
+  summary.triangle_count = static_cast<std::int64_t>(mesh.triangles.size());
+  summary.triangle_min_angle_deg = min_angle.result();
+  summary.triangle_radius_ratio = ratio.result();
+}
+
+}  // namespace
+
+double tet_signed_volume(const Point& a, const Point& b, const Point& c, const Point& d) {
+  const Vec pa = vec(a);
+  return (vec(b) - pa).cross(vec(c) - pa).dot(vec(d) - pa) / 6.0;
+}
+
+TetQuality tet_quality(const Point& a, const Point& b, const Point& c, const Point& d) {
+  const Vec p0 = vec(a), p1 = vec(b), p2 = vec(c), p3 = vec(d);
+  TetQuality q;
+  q.volume = tet_signed_volume(a, b, c, d);
+  const std::array<double, 6> angles = dihedral_angles(p0, p1, p2, p3);
+  q.min_dihedral_deg = degrees(*std::min_element(angles.begin(), angles.end()));
+  q.max_dihedral_deg = degrees(*std::max_element(angles.begin(), angles.end()));
+  q.radius_ratio = tet_radius_ratio(p0, p1, p2, p3, q.volume);
+  return q;
+}
+
+TetQuality tet_quality(const std::vector<Point>& points, const Tet& tet) {
+  return tet_quality(points[tet[0]], points[tet[1]], points[tet[2]], points[tet[3]]);
+}
+
+// Corner angles from the edge vectors at each corner; ratio = 16 A^2 / (perimeter · abc), which
+// is 2 r_in / r_circ with r_in = 2A / perimeter and r_circ = abc / (4A).
+TriangleQuality triangle_quality(const Point& a, const Point& b, const Point& c) {
+  const Vec pa = vec(a), pb = vec(b), pc = vec(c);
+  const Vec ab = pb - pa, bc = pc - pb, ca = pa - pc;
+  TriangleQuality q;
+  q.area = 0.5 * ab.cross(-ca).norm();
+  const double la = bc.norm(), lb = ca.norm(), lc = ab.norm();
+  if (la == 0.0 || lb == 0.0 || lc == 0.0) return q;
+  q.min_angle_deg = degrees(std::min(
+      {angle_between(ab, -ca), angle_between(bc, -ab), angle_between(ca, -bc)}));
+  const double denominator = (la + lb + lc) * la * lb * lc;
+  q.radius_ratio = denominator > 0.0 ? 16.0 * q.area * q.area / denominator : 0.0;
+  return q;
+}
+
+TriangleQuality triangle_quality(const std::vector<Point>& points, const Triangle& triangle) {
+  return triangle_quality(points[triangle[0]], points[triangle[1]], points[triangle[2]]);
+}
+
+Histogram::Histogram(double lo_value, double hi_value, int bins)
+    : lo(lo_value), hi(hi_value), counts(std::max(bins, 1), 0) {}
+
+void Histogram::add(double value) {
+  if (std::isnan(value)) {
+    ++nan_count;
+    return;
+  }
+  const int bins = static_cast<int>(counts.size());
+  const double position = (value - lo) / (hi - lo) * bins;
+  // `!(position > 0)` also catches a NaN position from an empty range (hi == lo).
+  const int bin = !(position > 0.0)  ? 0
+                  : position >= bins ? bins - 1
+                                     : static_cast<int>(position);
+  ++counts[bin];
+}
+
+double Histogram::bin_lo(int i) const {
+  return lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(counts.size());
+}
+
+std::int64_t Histogram::total() const {
+  std::int64_t sum = nan_count;
+  for (std::int64_t c : counts) sum += c;
+  return sum;
+}
+
+absl::StatusOr<QualitySummary> summarize_quality(const Mesh& mesh) {
+  if (absl::Status s = check_indices(mesh.tets, mesh.points.size(), "tet"); !s.ok()) return s;
+  if (absl::Status s = check_indices(mesh.triangles, mesh.points.size(), "triangle"); !s.ok()) {
+    return s;
+  }
+  QualitySummary summary;
+  summarize_tets(mesh, summary);
+  summarize_triangles(mesh, summary);
+  return summary;
+}
+
+}  // namespace afmesh

@@ -1,0 +1,112 @@
+// Element quality measures for tetrahedra and triangles, and a deterministic quality summary of
+// a mesh (statistics and fixed-bin histograms).
+//
+// These are floating-point measurements, not predicates: they are accurate to a few ulps for
+// well-shaped elements and tend continuously to their degenerate values (angle 0 or 180°, radius
+// ratio 0) as an element flattens. Whether an element is exactly degenerate or inverted is the
+// business of the exact predicates (core/geometry/predicates.h) and of validate.h.
+//
+// Radius ratios (Frey & George, "Mesh Generation", 2nd ed., §18.2):
+//   tet:      3 r_in / r_circ, with r_in = 3|V| / (sum of face areas) and r_circ the
+//             circumradius; 1 for the regular tetrahedron, 0 for a flat one.
+//   triangle: 2 r_in / r_circ, with r_in = 2A / perimeter and r_circ = abc / (4A);
+//             1 for the equilateral triangle, 0 for a flat one.
+// Both are orientation-free (an inverted tet has the ratio of its mirror image); the sign of a
+// tet lives in its signed volume.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/mesh/mesh.h"
+
+namespace afmesh {
+
+// Quality of one tetrahedron.
+struct TetQuality {
+  double min_dihedral_deg = 0.0;  // smallest of the 6 dihedral angles, degrees in [0, 180]
+  double max_dihedral_deg = 0.0;  // largest of the 6 dihedral angles, degrees in [0, 180]
+  double radius_ratio = 0.0;      // 3 r_in / r_circ in [0, 1]
+  double volume = 0.0;            // signed: det[b-a, c-a, d-a] / 6 (> 0 for a positive tet)
+};
+
+// Quality of one triangle.
+struct TriangleQuality {
+  double min_angle_deg = 0.0;  // smallest corner angle, degrees in [0, 60]
+  double radius_ratio = 0.0;   // 2 r_in / r_circ in [0, 1]
+  double area = 0.0;           // >= 0
+};
+
+// Signed volume det[b-a, c-a, d-a] / 6 of tet (a, b, c, d), in length units cubed.
+double tet_signed_volume(const Point& a, const Point& b, const Point& c, const Point& d);
+
+// Quality of tet (a, b, c, d). A tet with zero volume has radius ratio 0; one with coincident
+// points has dihedral angles 0 where they are undefined.
+TetQuality tet_quality(const Point& a, const Point& b, const Point& c, const Point& d);
+
+// Quality of `tet` of `points` (N×3). Indices must be in range.
+TetQuality tet_quality(const std::vector<Point>& points, const Tet& tet);
+
+// Quality of triangle (a, b, c). A triangle with coincident points has min angle 0.
+TriangleQuality triangle_quality(const Point& a, const Point& b, const Point& c);
+
+// Quality of `triangle` of `points` (N×3). Indices must be in range.
+TriangleQuality triangle_quality(const std::vector<Point>& points, const Triangle& triangle);
+
+// A histogram with `bins` equal bins over [lo, hi]. A value below lo counts in the first bin and
+// one at or above hi in the last (measures may overshoot their range by rounding); NaN values
+// are counted in `nan_count` only.
+struct Histogram {
+  double lo = 0.0;
+  double hi = 1.0;
+  std::vector<std::int64_t> counts;  // bins entries; bin i covers [lo + i w, lo + (i+1) w)
+  std::int64_t nan_count = 0;
+
+  Histogram() = default;
+  Histogram(double lo, double hi, int bins);
+
+  void add(double value);
+  // Lower edge of bin i.
+  double bin_lo(int i) const;
+  // Sum of all counts, nan_count included: the number of values added.
+  std::int64_t total() const;
+};
+
+// Count, extremes and mean of one measure over a mesh. All zero when count is 0.
+struct MeasureStats {
+  std::int64_t count = 0;
+  double min = 0.0;
+  double max = 0.0;
+  double mean = 0.0;
+};
+
+// Quality of a whole mesh. Histograms: dihedral angles 0..180° in 5° bins (36), triangle min
+// angle 0..60° in 2° bins (30), radius ratios 0..1 in 0.05 bins (20).
+struct QualitySummary {
+  std::int64_t tet_count = 0;
+  std::int64_t triangle_count = 0;
+
+  MeasureStats tet_min_dihedral_deg;
+  MeasureStats tet_max_dihedral_deg;
+  MeasureStats tet_radius_ratio;
+  MeasureStats tet_volume;
+  std::int64_t tets_with_nonpositive_volume = 0;  // floating-point volume <= 0
+  double share_min_dihedral_below_10 = 0.0;       // share of tets, in [0, 1]
+  double share_min_dihedral_below_20 = 0.0;
+  Histogram tet_min_dihedral_hist{0.0, 180.0, 36};
+  Histogram tet_max_dihedral_hist{0.0, 180.0, 36};
+  Histogram tet_radius_ratio_hist{0.0, 1.0, 20};
+
+  MeasureStats triangle_min_angle_deg;
+  MeasureStats triangle_radius_ratio;
+  Histogram triangle_min_angle_hist{0.0, 60.0, 30};
+  Histogram triangle_radius_ratio_hist{0.0, 1.0, 20};
+};
+
+// Quality of every tet and triangle of `mesh`, visited in array order (so the result is
+// deterministic: means use compensated summation in that order).
+// Fails with InvalidArgument, naming the element, when an index is out of range.
+absl::StatusOr<QualitySummary> summarize_quality(const Mesh& mesh);
+
+}  // namespace afmesh

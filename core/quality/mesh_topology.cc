@@ -1,0 +1,204 @@
+#include "core/quality/mesh_topology.h"
+
+#include <algorithm>
+#include <numeric>
+#include <tuple>
+
+namespace afmesh {
+namespace {
+
+// One triangle's traversal of one edge: the edge (a, b), a < b, and whether the triangle runs
+// from a to b.
+struct HalfEdge {
+  Index a = 0;
+  Index b = 0;
+  Index triangle = 0;
+  bool forward = false;
+};
+
+std::vector<HalfEdge> sorted_half_edges(const std::vector<Triangle>& triangles) {
+  std::vector<HalfEdge> half_edges;
+  half_edges.reserve(3 * triangles.size());
+  for (Index t = 0; t < static_cast<Index>(triangles.size()); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const Index from = triangles[t][k], to = triangles[t][(k + 1) % 3];
+      half_edges.push_back({std::min(from, to), std::max(from, to), t, from < to});
+    }
+  }
+  std::sort(half_edges.begin(), half_edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return std::tie(x.a, x.b, x.triangle, x.forward) < std::tie(y.a, y.b, y.triangle, y.forward);
+  });
+  return half_edges;
+}
+
+// Disjoint sets over corner ids 3 t + k (corner k of triangle t), union by size.
+class CornerSets {
+ public:
+  explicit CornerSets(std::size_t n) : parent_(n), size_(n, 1) {
+    std::iota(parent_.begin(), parent_.end(), 0);
+  }
+  Index find(Index x) {
+    while (parent_[x] != x) {
+      parent_[x] = parent_[parent_[x]];
+      x = parent_[x];
+    }
+    return x;
+  }
+  void join(Index x, Index y) {
+    x = find(x);
+    y = find(y);
+    if (x == y) return;
+    if (size_[x] < size_[y]) std::swap(x, y);
+    parent_[y] = x;
+    size_[x] += size_[y];
+  }
+
+ private:
+  std::vector<Index> parent_;
+  std::vector<Index> size_;
+};
+
+Index corner_of(const std::vector<Triangle>& triangles, Index t, Index vertex) {
+  const Triangle& tri = triangles[t];
+  const int k = tri[0] == vertex ? 0 : tri[1] == vertex ? 1 : 2;
+  return 3 * t + k;
+}
+
+// Classifies one edge's group of half-edges [first, last) into `topology`, and joins the corners
+// of its triangles at each end of the edge (they are in one fan there).
+void classify_edge(const std::vector<Triangle>& triangles, const std::vector<HalfEdge>& half_edges,
+                   std::size_t first, std::size_t last, CornerSets& corners,
+                   TriangleTopology& topology) {
+  EdgeGroup group{half_edges[first].a, half_edges[first].b, {}};
+  for (std::size_t i = first; i < last; ++i) group.triangles.push_back(half_edges[i].triangle);
+  for (Index t : group.triangles) {
+    corners.join(corner_of(triangles, group.triangles[0], group.a),
+                 corner_of(triangles, t, group.a));
+    corners.join(corner_of(triangles, group.triangles[0], group.b),
+                 corner_of(triangles, t, group.b));
+  }
+  ++topology.edge_count;
+  const std::size_t uses = last - first;
+  if (uses == 1) {
+    topology.open_edges.push_back(std::move(group));
+  } else if (uses > 2) {
+    topology.nonmanifold_edges.push_back(std::move(group));
+  } else if (half_edges[first].forward == half_edges[first + 1].forward) {
+    topology.misoriented_edges.push_back(std::move(group));
+  }
+}
+
+// Vertices whose corners fall into two or more fans.
+std::vector<VertexFans> split_vertices(const std::vector<Triangle>& triangles,
+                                       CornerSets& corners) {
+  struct CornerFan {
+    Index vertex, fan, triangle;
+  };
+  std::vector<CornerFan> fans;
+  fans.reserve(3 * triangles.size());
+  for (Index t = 0; t < static_cast<Index>(triangles.size()); ++t) {
+    for (int k = 0; k < 3; ++k) fans.push_back({triangles[t][k], corners.find(3 * t + k), t});
+  }
+  std::sort(fans.begin(), fans.end(), [](const CornerFan& x, const CornerFan& y) {
+    return std::tie(x.vertex, x.fan, x.triangle) < std::tie(y.vertex, y.fan, y.triangle);
+  });
+  std::vector<VertexFans> result;
+  for (std::size_t first = 0; first < fans.size();) {
+    std::size_t last = first;
+    int fan_count = 0;
+    for (; last < fans.size() && fans[last].vertex == fans[first].vertex; ++last) {
+      if (last == first || fans[last].fan != fans[last - 1].fan) ++fan_count;
+    }
+    if (fan_count >= 2) {
+      VertexFans v{fans[first].vertex, fan_count, {}};
+      for (std::size_t i = first; i < last; ++i) v.triangles.push_back(fans[i].triangle);
+      std::sort(v.triangles.begin(), v.triangles.end());
+      result.push_back(std::move(v));
+    }
+    first = last;
+  }
+  return result;
+}
+
+}  // namespace
+
+Triangle canonical_rotation(const Triangle& t) {
+  if (t[1] < t[0] && t[1] <= t[2]) return {t[1], t[2], t[0]};
+  if (t[2] < t[0] && t[2] < t[1]) return {t[2], t[0], t[1]};
+  return t;
+}
+
+Triangle sorted_triangle(const Triangle& t) {
+  Triangle s = t;
+  std::sort(s.begin(), s.end());
+  return s;
+}
+
+Triangle tet_face(const Tet& tet, int corner) {
+  switch (corner) {
+    case 0:
+      return {tet[1], tet[2], tet[3]};
+    case 1:
+      return {tet[0], tet[3], tet[2]};
+    case 2:
+      return {tet[0], tet[1], tet[3]};
+    default:
+      return {tet[0], tet[2], tet[1]};
+  }
+}
+
+bool has_distinct_indices(const Triangle& t) {
+  return t[0] != t[1] && t[1] != t[2] && t[0] != t[2];
+}
+
+bool has_distinct_indices(const Tet& t) {
+  return t[0] != t[1] && t[0] != t[2] && t[0] != t[3] && t[1] != t[2] && t[1] != t[3] &&
+         t[2] != t[3];
+}
+
+std::vector<FaceUse> sorted_face_uses(const std::vector<Tet>& tets,
+                                      const std::vector<Index>& tet_ids) {
+  std::vector<FaceUse> uses;
+  uses.reserve(4 * tet_ids.size());
+  for (Index id : tet_ids) {
+    for (int corner = 0; corner < 4; ++corner) {
+      const Triangle face = tet_face(tets[id], corner);
+      const Triangle key = sorted_triangle(face);
+      uses.push_back({key, id, static_cast<std::int8_t>(corner), canonical_rotation(face) == key});
+    }
+  }
+  std::sort(uses.begin(), uses.end(), [](const FaceUse& x, const FaceUse& y) {
+    return std::tie(x.key, x.tet, x.corner) < std::tie(y.key, y.tet, y.corner);
+  });
+  return uses;
+}
+
+BoundaryFaces collect_boundary_faces(const std::vector<Tet>& tets,
+                                     const std::vector<FaceUse>& faces) {
+  BoundaryFaces boundary;
+  for_each_face_group(faces, [&](std::size_t first, std::size_t last) {
+    if (last - first != 1) return;
+    boundary.triangles.push_back(tet_face(tets[faces[first].tet], faces[first].corner));
+    boundary.tets.push_back(faces[first].tet);
+  });
+  return boundary;
+}
+
+TriangleTopology analyze_triangle_topology(const std::vector<Triangle>& triangles) {
+  TriangleTopology topology;
+  const std::vector<HalfEdge> half_edges = sorted_half_edges(triangles);
+  CornerSets corners(3 * triangles.size());
+  for (std::size_t first = 0; first < half_edges.size();) {
+    std::size_t last = first + 1;
+    while (last < half_edges.size() && half_edges[last].a == half_edges[first].a &&
+           half_edges[last].b == half_edges[first].b) {
+      ++last;
+    }
+    classify_edge(triangles, half_edges, first, last, corners, topology);
+    first = last;
+  }
+  topology.nonmanifold_vertices = split_vertices(triangles, corners);
+  return topology;
+}
+
+}  // namespace afmesh

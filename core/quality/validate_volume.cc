@@ -1,0 +1,220 @@
+// validate_volume_mesh: the checks of a tetrahedral mesh, in the order validate.h lists them.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+#include <utility>
+
+#include "absl/strings/str_format.h"
+#include "core/geometry/predicates.h"
+#include "core/quality/boundary_match.h"
+#include "core/quality/compensated_sum.h"
+#include "core/quality/measures.h"
+#include "core/quality/mesh_topology.h"
+#include "core/quality/validate.h"
+#include "core/quality/validate_common.h"
+
+namespace afmesh {
+namespace {
+
+std::vector<Index> tets_with_distinct_indices(const std::vector<Tet>& tets) {
+  std::vector<Index> ids;
+  ids.reserve(tets.size());
+  for (Index t = 0; t < static_cast<Index>(tets.size()); ++t) {
+    if (has_distinct_indices(tets[t])) ids.push_back(t);
+  }
+  return ids;
+}
+
+// Owning tets of boundary faces `ids`, ascending and without repeats.
+std::vector<Index> owners(const BoundaryFaces& boundary, const std::vector<Index>& ids) {
+  std::vector<Index> tets;
+  for (Index i : ids) tets.push_back(boundary.tets[i]);
+  std::sort(tets.begin(), tets.end());
+  tets.erase(std::unique(tets.begin(), tets.end()), tets.end());
+  return tets;
+}
+
+// positive_volumes: four distinct points and exact orient3d(a, b, c, d) > 0 for every tet.
+Check check_positive_volumes(const Mesh& mesh, const ValidationParams& params) {
+  CheckBuilder builder(check::kPositiveVolumes, params);
+  for (Index t = 0; t < static_cast<Index>(mesh.tets.size()); ++t) {
+    const Tet& tet = mesh.tets[t];
+    if (!has_distinct_indices(tet)) {
+      builder.add([&] {
+        return Finding{absl::StrFormat("tet %d repeats a point (%d,%d,%d,%d): zero volume", t,
+                                       tet[0], tet[1], tet[2], tet[3]),
+                       {tet.begin(), tet.end()}, {}, {t}};
+      });
+      continue;
+    }
+    const int sign = orient3d(mesh.points[tet[0]], mesh.points[tet[1]], mesh.points[tet[2]],
+                              mesh.points[tet[3]]);
+    if (sign > 0) continue;
+    builder.add([&] {
+      return Finding{absl::StrFormat("tet %d has non-positive volume (orient3d = %d)", t, sign),
+                     {tet.begin(), tet.end()}, {}, {t}};
+    });
+  }
+  return builder.finish(
+      absl::StrFormat("all %d tets have positive volume (exact orient3d)", mesh.tets.size()),
+      absl::StrFormat("%d of %d %s non-positive volume", builder.count(), mesh.tets.size(),
+                      plural(builder.count(), "tet has", "tets have")));
+}
+
+// face_sharing: a face in more than two tets, or in two with the same orientation.
+Check check_face_sharing(const std::vector<FaceUse>& faces, const ValidationParams& params) {
+  CheckBuilder builder(check::kFaceSharing, params);
+  std::int64_t interior = 0, boundary = 0;
+  for_each_face_group(faces, [&](std::size_t first, std::size_t last) {
+    const Triangle& key = faces[first].key;
+    std::vector<Index> tets;
+    for (std::size_t i = first; i < last; ++i) tets.push_back(faces[i].tet);
+    if (tets.size() == 1) {
+      ++boundary;
+    } else if (tets.size() > 2) {
+      builder.add([&] {
+        return Finding{absl::StrFormat("face %s shared by tets %s", format_triple(key),
+                                       join_indices(tets)),
+                       {key.begin(), key.end()}, {}, tets};
+      });
+    } else if (faces[first].even == faces[first + 1].even) {
+      builder.add([&] {
+        return Finding{absl::StrFormat("face %s of tets %s with the same orientation",
+                                       format_triple(key), join_indices(tets)),
+                       {key.begin(), key.end()}, {}, tets};
+      });
+    } else {
+      ++interior;
+    }
+  });
+  return builder.finish(
+      absl::StrFormat("%d interior faces each shared by two tets with opposite orientations, "
+                      "%d boundary faces",
+                      interior, boundary),
+      absl::StrFormat("%d %s shared by more than two tets or with the same orientation",
+                      builder.count(), plural(builder.count(), "face", "faces")));
+}
+
+// boundary_surface: the tets' boundary faces form a closed, manifold, consistently oriented
+// surface.
+Check check_boundary_surface(const BoundaryFaces& boundary, const ValidationParams& params) {
+  const TriangleTopology topology = analyze_triangle_topology(boundary.triangles);
+  CheckBuilder builder(check::kBoundarySurface, params);
+  auto edge_finding = [&](const EdgeGroup& e, std::string_view what) {
+    const std::vector<Index> tets = owners(boundary, e.triangles);
+    return Finding{absl::StrFormat("boundary edge (%d,%d) is used by %d boundary %s (of %s %s)%s",
+                                   e.a, e.b, e.triangles.size(),
+                                   plural(e.triangles.size(), "face", "faces"),
+                                   plural(tets.size(), "tet", "tets"), join_indices(tets), what),
+                   {e.a, e.b}, {}, tets};
+  };
+  for (const EdgeGroup& e : topology.open_edges) {
+    builder.add([&] { return edge_finding(e, ": the boundary has a hole"); });
+  }
+  for (const EdgeGroup& e : topology.nonmanifold_edges) {
+    builder.add([&] { return edge_finding(e, ": non-manifold edge"); });
+  }
+  for (const EdgeGroup& e : topology.misoriented_edges) {
+    builder.add([&] {
+      const std::vector<Index> tets = owners(boundary, e.triangles);
+      return Finding{absl::StrFormat("boundary faces of %s %s traverse edge (%d,%d) in the same "
+                                     "direction",
+                                     plural(tets.size(), "tet", "tets"), join_indices(tets), e.a,
+                                     e.b),
+                     {e.a, e.b}, {}, tets};
+    });
+  }
+  for (const VertexFans& v : topology.nonmanifold_vertices) {
+    builder.add([&] {
+      const std::vector<Index> tets = owners(boundary, v.triangles);
+      return Finding{
+          absl::StrFormat("boundary vertex %d is non-manifold: its %d boundary faces form %d "
+                          "separate fans (tets %s)",
+                          v.vertex, v.triangles.size(), v.fan_count, join_indices(tets)),
+          {v.vertex}, {}, tets};
+    });
+  }
+  return builder.finish(
+      absl::StrFormat("the %d boundary faces form a closed, manifold, consistently oriented "
+                      "surface",
+                      boundary.triangles.size()),
+      absl::StrFormat("%d %s in the surface of the %d boundary faces", builder.count(),
+                      plural(builder.count(), "defect", "defects"), boundary.triangles.size()));
+}
+
+// volume_balance: sum of signed tet volumes against the enclosed volume of the boundary.
+Check check_volume_balance(const Mesh& mesh, const BoundaryFaces& faces, const Mesh* boundary,
+                           const ValidationParams& params) {
+  if (boundary != nullptr && !indices_and_coordinates_ok(boundary->points, boundary->triangles)) {
+    return not_run(check::kVolumeBalance,
+                   "the boundary mesh has point indices out of range or non-finite coordinates");
+  }
+  CompensatedSum tet_sum, tet_scale;
+  for (const Tet& t : mesh.tets) {
+    const double v = tet_signed_volume(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]],
+                                       mesh.points[t[3]]);
+    tet_sum.add(v);
+    tet_scale.add(std::abs(v));
+  }
+  double boundary_scale = 0.0;
+  const double enclosed =
+      boundary != nullptr ? enclosed_volume(boundary->points, boundary->triangles, &boundary_scale)
+                          : enclosed_volume(mesh.points, faces.triangles, &boundary_scale);
+  const std::string_view source =
+      boundary != nullptr ? "the boundary mesh" : "the tets' boundary faces";
+  const double difference = tet_sum.value() - enclosed;
+  const double tolerance = params.volume_relative_tolerance * (tet_scale.value() + boundary_scale);
+  CheckBuilder builder(check::kVolumeBalance, params);
+  if (!(std::abs(difference) <= tolerance)) {
+    builder.add([&] {
+      return Finding{absl::StrFormat("the tets' volumes sum to %.17g but %s encloses %.17g "
+                                     "(difference %.3g, tolerance %.3g)",
+                                     tet_sum.value(), source, enclosed, difference, tolerance)};
+    });
+  }
+  return builder.finish(
+      absl::StrFormat("the tets' volumes sum to %.17g, the volume %s encloses (difference %.3g, "
+                      "tolerance %.3g)",
+                      tet_sum.value(), source, difference, tolerance),
+      absl::StrFormat("the tets' volumes differ from the volume %s encloses by %.3g", source,
+                      difference));
+}
+
+}  // namespace
+
+ValidationReport validate_volume_mesh(const Mesh& mesh, const Mesh* boundary,
+                                      const ValidationParams& params) {
+  ValidationReport report;
+  report.checks.push_back(
+      check_element_indices(mesh.tets, mesh.tet_tags.size(), mesh.points.size(), params));
+  if (!all_indices_in_range(mesh.tets, mesh.points.size())) {
+    for (std::string_view name :
+         {check::kFiniteCoordinates, check::kPositiveVolumes, check::kFaceSharing,
+          check::kBoundarySurface, check::kBoundaryMatch, check::kVolumeBalance,
+          check::kUnusedPoints}) {
+      report.checks.push_back(not_run(name, "the tets' indices are invalid"));
+    }
+    return report;
+  }
+  report.checks.push_back(check_finite_coordinates(mesh.points, params));
+  const bool finite = report.checks.back().passed();
+  constexpr std::string_view kNeedsFinite = "some point coordinates are not finite";
+
+  report.checks.push_back(finite ? check_positive_volumes(mesh, params)
+                                 : not_run(check::kPositiveVolumes, kNeedsFinite));
+  const std::vector<FaceUse> faces =
+      sorted_face_uses(mesh.tets, tets_with_distinct_indices(mesh.tets));
+  report.checks.push_back(check_face_sharing(faces, params));
+  const BoundaryFaces boundary_faces = collect_boundary_faces(mesh.tets, faces);
+  report.checks.push_back(check_boundary_surface(boundary_faces, params));
+  report.checks.push_back(boundary != nullptr
+                              ? check_boundary_match(mesh, boundary_faces, *boundary, params)
+                              : not_run(check::kBoundaryMatch, "no boundary mesh given"));
+  report.checks.push_back(finite ? check_volume_balance(mesh, boundary_faces, boundary, params)
+                                 : not_run(check::kVolumeBalance, kNeedsFinite));
+  report.checks.push_back(check_unused_points(mesh.points.size(), mesh.tets, params));
+  return report;
+}
+
+}  // namespace afmesh

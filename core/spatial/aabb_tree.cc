@@ -1,0 +1,160 @@
+#include "core/spatial/aabb_tree.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace afmesh {
+namespace {
+
+// Centre of a non-empty box; a box unbounded on both sides of an axis gets centre 0 there, so
+// that every centre coordinate is a number and the median split has a strict order.
+Point box_centre(const Box& box) {
+  Point c;
+  for (int k = 0; k < 3; ++k) {
+    c[k] = 0.5 * box.lo[k] + 0.5 * box.hi[k];
+    if (std::isnan(c[k])) c[k] = 0.0;
+  }
+  return c;
+}
+
+// The axis (0, 1, 2) along which the centres of ids [begin, end) spread the most.
+int widest_axis(const std::vector<Index>& ids, Index begin, Index end,
+                const std::vector<Point>& centres) {
+  Box extent = empty_box();
+  for (Index i = begin; i < end; ++i) enclose(extent, centres[ids[i]]);
+  int axis = 0;
+  for (int k = 1; k < 3; ++k) {
+    if (extent.hi[k] - extent.lo[k] > extent.hi[axis] - extent.lo[axis]) axis = k;
+  }
+  return axis;
+}
+
+// Largest extent of a box over its three axes: the larger node is descended first.
+double box_size(const Box& box) {
+  return std::max({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]});
+}
+
+}  // namespace
+
+AabbTree::AabbTree(std::vector<Box> boxes, int leaf_size) : boxes_(std::move(boxes)) {
+  std::vector<Point> centres(boxes_.size());
+  for (Index i = 0; i < size(); ++i) {
+    if (is_empty(boxes_[i])) continue;
+    centres[i] = box_centre(boxes_[i]);
+    order_.push_back(i);
+  }
+  if (order_.empty()) return;
+  nodes_.reserve(2 * order_.size() / std::max(leaf_size, 1) + 1);
+  build(0, static_cast<Index>(order_.size()), centres, std::max(leaf_size, 1));
+}
+
+// Appends the subtree over order_[begin, end) in pre-order and returns its root's index.
+Index AabbTree::build(Index begin, Index end, const std::vector<Point>& centres, int leaf_size) {
+  const Index node = static_cast<Index>(nodes_.size());
+  nodes_.push_back(Node{});
+  if (end - begin <= leaf_size) {
+    std::sort(order_.begin() + begin, order_.begin() + end);
+    Box box = empty_box();
+    for (Index i = begin; i < end; ++i) enclose(box, boxes_[order_[i]]);
+    nodes_[node] = Node{box, begin, end - begin, kInvalidIndex};
+    return node;
+  }
+  const int axis = widest_axis(order_, begin, end, centres);
+  const Index mid = begin + (end - begin) / 2;
+  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                   [&](Index a, Index b) {
+                     if (centres[a][axis] != centres[b][axis]) {
+                       return centres[a][axis] < centres[b][axis];
+                     }
+                     return a < b;
+                   });
+  build(begin, mid, centres, leaf_size);
+  const Index right = build(mid, end, centres, leaf_size);
+  nodes_[node].right = right;
+  nodes_[node].box = nodes_[node + 1].box;  // inner boxes from the children, bottom-up
+  enclose(nodes_[node].box, nodes_[right].box);
+  return node;
+}
+
+void AabbTree::for_each_overlap(const Box& query_box, absl::FunctionRef<void(Index)> visit) const {
+  if (nodes_.empty() || is_empty(query_box)) return;
+  query(0, query_box, visit);
+}
+
+void AabbTree::query(Index node, const Box& q, absl::FunctionRef<void(Index)> visit) const {
+  const Node& n = nodes_[node];
+  if (!boxes_overlap(n.box, q)) return;
+  if (n.count > 0) {
+    for (Index i = n.first; i < n.first + n.count; ++i) {
+      if (boxes_overlap(boxes_[order_[i]], q)) visit(order_[i]);
+    }
+    return;
+  }
+  query(node + 1, q, visit);
+  query(n.right, q, visit);
+}
+
+std::vector<Index> AabbTree::overlapping(const Box& query_box) const {
+  std::vector<Index> ids;
+  for_each_overlap(query_box, [&](Index i) { ids.push_back(i); });
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+void AabbTree::for_each_overlapping_pair(absl::FunctionRef<void(Index, Index)> visit) const {
+  if (nodes_.empty()) return;
+  pairs_within(0, visit);
+}
+
+// Pairs with both boxes in the subtree of `node`: those within each child and those across.
+void AabbTree::pairs_within(Index node, absl::FunctionRef<void(Index, Index)> visit) const {
+  const Node& n = nodes_[node];
+  if (n.count > 0) {
+    for (Index i = n.first; i < n.first + n.count; ++i) {
+      for (Index j = i + 1; j < n.first + n.count; ++j) {
+        if (boxes_overlap(boxes_[order_[i]], boxes_[order_[j]])) {
+          visit(std::min(order_[i], order_[j]), std::max(order_[i], order_[j]));
+        }
+      }
+    }
+    return;
+  }
+  pairs_within(node + 1, visit);
+  pairs_within(n.right, visit);
+  pairs_across(node + 1, n.right, visit);
+}
+
+// Pairs with one box under node a and the other under node b (disjoint subtrees). The larger
+// inner node is split first, which keeps the two boxes compared of similar size.
+void AabbTree::pairs_across(Index a, Index b, absl::FunctionRef<void(Index, Index)> visit) const {
+  const Node& na = nodes_[a];
+  const Node& nb = nodes_[b];
+  if (!boxes_overlap(na.box, nb.box)) return;
+  if (na.count > 0 && nb.count > 0) {
+    for (Index i = na.first; i < na.first + na.count; ++i) {
+      for (Index j = nb.first; j < nb.first + nb.count; ++j) {
+        if (boxes_overlap(boxes_[order_[i]], boxes_[order_[j]])) {
+          visit(std::min(order_[i], order_[j]), std::max(order_[i], order_[j]));
+        }
+      }
+    }
+    return;
+  }
+  const bool split_a = nb.count > 0 || (na.count == 0 && box_size(na.box) >= box_size(nb.box));
+  if (split_a) {
+    pairs_across(a + 1, b, visit);
+    pairs_across(na.right, b, visit);
+  } else {
+    pairs_across(a, b + 1, visit);
+    pairs_across(a, nb.right, visit);
+  }
+}
+
+std::vector<std::pair<Index, Index>> AabbTree::overlapping_pairs() const {
+  std::vector<std::pair<Index, Index>> pairs;
+  for_each_overlapping_pair([&](Index i, Index j) { pairs.emplace_back(i, j); });
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+}  // namespace afmesh

@@ -1,0 +1,159 @@
+// F5, F7.1 and F7.2 of the volume front: element size, best point and close points.
+#include <algorithm>
+#include <cmath>
+
+#include "core/geometry/predicates.h"
+#include "core/geometry/vec.h"
+#include "core/volume/front_steps.h"
+
+namespace afmesh::volume {
+namespace {
+
+// Squared distance from x to the closed triangle (a, b, c) (a measure, not a predicate).
+double squared_distance_to_triangle(const Point& x, const Point& a, const Point& b,
+                                    const Point& c) {
+  const Point ab = sub(b, a), ac = sub(c, a), ax = sub(x, a);
+  const double d1 = dot(ab, ax), d2 = dot(ac, ax);
+  if (d1 <= 0 && d2 <= 0) return squared_norm(ax);  // vertex region a
+  const Point bx = sub(x, b);
+  const double d3 = dot(ab, bx), d4 = dot(ac, bx);
+  if (d3 >= 0 && d4 <= d3) return squared_norm(bx);  // vertex region b
+  const Point cx = sub(x, c);
+  const double d5 = dot(ab, cx), d6 = dot(ac, cx);
+  if (d6 >= 0 && d5 <= d6) return squared_norm(cx);  // vertex region c
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {  // edge ab
+    const double t = d1 / (d1 - d3);
+    return squared_norm(sub(x, add(a, scale(ab, t))));
+  }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {  // edge ac
+    const double t = d2 / (d2 - d6);
+    return squared_norm(sub(x, add(a, scale(ac, t))));
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {  // edge bc
+    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return squared_norm(sub(x, add(b, scale(sub(c, b), t))));
+  }
+  const double denom = 1.0 / (va + vb + vc);  // interior: project onto the plane
+  const double v = vb * denom, w = vc * denom;
+  return squared_norm(sub(x, add(a, add(scale(ab, v), scale(ac, w)))));
+}
+
+double mean_edge(const Point& a, const Point& b, const Point& c) {
+  return (norm(sub(b, a)) + norm(sub(c, b)) + norm(sub(a, c))) / 3.0;
+}
+
+Box cube_around(const Point& x, double r) {
+  return Box{{x[0] - r, x[1] - r, x[2] - r}, {x[0] + r, x[1] + r, x[2] + r}};
+}
+
+// True when a new point at x keeps its distance from the front (F7.2: otherwise an existing point
+// is to be used in lieu of it).
+bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictness& rules) {
+  const double spacing = rules.point_spacing * d;
+  const double clearance = rules.face_clearance * d;
+  const double reach = std::max(spacing, clearance);
+  s.near_points.clear();
+  s.front.bins().points_near(cube_around(x, reach), s.near_points);
+  for (Index q : s.near_points)
+    if (squared_norm(sub(s.points[q], x)) < spacing * spacing) return false;
+  s.near_faces.clear();
+  s.front.bins().faces_near(cube_around(x, clearance), s.near_faces);
+  for (Index g : s.near_faces) {
+    const Triangle& w = s.front.face(g).v;
+    if (squared_distance_to_triangle(x, s.points[w[0]], s.points[w[1]], s.points[w[2]]) <
+        clearance * clearance)
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+Strictness strictness_for(int attempts) {
+  static constexpr Strictness kRules[] = {
+      {0.30, 0.55, 0.35}, {0.20, 0.45, 0.28}, {0.10, 0.35, 0.20},
+      {0.04, 0.25, 0.12}, {0.01, 0.15, 0.06}, {0.0, 0.08, 0.03},
+  };
+  constexpr int n = sizeof(kRules) / sizeof(kRules[0]);
+  return kRules[std::clamp(attempts, 0, n - 1)];
+}
+
+double tet_shape_quality(const Point& a, const Point& b, const Point& c, const Point& d) {
+  const Point ab = sub(b, a), ac = sub(c, a), ad = sub(d, a);
+  const double six_v = dot(cross(ab, ac), ad);
+  const double sum_sq = squared_norm(ab) + squared_norm(ac) + squared_norm(ad) +
+                        squared_norm(sub(c, b)) + squared_norm(sub(d, b)) +
+                        squared_norm(sub(d, c));
+  const double l_rms = std::sqrt(sum_sq / 6.0);
+  if (!(l_rms > 0)) return 0.0;
+  return std::sqrt(2.0) * six_v / (l_rms * l_rms * l_rms);
+}
+
+double element_size_for_face(const MesherState& s, const Triangle& v) {
+  const Point& a = s.points[v[0]];
+  const Point& b = s.points[v[1]];
+  const Point& c = s.points[v[2]];
+  const Point centroid = scale(add(a, add(b, c)), 1.0 / 3.0);
+  const double attached =
+      s.params.growth * std::min({s.point_size[v[0]], s.point_size[v[1]], s.point_size[v[2]]});
+  const double wanted = std::min(s.size_field.size_at(centroid), attached);  // eq. 15
+  const double edge = mean_edge(a, b, c);
+  return std::clamp(wanted, 0.55 * edge, 1.6 * edge);
+}
+
+Point ideal_point(const MesherState& s, const Triangle& v, double d) {
+  const Point& a = s.points[v[0]];
+  const Point& b = s.points[v[1]];
+  const Point& c = s.points[v[2]];
+  const Point centroid = scale(add(a, add(b, c)), 1.0 / 3.0);
+  const Point n = cross(sub(b, a), sub(c, a));
+  const double r2 = (squared_norm(sub(a, centroid)) + squared_norm(sub(b, centroid)) +
+                     squared_norm(sub(c, centroid))) / 3.0;
+  const double height = std::sqrt(std::max(d * d - r2, 0.25 * d * d));
+  return add(centroid, scale(n, height / norm(n)));
+}
+
+void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
+                       const Strictness& rules) {
+  const Triangle v = s.front.face(face).v;
+  const Point& a = s.points[v[0]];
+  const Point& b = s.points[v[1]];
+  const Point& c = s.points[v[2]];
+  s.candidates.clear();
+
+  // Existing front points near the ideal point that form a positive, well-shaped element.
+  const double reach = 1.4 * d;
+  s.near_points.clear();
+  s.front.bins().points_near(cube_around(ideal, reach), s.near_points);
+  for (Index q : s.near_points) {
+    if (q == v[0] || q == v[1] || q == v[2]) continue;
+    const Point& x = s.points[q];
+    const double dist = norm(sub(x, ideal));
+    if (dist > reach || orient3d(a, b, c, x) <= 0) continue;
+    const double quality = tet_shape_quality(a, b, c, x);
+    if (quality < rules.min_quality) continue;
+    s.candidates.push_back({q, x, dist / d + 0.5 * (1.0 - quality)});
+  }
+
+  // The new point, and new points closer to the face, where the front leaves room for them.
+  const Point centroid = scale(add(a, add(b, c)), 1.0 / 3.0);
+  static constexpr double kHeights[] = {1.0, 0.6, 0.35};
+  static constexpr double kRanks[] = {0.6, 2.0, 2.1};
+  for (int i = 0; i < 3; ++i) {
+    const Point x = add(centroid, scale(sub(ideal, centroid), kHeights[i]));
+    if (tet_shape_quality(a, b, c, x) < rules.min_quality) continue;
+    if (!new_point_is_clear(s, x, d * kHeights[i], rules)) continue;
+    s.candidates.push_back({kInvalidIndex, x, kRanks[i]});
+  }
+
+  std::sort(s.candidates.begin(), s.candidates.end(),
+            [](const Candidate& l, const Candidate& r) {
+              if (l.rank != r.rank) return l.rank < r.rank;
+              return l.point < r.point;
+            });
+}
+
+}  // namespace afmesh::volume

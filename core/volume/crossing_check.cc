@@ -1,0 +1,81 @@
+// F7.3 of the volume front: does the new element cross the front?
+#include <algorithm>
+
+#include "core/geometry/intersect.h"
+#include "core/geometry/predicates.h"
+#include "core/volume/front_steps.h"
+
+namespace afmesh::volume {
+namespace {
+
+bool same_vertex_set(const Triangle& t, const Triangle& u) {
+  Triangle x = t, y = u;
+  std::sort(x.begin(), x.end());
+  std::sort(y.begin(), y.end());
+  return x == y;
+}
+
+bool is_corner(const Tet& tet, Index q) {
+  return q == tet[0] || q == tet[1] || q == tet[2] || q == tet[3];
+}
+
+// Exact separating-plane test: true when, for one face of `tet` (corners `x`), every corner of
+// triangle w is either a corner of that face or strictly outside its plane. Then w meets the
+// closed tet only in the hull of the corners it shares with that face: a proper contact.
+bool separated_by_a_face_plane(const std::vector<Point>& x, const Tet& tet, const Triangle& w) {
+  // Faces of the positive tet (a, b, c, d), oriented out of it.
+  static constexpr int kFaces[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  for (const auto& f : kFaces) {
+    const Index i = tet[f[0]], j = tet[f[1]], k = tet[f[2]];
+    bool outside = true;
+    for (Index q : w) {
+      if (q == i || q == j || q == k) continue;
+      if (orient3d(x[i], x[j], x[k], x[q]) <= 0) {
+        outside = false;
+        break;
+      }
+    }
+    if (outside) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool element_crosses_front(MesherState& s, Index face, Index p) {
+  const Triangle v = s.front.face(face).v;
+  const std::vector<Point>& x = s.points;
+  const Tet tet{v[0], v[1], v[2], p};
+  const Box box = tet_box(x, tet);
+  // The element's faces other than `face`, oriented out of it, with the corner each leaves out.
+  const Triangle sides[3] = {{v[0], v[1], p}, {v[1], v[2], p}, {v[2], v[0], p}};
+  const Index opposite[3] = {v[2], v[0], v[1]};
+
+  s.near_faces.clear();
+  s.front.bins().faces_near(box, s.near_faces);
+  for (Index g : s.near_faces) {
+    if (g == face) continue;
+    const Triangle& w = s.front.face(g).v;
+    if (!boxes_overlap(box, triangle_box(x, w))) continue;
+    bool closes = false;
+    for (int i = 0; i < 3 && !closes; ++i) {
+      if (!same_vertex_set(sides[i], w)) continue;
+      // The front face this side closes must look at the element (F10).
+      if (orient3d(x[w[0]], x[w[1]], x[w[2]], x[opposite[i]]) <= 0) return true;
+      closes = true;
+    }
+    if (closes || separated_by_a_face_plane(x, tet, w)) continue;
+    for (const Triangle& side : sides)
+      if (triangles_intersect_improperly(x, side, w)) return true;
+  }
+
+  s.near_points.clear();
+  s.front.bins().points_near(box, s.near_points);
+  for (Index q : s.near_points) {
+    if (is_corner(tet, q)) continue;
+    if (point_in_tet(x[q], x[v[0]], x[v[1]], x[v[2]], x[p]) >= 0) return true;
+  }
+  return false;
+}
+
+}  // namespace afmesh::volume

@@ -1,0 +1,91 @@
+#include "core/volume/front.h"
+
+#include <algorithm>
+
+namespace afmesh {
+
+Front::Front(const std::vector<Point>& points, const Box& domain, double cell_size)
+    : points_(points), bins_(domain, cell_size) {}
+
+absl::uint128 Front::key_of(Index a, Index b, Index c) {
+  std::array<Index, 3> s{a, b, c};
+  std::sort(s.begin(), s.end());
+  return (absl::uint128(static_cast<std::uint32_t>(s[0])) << 64) |
+         (absl::uint128(static_cast<std::uint32_t>(s[1])) << 32) |
+         absl::uint128(static_cast<std::uint32_t>(s[2]));
+}
+
+Box Front::box_of_face(const Triangle& v) const { return triangle_box(points_, v); }
+
+void Front::point_joins(Index p) {
+  if (p >= static_cast<Index>(point_faces_.size())) point_faces_.resize(p + 1, 0);
+  if (point_faces_[p]++ == 0) bins_.insert_point(p, points_[p]);
+}
+
+void Front::point_leaves(Index p) {
+  if (--point_faces_[p] == 0) bins_.erase_point(p, points_[p]);
+}
+
+Index Front::add(const Triangle& v, double size, Index env) {
+  Index f;
+  if (!free_.empty()) {
+    f = free_.back();
+    free_.pop_back();
+  } else {
+    f = static_cast<Index>(faces_.size());
+    faces_.emplace_back();
+  }
+  FrontFace& face = faces_[f];
+  face.v = v;
+  face.env = env;
+  face.attempts = 0;
+  face.alive = true;
+  ++face.stamp;
+  ++live_;
+  lookup_[key_of(v[0], v[1], v[2])] = f;
+  queue_.push({0, size, f, face.stamp});
+  bins_.insert_face(f, box_of_face(v));
+  for (Index p : v) point_joins(p);
+  return f;
+}
+
+void Front::remove(Index f) {
+  FrontFace& face = faces_[f];
+  face.alive = false;
+  --live_;
+  lookup_.erase(key_of(face.v[0], face.v[1], face.v[2]));
+  bins_.erase_face(f, box_of_face(face.v));
+  for (Index p : face.v) point_leaves(p);
+  free_.push_back(f);
+}
+
+void Front::defer(Index f, double size) {
+  FrontFace& face = faces_[f];
+  if (face.attempts < 255) ++face.attempts;
+  queue_.push({face.attempts, size, f, face.stamp});
+}
+
+void Front::requeue(Index f, double size) {
+  FrontFace& face = faces_[f];
+  face.attempts = 0;
+  ++face.stamp;
+  queue_.push({0, size, f, face.stamp});
+}
+
+std::optional<Index> Front::find(Index a, Index b, Index c) const {
+  auto it = lookup_.find(key_of(a, b, c));
+  if (it == lookup_.end()) return std::nullopt;
+  return it->second;
+}
+
+std::optional<Index> Front::pop() {
+  while (!queue_.empty()) {
+    const QueueEntry e = queue_.top();
+    queue_.pop();
+    const FrontFace& face = faces_[e.face];
+    if (face.alive && face.stamp == e.stamp && face.attempts == e.cls) return e.face;
+  }
+  return std::nullopt;
+}
+
+}  // namespace afmesh

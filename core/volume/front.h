@@ -1,0 +1,90 @@
+// The 3-D front of the advancing-front loop (paper §1): the faces that separate the meshed region
+// from the space still to be meshed, with
+//  - the priority queue of step F6 (smallest element first, failed faces later),
+//  - the face lookup table keyed by the sorted vertex triple, which tells in O(1) whether a new
+//    element face closes a face already on the front (F10),
+//  - the bins over front points and faces for the close-point and crossing searches (F7.2, F7.3).
+//
+// A front face (a, b, c) is oriented with (b-a)x(c-a) pointing into the unmeshed space, so the
+// element built on it with a point p on that side is the positive tet (a, b, c, p).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <queue>
+#include <vector>
+
+#include "absl/container/flat_hash_map.h"
+#include "absl/numeric/int128.h"
+#include "core/mesh/mesh.h"
+#include "core/volume/front_bins.h"
+
+namespace afmesh {
+
+struct FrontFace {
+  Triangle v{kInvalidIndex, kInvalidIndex, kInvalidIndex};
+  Index env = 0;             // crossing environment (paper §2); 0 = none
+  std::uint32_t stamp = 0;   // bumped when the slot is reused, invalidates old queue entries
+  std::uint8_t attempts = 0; // failed attempts to delete this face (raises its queue class)
+  bool alive = false;
+};
+
+class Front {
+ public:
+  // `points` is the mesher's point array; it must outlive the front and may grow (never move
+  // points that are on the front).
+  Front(const std::vector<Point>& points, const Box& domain, double cell_size);
+
+  // Adds face `v` (oriented into the unmeshed space) with queue key `size` (the size of the
+  // element it would form); returns its id.
+  Index add(const Triangle& v, double size, Index env = 0);
+  // Removes a live face (its points leave the bins when they have no other front face).
+  void remove(Index f);
+  // Puts a live face back into the queue after a failed attempt, one class later.
+  void defer(Index f, double size);
+  // Puts a live face back into the queue as a fresh face (class 0), after its surroundings were
+  // re-opened.
+  void requeue(Index f, double size);
+
+  // The live face with vertex set {a, b, c} in any order, if any.
+  std::optional<Index> find(Index a, Index b, Index c) const;
+
+  // F6: pops the face to delete next (lowest class, then smallest size, then lowest id);
+  // nullopt when the front is empty.
+  std::optional<Index> pop();
+
+  const FrontFace& face(Index f) const { return faces_[f]; }
+  std::int64_t size() const { return live_; }
+  bool on_front(Index p) const { return p < static_cast<Index>(point_faces_.size()) && point_faces_[p] > 0; }
+  const FrontBins& bins() const { return bins_; }
+
+ private:
+  struct QueueEntry {
+    std::uint32_t cls;
+    double size;
+    Index face;
+    std::uint32_t stamp;
+    // std::priority_queue is a max-heap: "greater" means popped later.
+    bool operator<(const QueueEntry& o) const {
+      if (cls != o.cls) return cls > o.cls;
+      if (size != o.size) return size > o.size;
+      return face > o.face;
+    }
+  };
+  static absl::uint128 key_of(Index a, Index b, Index c);
+  Box box_of_face(const Triangle& v) const;
+  void point_joins(Index p);
+  void point_leaves(Index p);
+
+  const std::vector<Point>& points_;
+  std::vector<FrontFace> faces_;
+  std::vector<Index> free_;
+  std::int64_t live_ = 0;
+  absl::flat_hash_map<absl::uint128, Index> lookup_;
+  std::priority_queue<QueueEntry> queue_;
+  std::vector<std::int32_t> point_faces_;  // per point: number of live front faces using it
+  FrontBins bins_;
+};
+
+}  // namespace afmesh

@@ -1,0 +1,94 @@
+#include "core/volume/front_bins.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace afmesh {
+
+FrontBins::FrontBins(const Box& domain, double cell_size, std::int64_t max_cells)
+    : origin_(domain.lo), cell_(cell_size) {
+  std::array<double, 3> extent{};
+  for (int a = 0; a < 3; ++a) extent[a] = std::max(domain.hi[a] - domain.lo[a], 0.0);
+  // Grow the cell until the grid fits in max_cells.
+  for (;;) {
+    std::int64_t total = 1;
+    for (int a = 0; a < 3; ++a) {
+      dims_[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(extent[a] / cell_)));
+      total *= dims_[a];
+    }
+    if (total <= max_cells) break;
+    cell_ *= 1.25;
+  }
+  const auto n = static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]);
+  point_cells_.resize(n);
+  face_cells_.resize(n);
+}
+
+std::int64_t FrontBins::cell_coord(double x, int axis) const {
+  const double c = std::floor((x - origin_[axis]) / cell_);
+  if (!(c > 0)) return 0;  // also catches NaN
+  return std::min(static_cast<std::int64_t>(c), dims_[axis] - 1);
+}
+
+FrontBins::CellRange FrontBins::cells_of(const Box& box) const {
+  CellRange r{};
+  for (int a = 0; a < 3; ++a) r[a] = {cell_coord(box.lo[a], a), cell_coord(box.hi[a], a)};
+  return r;
+}
+
+template <typename Fn>
+void FrontBins::for_each_cell(const CellRange& r, Fn&& fn) const {
+  for (std::int64_t k = r[2][0]; k <= r[2][1]; ++k)
+    for (std::int64_t j = r[1][0]; j <= r[1][1]; ++j)
+      for (std::int64_t i = r[0][0]; i <= r[0][1]; ++i) fn(cell_index(i, j, k));
+}
+
+void FrontBins::erase_from(std::vector<Index>& cell, Index item) {
+  auto it = std::find(cell.begin(), cell.end(), item);
+  if (it != cell.end()) {
+    *it = cell.back();
+    cell.pop_back();
+  }
+}
+
+void FrontBins::insert_point(Index p, const Point& x) {
+  point_cells_[cell_index(cell_coord(x[0], 0), cell_coord(x[1], 1), cell_coord(x[2], 2))]
+      .push_back(p);
+}
+
+void FrontBins::erase_point(Index p, const Point& x) {
+  erase_from(point_cells_[cell_index(cell_coord(x[0], 0), cell_coord(x[1], 1),
+                                     cell_coord(x[2], 2))],
+             p);
+}
+
+void FrontBins::insert_face(Index f, const Box& box) {
+  for_each_cell(cells_of(box), [&](std::int64_t c) { face_cells_[c].push_back(f); });
+}
+
+void FrontBins::erase_face(Index f, const Box& box) {
+  for_each_cell(cells_of(box), [&](std::int64_t c) { erase_from(face_cells_[c], f); });
+}
+
+void FrontBins::points_near(const Box& box, std::vector<Index>& out) const {
+  for_each_cell(cells_of(box), [&](std::int64_t c) {
+    out.insert(out.end(), point_cells_[c].begin(), point_cells_[c].end());
+  });
+}
+
+void FrontBins::faces_near(const Box& box, std::vector<Index>& out) const {
+  if (++epoch_ == 0) {  // wrapped: forget every old mark
+    std::fill(mark_.begin(), mark_.end(), 0);
+    epoch_ = 1;
+  }
+  for_each_cell(cells_of(box), [&](std::int64_t c) {
+    for (Index f : face_cells_[c]) {
+      if (mark_.size() <= static_cast<std::size_t>(f)) mark_.resize(f + 1, 0);
+      if (mark_[f] == epoch_) continue;
+      mark_[f] = epoch_;
+      out.push_back(f);
+    }
+  });
+}
+
+}  // namespace afmesh

@@ -1,0 +1,69 @@
+// Bins over the active front (the search structure of steps F7.2 and F7.3).
+//
+// Only points and faces that are on the current front live here; they leave when they leave
+// the front, so a query visits O(1) cells holding O(1) items each and the front loop stays
+// O(N log N) overall. The bins are a dense uniform grid over the front's bounding box; a point
+// sits in the one cell containing it, a face in every cell its bounding box overlaps, so a box
+// query finds every face whose bounding box meets the query box (never a false negative).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/mesh/mesh.h"
+#include "core/spatial/box.h"
+
+namespace afmesh {
+
+// The smallest box containing tet t of `points`.
+inline Box tet_box(const std::vector<Point>& points, const Tet& t) {
+  Box b{points[t[0]], points[t[0]]};
+  for (int k = 1; k < 4; ++k) enclose(b, points[t[k]]);
+  return b;
+}
+
+class FrontBins {
+ public:
+  // `domain` bounds every point that will ever be inserted (points outside are clamped into the
+  // border cells, which keeps queries correct). `cell_size` > 0 is the wanted edge of a cell;
+  // it is enlarged so the grid has at most `max_cells` cells.
+  FrontBins(const Box& domain, double cell_size, std::int64_t max_cells = std::int64_t{1} << 22);
+
+  void insert_point(Index p, const Point& x);
+  void erase_point(Index p, const Point& x);
+  void insert_face(Index f, const Box& box);
+  void erase_face(Index f, const Box& box);
+
+  // Appends to `out` every point in cells overlapping `box` (a superset of the points inside
+  // `box`; callers test exact containment), each once, in an order fixed by the history of
+  // insertions and removals (deterministic, not sorted).
+  void points_near(const Box& box, std::vector<Index>& out) const;
+  // Appends to `out` every face registered in a cell overlapping `box`, each once, in a
+  // deterministic order (not sorted).
+  void faces_near(const Box& box, std::vector<Index>& out) const;
+
+  double cell_size() const { return cell_; }
+
+ private:
+  using CellRange = std::array<std::array<std::int64_t, 2>, 3>;  // [axis][lo, hi] inclusive
+  std::int64_t cell_coord(double x, int axis) const;
+  CellRange cells_of(const Box& box) const;
+  std::int64_t cell_index(std::int64_t i, std::int64_t j, std::int64_t k) const {
+    return (k * dims_[1] + j) * dims_[0] + i;
+  }
+  template <typename Fn>
+  void for_each_cell(const CellRange& r, Fn&& fn) const;
+  static void erase_from(std::vector<Index>& cell, Index item);
+
+  Point origin_{};
+  double cell_ = 1.0;
+  std::array<std::int64_t, 3> dims_{1, 1, 1};
+  std::vector<std::vector<Index>> point_cells_;
+  std::vector<std::vector<Index>> face_cells_;
+  // Query scratch for faces_near: face f was listed in this query when mark_[f] == epoch_.
+  mutable std::vector<std::uint32_t> mark_;
+  mutable std::uint32_t epoch_ = 0;
+};
+
+}  // namespace afmesh

@@ -1,0 +1,52 @@
+// The steps of the volume front loop (paper §1, F5–F10), each a function on the MesherState.
+// generate_volume_mesh.cc calls them in the order of the paper.
+#pragma once
+
+#include "core/volume/mesher_state.h"
+
+namespace afmesh::volume {
+
+// Relaxation of the acceptance rules for a face that has failed `attempts` times: later
+// attempts accept worse elements and points closer to the front.
+struct Strictness {
+  double min_quality;     // smallest accepted tet quality (tet_shape_quality)
+  double point_spacing;   // a new point keeps this fraction of d from front points
+  double face_clearance;  // ... and this fraction of d from front faces
+};
+Strictness strictness_for(int attempts);
+
+// Shape quality of tet (a, b, c, d) in [0, 1]: 6·sqrt(2)·V / l_rms^3, with l_rms the root mean
+// square edge length: 1 for the regular tet, 0 when flat, negative when inverted.
+double tet_shape_quality(const Point& a, const Point& b, const Point& c, const Point& d);
+
+// F5/F9 with eq. 15: the size of the element face `v` should form,
+//   d = min(delta_bg(centroid), c_i · min(delta_A, delta_B, delta_C)),
+// kept within [0.55, 1.6] × the face's mean edge so the element is not needle- or flat-shaped.
+double element_size_for_face(const MesherState& s, const Triangle& v);
+
+// F7.1: the 'best point' for face v and element size d: above the centroid, along the face
+// normal, at the height that makes the edges to the face's corners about d long.
+Point ideal_point(const MesherState& s, const Triangle& v, double d);
+
+// F7.2: the candidates for the face, best first: front points near the ideal point that form a
+// positive element of acceptable shape, and the new point itself unless a front point or face is
+// too close to it (then the existing point is used in lieu of it), followed by new points closer
+// to the face. Fills s.candidates.
+void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
+                       const Strictness& rules);
+
+// F7.3: true when tet (v[0], v[1], v[2], p) would cross the front: it intersects a front face
+// other than those it shares properly, or contains a front point. `p` is an index into
+// s.points (a new point is appended before the check). Exact predicates only.
+bool element_crosses_front(MesherState& s, Index face, Index p);
+
+// F8–F10: adds tet (v, p), deletes the face and every front face the tet closes, and puts the
+// tet's other faces on the front with their element sizes.
+void add_element(MesherState& s, Index face, Index p);
+
+// Back-off when a face cannot be closed: removes the tets around the face's corners (within
+// `rings` rings) and returns their faces to the front to be meshed again. Returns the number of
+// tets removed.
+std::int64_t open_cavity(MesherState& s, Index face, int rings);
+
+}  // namespace afmesh::volume

@@ -1,0 +1,219 @@
+// MeshVolume: the advancing-front loop of the paper, §1, steps F1–F11.
+#include "core/volume/generate_volume_mesh.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "absl/strings/str_format.h"
+#include "core/geometry/vec.h"
+#include "core/volume/front_steps.h"
+
+namespace afmesh {
+namespace {
+
+using volume::MesherState;
+
+constexpr int kAttemptsBeforeBackOff = 6;  // queue classes a face passes before a cavity opens
+constexpr int kMaxCavityRings = 4;
+constexpr int kCancelCheckInterval = 256;  // faces between cancellation checks
+
+class StageClock {
+ public:
+  explicit StageClock(std::vector<StageTiming>& out) : out_(out) {}
+  void lap(const char* stage) {
+    const auto now = std::chrono::steady_clock::now();
+    out_.push_back({stage, std::chrono::duration<double>(now - start_).count()});
+    start_ = now;
+  }
+
+ private:
+  std::vector<StageTiming>& out_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+Box padded_bounds(const std::vector<Point>& points) {
+  Box b{points[0], points[0]};
+  for (const Point& p : points)
+    for (int a = 0; a < 3; ++a) {
+      b.lo[a] = std::min(b.lo[a], p[a]);
+      b.hi[a] = std::max(b.hi[a], p[a]);
+    }
+  double extent = 0;
+  for (int a = 0; a < 3; ++a) extent = std::max(extent, b.hi[a] - b.lo[a]);
+  for (int a = 0; a < 3; ++a) {
+    b.lo[a] -= 0.01 * extent;
+    b.hi[a] += 0.01 * extent;
+  }
+  return b;
+}
+
+// F5, eq. 15 for the input: each boundary point gets the mean length of its boundary edges.
+std::vector<double> boundary_point_sizes(const Mesh& front) {
+  std::vector<double> sum(front.points.size(), 0.0);
+  std::vector<int> count(front.points.size(), 0);
+  for (const Triangle& t : front.triangles)
+    for (int i = 0; i < 3; ++i) {
+      const Index a = t[i], b = t[(i + 1) % 3];
+      const double len = norm(sub(front.points[a], front.points[b]));
+      sum[a] += len;
+      sum[b] += len;
+      count[a] += 1;
+      count[b] += 1;
+    }
+  for (std::size_t p = 0; p < sum.size(); ++p) sum[p] = count[p] ? sum[p] / count[p] : 0.0;
+  return sum;
+}
+
+double mean_boundary_edge(const Mesh& front) {
+  double sum = 0;
+  for (const Triangle& t : front.triangles)
+    for (int i = 0; i < 3; ++i) sum += norm(sub(front.points[t[i]], front.points[t[(i + 1) % 3]]));
+  return sum / (3.0 * static_cast<double>(front.triangles.size()));
+}
+
+double enclosed_volume(const Mesh& front) {
+  double six_v = 0;
+  for (const Triangle& t : front.triangles)
+    six_v += dot(front.points[t[0]], cross(front.points[t[1]], front.points[t[2]]));
+  return six_v / 6.0;
+}
+
+// F1/F4: the input triangles, flipped to look into the domain, form the initial front.
+void load_initial_front(MesherState& s, const Mesh& input) {
+  s.point_size = boundary_point_sizes(input);
+  for (const Triangle& t : input.triangles) {
+    const Triangle inward{t[0], t[2], t[1]};
+    s.front.add(inward, volume::element_size_for_face(s, inward));
+  }
+}
+
+// F7: tries the candidates of the face in order; adds the first element that does not cross the
+// front (F8–F10). Returns false when none fits.
+bool delete_face(MesherState& s, Index face) {
+  const Triangle v = s.front.face(face).v;
+  const volume::Strictness rules = volume::strictness_for(s.front.face(face).attempts);
+  const double d = volume::element_size_for_face(s, v);               // F5/F9
+  const Point ideal = volume::ideal_point(s, v, d);                    // F7.1
+  volume::gather_candidates(s, face, ideal, d, rules);                 // F7.2
+  for (const volume::Candidate& c : s.candidates) {
+    Index p = c.point;
+    if (p == kInvalidIndex) {  // a new point: eq. 15 sets its size
+      p = static_cast<Index>(s.points.size());
+      s.points.push_back(c.position);
+      s.point_size.push_back(
+          std::min(s.size_field.size_at(c.position),
+                   s.params.growth * std::min({s.point_size[v[0]], s.point_size[v[1]],
+                                               s.point_size[v[2]]})));
+    }
+    if (!volume::element_crosses_front(s, face, p)) {                  // F7.3
+      volume::add_element(s, face, p);                                 // F8–F10
+      return true;
+    }
+    if (c.point == kInvalidIndex) {
+      s.points.pop_back();
+      s.point_size.pop_back();
+    }
+  }
+  return false;
+}
+
+// The back-off for a face that failed in every queue class: re-open the elements around it,
+// one ring more each time the same corner is involved again.
+absl::Status back_off(MesherState& s, Index face, std::vector<std::uint8_t>& repairs) {
+  const Triangle v = s.front.face(face).v;
+  const std::uint32_t stamp = s.front.face(face).stamp;
+  int rings = 1;
+  for (Index p : v) {
+    if (static_cast<std::size_t>(p) >= repairs.size()) repairs.resize(p + 1, 0);
+    rings = std::max(rings, 1 + static_cast<int>(repairs[p]));
+  }
+  const Point& x = s.points[v[0]];
+  if (rings > kMaxCavityRings) {
+    return absl::FailedPreconditionError(absl::StrFormat(
+        "the front got stuck at face (%d, %d, %d) near (%g, %g, %g) after re-opening its "
+        "surroundings %d times; %d tets built, %d front faces left",
+        v[0], v[1], v[2], x[0], x[1], x[2], kMaxCavityRings, s.live_tets, s.front.size()));
+  }
+  for (Index p : v) ++repairs[p];
+  const std::int64_t removed = volume::open_cavity(s, face, rings);
+  const FrontFace& f = s.front.face(face);
+  if (f.alive && f.stamp == stamp) {
+    if (removed == 0) ++repairs[v[0]], ++repairs[v[1]], ++repairs[v[2]];
+    s.front.requeue(face, volume::element_size_for_face(s, v));
+  }
+  return absl::OkStatus();
+}
+
+// Drops deleted tets and points no tet uses any more; input points keep their indices.
+Mesh compact_result(const MesherState& s, const Mesh& input) {
+  Mesh out;
+  std::vector<Index> new_index(s.points.size(), kInvalidIndex);
+  for (Index p = 0; p < s.input_points; ++p) new_index[p] = p;
+  Index next = s.input_points;
+  out.tets.reserve(static_cast<std::size_t>(s.live_tets));
+  for (const Tet& t : s.tets) {
+    if (t[0] == kInvalidIndex) continue;
+    Tet u;
+    for (int k = 0; k < 4; ++k) {
+      if (new_index[t[k]] == kInvalidIndex) new_index[t[k]] = next++;
+      u[k] = new_index[t[k]];
+    }
+    out.tets.push_back(u);
+  }
+  out.points.resize(static_cast<std::size_t>(next));
+  for (std::size_t p = 0; p < s.points.size(); ++p)
+    if (new_index[p] != kInvalidIndex) out.points[new_index[p]] = s.points[p];
+  out.tet_tags.assign(out.tets.size(), 0);
+  out.triangles = input.triangles;
+  out.triangle_tags = input.triangle_tags;
+  out.triangle_tags.resize(out.triangles.size(), 0);
+  return out;
+}
+
+}  // namespace
+
+absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const VolumeParams& params,
+                                                  Progress& progress) {
+  VolumeResult result;
+  StageClock clock(result.timings);
+  if (!(params.size > 0) || !std::isfinite(params.size))
+    return absl::InvalidArgumentError(absl::StrFormat("size must be > 0, got %g", params.size));
+  if (!(params.growth >= 1.0) || !std::isfinite(params.growth))
+    return absl::InvalidArgumentError(absl::StrFormat("growth must be >= 1, got %g", params.growth));
+  if (absl::Status st = validate_front(front); !st.ok()) return st;
+  clock.lap("validate");
+
+  const UniformSize size_field(params.size);
+  MesherState s(front, params, size_field, padded_bounds(front.points), mean_boundary_edge(front));
+  const double h = std::min(params.size, mean_boundary_edge(front));
+  const double expected_tets =
+      std::max(1.0, enclosed_volume(front) / (h * h * h / (6.0 * std::sqrt(2.0))));
+  s.tets.reserve(static_cast<std::size_t>(expected_tets * 1.3));
+  s.points.reserve(front.points.size() + static_cast<std::size_t>(expected_tets / 4));
+  load_initial_front(s, front);
+
+  std::vector<std::uint8_t> repairs;
+  std::int64_t steps = 0;
+  while (std::optional<Index> face = s.front.pop()) {                  // F6, F11
+    if (++steps % kCancelCheckInterval == 0) {
+      if (progress.cancelled()) return absl::CancelledError("volume meshing cancelled");
+      progress.report("front", std::min(0.99, static_cast<double>(s.live_tets) / expected_tets));
+    }
+    if (delete_face(s, *face)) continue;
+    const FrontFace& f = s.front.face(*face);
+    if (f.attempts + 1 < kAttemptsBeforeBackOff) {
+      s.front.defer(*face, volume::element_size_for_face(s, f.v));
+      continue;
+    }
+    if (absl::Status st = back_off(s, *face, repairs); !st.ok()) return st;
+  }
+  clock.lap("front");
+
+  result.mesh = compact_result(s, front);
+  clock.lap("compact");
+  progress.report("front", 1.0);
+  return result;
+}
+
+}  // namespace afmesh

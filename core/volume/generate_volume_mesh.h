@@ -1,0 +1,46 @@
+// MeshVolume: tetrahedra filling a closed triangulated front by the advancing front (paper §1,
+// steps F1–F11).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/common/progress.h"
+#include "core/mesh/mesh.h"
+
+namespace afmesh {
+
+struct VolumeParams {
+  // Target edge length h of the uniform size field (> 0, in the units of the points).
+  double size = 0.0;
+  // Growth factor c_i of eq. 15 (>= 1): a new point's size is at most c_i times the smallest
+  // size of the face being deleted. 1 gives uniform elements.
+  double growth = 1.0;
+};
+
+struct StageTiming {
+  std::string stage;   // e.g. "validate", "front", "optimise"
+  double seconds = 0;  // wall time
+};
+
+struct VolumeResult {
+  // points: the front's points first, in input order, then the new interior points;
+  // tets: positive orientation; triangles: the input front unchanged (with its tags).
+  Mesh mesh;
+  std::vector<StageTiming> timings;
+};
+
+// Checks that `front` is a valid input front: finite coordinates, indices in range, no degenerate
+// triangle, closed, manifold and consistently oriented with outward normals. INVALID_ARGUMENT
+// names the first offending element(s).
+absl::Status validate_front(const Mesh& front);
+
+// Fills the volume enclosed by `front` (outward-oriented closed triangles) with tetrahedra whose
+// boundary faces are exactly the front's triangles.
+// Errors: INVALID_ARGUMENT (bad front or params), CANCELLED (progress.cancelled()),
+// FAILED_PRECONDITION (the front could not be closed; the message says where).
+absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const VolumeParams& params,
+                                                  Progress& progress);
+
+}  // namespace afmesh

@@ -1,0 +1,60 @@
+// The state of one run of the volume front (paper §1): the growing point and element lists,
+// the sizes attached to points (eq. 15) and the front. One MesherState per request; nothing is
+// shared between runs.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/mesh/mesh.h"
+#include "core/sizing/size_field.h"
+#include "core/volume/front.h"
+#include "core/volume/generate_volume_mesh.h"
+
+namespace afmesh::volume {
+
+// A point the front may connect a face to (F7.2): an existing front point, or the new point at
+// `position` when `point == kInvalidIndex`.
+struct Candidate {
+  Index point = kInvalidIndex;
+  Point position{};
+  double rank = 0;  // lower is tried first
+};
+
+// Tets around each point, as singly linked lists threaded through the tets (for cavity repair).
+class TetIncidence {
+ public:
+  void add(const std::vector<Tet>& tets, Index t);
+  void remove(const std::vector<Tet>& tets, Index t);
+  // Appends the live tets using point p to `out`.
+  void tets_of(const std::vector<Tet>& tets, Index p, std::vector<Index>& out) const;
+
+ private:
+  static int corner_of(const Tet& tet, Index p);
+  std::vector<Index> first_;                // per point
+  std::vector<std::array<Index, 4>> next_;  // per tet and corner
+};
+
+struct MesherState {
+  MesherState(const Mesh& input, const VolumeParams& params, const SizeField& size_field,
+              const Box& domain, double cell_size);
+
+  const VolumeParams& params;
+  const SizeField& size_field;
+  Index input_points = 0;
+  std::vector<Point> points;
+  std::vector<double> point_size;  // delta of each point (eq. 15)
+  std::vector<Tet> tets;           // a deleted tet has tet[0] == kInvalidIndex
+  std::int64_t live_tets = 0;
+  TetIncidence incidence;
+  Front front;
+
+  // Scratch buffers reused for every face: no allocation per element in the loop.
+  std::vector<Index> near_points;
+  std::vector<Index> near_faces;
+  std::vector<Candidate> candidates;
+  std::vector<Index> cavity;
+};
+
+}  // namespace afmesh::volume

@@ -1,0 +1,66 @@
+// F8–F10 of the volume front, and the local back-off that re-opens a cavity.
+#include <algorithm>
+
+#include "core/volume/front_steps.h"
+
+namespace afmesh::volume {
+namespace {
+
+// Deletes live tet t and updates the front around the hole it leaves: each of its faces that
+// was on the front leaves it (both sides are now unmeshed); each other face (shared with a live
+// tet or on the input boundary) joins it, looking into the hole.
+void delete_tet(MesherState& s, Index t) {
+  const Tet k = s.tets[t];
+  // Faces of the positive tet (a, b, c, d), oriented out of it.
+  const Triangle faces[4] = {{k[0], k[2], k[1]}, {k[0], k[1], k[3]}, {k[1], k[2], k[3]},
+                             {k[0], k[3], k[2]}};
+  for (const Triangle& f : faces) {
+    if (auto g = s.front.find(f[0], f[1], f[2])) {
+      s.front.remove(*g);
+    } else {
+      const Triangle inward{f[0], f[2], f[1]};
+      s.front.add(inward, element_size_for_face(s, inward));
+    }
+  }
+  s.incidence.remove(s.tets, t);
+  s.tets[t][0] = kInvalidIndex;
+  --s.live_tets;
+}
+
+}  // namespace
+
+void add_element(MesherState& s, Index face, Index p) {
+  const Triangle v = s.front.face(face).v;
+  const Index t = static_cast<Index>(s.tets.size());
+  s.tets.push_back({v[0], v[1], v[2], p});  // F8
+  s.incidence.add(s.tets, t);
+  ++s.live_tets;
+  s.front.remove(face);  // F10
+  const Triangle sides[3] = {{v[0], v[1], p}, {v[1], v[2], p}, {v[2], v[0], p}};
+  for (const Triangle& side : sides) {
+    if (auto g = s.front.find(side[0], side[1], side[2])) {
+      s.front.remove(*g);  // F10: the element closes this face
+    } else {
+      s.front.add(side, element_size_for_face(s, side));  // F8, F9
+    }
+  }
+}
+
+std::int64_t open_cavity(MesherState& s, Index face, int rings) {
+  std::vector<Index>& cavity = s.cavity;
+  cavity.clear();
+  for (Index p : s.front.face(face).v) s.incidence.tets_of(s.tets, p, cavity);
+  for (int ring = 1; ring < rings; ++ring) {
+    std::sort(cavity.begin(), cavity.end());
+    cavity.erase(std::unique(cavity.begin(), cavity.end()), cavity.end());
+    const std::size_t n = cavity.size();
+    for (std::size_t i = 0; i < n; ++i)
+      for (Index p : s.tets[cavity[i]]) s.incidence.tets_of(s.tets, p, cavity);
+  }
+  std::sort(cavity.begin(), cavity.end());
+  cavity.erase(std::unique(cavity.begin(), cavity.end()), cavity.end());
+  for (Index t : cavity) delete_tet(s, t);
+  return static_cast<std::int64_t>(cavity.size());
+}
+
+}  // namespace afmesh::volume

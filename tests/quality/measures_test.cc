@@ -1,0 +1,208 @@
+// Tests of element quality measures and the mesh quality summary, against hand-computed values.
+#include "core/quality/measures.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "tests/quality/test_meshes.h"
+
+namespace afmesh {
+namespace {
+
+constexpr double kTol = 1e-12;
+
+double deg(double radians) { return radians * 180.0 / std::numbers::pi; }
+
+TEST(TetQuality, RegularTetHasEqualDihedralsAndUnitRadiusRatio) {
+  const TetQuality q = tet_quality({1, 1, 1}, {-1, 1, -1}, {1, -1, -1}, {-1, -1, 1});
+  const double expected = deg(std::acos(1.0 / 3.0));  // 70.528779...
+  EXPECT_NEAR(q.min_dihedral_deg, expected, kTol);
+  EXPECT_NEAR(q.max_dihedral_deg, expected, kTol);
+  EXPECT_NEAR(q.radius_ratio, 1.0, kTol);
+  // Edge a = 2√2: volume a^3 / (6√2) = 8/3, positive in this vertex order.
+  EXPECT_NEAR(q.volume, 8.0 / 3.0, kTol);
+}
+
+// Corner tet (0,0,0), e_x, e_y, e_z: three right dihedrals at the origin's edges, and
+// acos(1/√3) at the edges of the slanted face. r_in = 1/(3+√3), r_circ = √3/2, so
+// 3 r_in / r_circ = √3 - 1.
+TEST(TetQuality, RightCornerTetMatchesHandComputedValues) {
+  const TetQuality q = tet_quality({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  EXPECT_NEAR(q.min_dihedral_deg, deg(std::acos(1.0 / std::sqrt(3.0))), kTol);  // 54.7356°
+  EXPECT_NEAR(q.max_dihedral_deg, 90.0, kTol);
+  EXPECT_NEAR(q.radius_ratio, std::sqrt(3.0) - 1.0, kTol);
+  EXPECT_NEAR(q.volume, 1.0 / 6.0, kTol);
+}
+
+TEST(TetQuality, InvertedTetHasNegativeVolumeAndSameShapeMeasures) {
+  const TetQuality positive = tet_quality({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  const TetQuality inverted = tet_quality({0, 0, 0}, {0, 1, 0}, {1, 0, 0}, {0, 0, 1});
+  EXPECT_NEAR(inverted.volume, -1.0 / 6.0, kTol);
+  EXPECT_NEAR(inverted.min_dihedral_deg, positive.min_dihedral_deg, kTol);
+  EXPECT_NEAR(inverted.max_dihedral_deg, positive.max_dihedral_deg, kTol);
+  EXPECT_NEAR(inverted.radius_ratio, positive.radius_ratio, kTol);
+}
+
+TEST(TetQuality, NearlyFlatSliverHasRatioNearZeroAndExtremeDihedrals) {
+  const TetQuality q = tet_quality({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 1e-6});
+  EXPECT_GT(std::abs(q.volume), 0.0);
+  EXPECT_LT(q.radius_ratio, 1e-5);
+  EXPECT_LT(q.min_dihedral_deg, 1e-3);
+  EXPECT_GT(q.max_dihedral_deg, 180.0 - 1e-3);
+}
+
+TEST(TetQuality, FlatTetHasZeroVolumeAndZeroRatio) {
+  const TetQuality q = tet_quality({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0});
+  EXPECT_EQ(q.volume, 0.0);
+  EXPECT_EQ(q.radius_ratio, 0.0);
+  EXPECT_NEAR(q.min_dihedral_deg, 0.0, kTol);
+  EXPECT_NEAR(q.max_dihedral_deg, 180.0, kTol);
+}
+
+TEST(TetQuality, CoincidentPointsGiveZeroRatioAndNoNaN) {
+  const TetQuality q = tet_quality({0, 0, 0}, {0, 0, 0}, {0, 1, 0}, {0, 0, 1});
+  EXPECT_EQ(q.volume, 0.0);
+  EXPECT_EQ(q.radius_ratio, 0.0);
+  EXPECT_FALSE(std::isnan(q.min_dihedral_deg));
+  EXPECT_FALSE(std::isnan(q.max_dihedral_deg));
+}
+
+TEST(TetQuality, IndexedOverloadEqualsPointOverload) {
+  const std::vector<Point> points = {{0, 0, 0}, {2, 0, 0}, {0.3, 1.5, 0}, {0.2, 0.4, 0.9}};
+  const TetQuality a = tet_quality(points, Tet{0, 1, 2, 3});
+  const TetQuality b = tet_quality(points[0], points[1], points[2], points[3]);
+  EXPECT_EQ(a.min_dihedral_deg, b.min_dihedral_deg);
+  EXPECT_EQ(a.radius_ratio, b.radius_ratio);
+  EXPECT_EQ(a.volume, b.volume);
+  EXPECT_NEAR(tet_signed_volume(points[0], points[1], points[2], points[3]), 2 * 1.5 * 0.9 / 6,
+              kTol);
+}
+
+TEST(TriangleQuality, EquilateralTriangleHasSixtyDegreesAndUnitRatio) {
+  const TriangleQuality q = triangle_quality({0, 0, 0}, {1, 0, 0}, {0.5, std::sqrt(3.0) / 2, 0});
+  EXPECT_NEAR(q.min_angle_deg, 60.0, kTol);
+  EXPECT_NEAR(q.radius_ratio, 1.0, kTol);
+  EXPECT_NEAR(q.area, std::sqrt(3.0) / 4, kTol);
+}
+
+// Right isosceles triangle with legs 1: angles 45°, 45°, 90°; r_in = 1 - 1/√2,
+// r_circ = 1/√2, so 2 r_in / r_circ = 2(√2 - 1).
+TEST(TriangleQuality, RightIsoscelesTriangleMatchesHandComputedValues) {
+  const TriangleQuality q = triangle_quality({0, 0, 5}, {0, 1, 5}, {1, 0, 5});
+  EXPECT_NEAR(q.min_angle_deg, 45.0, kTol);
+  EXPECT_NEAR(q.radius_ratio, 2.0 * (std::sqrt(2.0) - 1.0), kTol);
+  EXPECT_NEAR(q.area, 0.5, kTol);
+}
+
+TEST(TriangleQuality, CollinearAndCoincidentTrianglesHaveZeroRatio) {
+  const TriangleQuality flat = triangle_quality({0, 0, 0}, {1, 1, 1}, {3, 3, 3});
+  EXPECT_EQ(flat.radius_ratio, 0.0);
+  EXPECT_NEAR(flat.min_angle_deg, 0.0, kTol);
+  const TriangleQuality pinched = triangle_quality({0, 0, 0}, {0, 0, 0}, {1, 0, 0});
+  EXPECT_EQ(pinched.radius_ratio, 0.0);
+  EXPECT_EQ(pinched.min_angle_deg, 0.0);
+}
+
+TEST(Histogram, CountsEveryValueOnceAndClampsOutOfRange) {
+  Histogram h(0.0, 180.0, 18);
+  for (double v : {-1.0, 0.0, 9.999, 10.0, 95.0, 179.9, 180.0, 200.0, std::nan("")}) h.add(v);
+  EXPECT_EQ(h.total(), 9);
+  EXPECT_EQ(h.nan_count, 1);
+  EXPECT_EQ(h.counts[0], 3);  // -1 clamped, 0, 9.999
+  EXPECT_EQ(h.counts[1], 1);  // 10
+  EXPECT_EQ(h.counts[9], 1);  // 95
+  EXPECT_EQ(h.counts[17], 3);  // 179.9, 180 and 200 clamped
+  EXPECT_DOUBLE_EQ(h.bin_lo(9), 90.0);
+}
+
+// The five-tet cube: four right-corner tets of volume 1/6 and the regular central tet of 1/3.
+TEST(QualitySummary, FiveTetCubeStatisticsMatchItsElements) {
+  Mesh mesh = testing::five_tet_cube();
+  mesh.triangles = testing::five_tet_cube_boundary().triangles;
+  mesh.triangle_tags.assign(mesh.triangles.size(), 0);
+  const absl::StatusOr<QualitySummary> s = summarize_quality(mesh);
+  ASSERT_TRUE(s.ok()) << s.status();
+
+  EXPECT_EQ(s->tet_count, 5);
+  EXPECT_NEAR(s->tet_min_dihedral_deg.min, deg(std::acos(1.0 / std::sqrt(3.0))), 1e-9);
+  EXPECT_NEAR(s->tet_min_dihedral_deg.max, deg(std::acos(1.0 / 3.0)), 1e-9);
+  EXPECT_NEAR(s->tet_max_dihedral_deg.max, 90.0, 1e-9);
+  EXPECT_NEAR(s->tet_radius_ratio.min, std::sqrt(3.0) - 1.0, 1e-9);
+  EXPECT_NEAR(s->tet_radius_ratio.max, 1.0, 1e-9);
+  EXPECT_NEAR(s->tet_radius_ratio.mean, (4 * (std::sqrt(3.0) - 1.0) + 1.0) / 5, 1e-9);
+  EXPECT_NEAR(s->tet_volume.mean, 1.0 / 5.0, 1e-12);
+  EXPECT_EQ(s->tets_with_nonpositive_volume, 0);
+  EXPECT_EQ(s->share_min_dihedral_below_10, 0.0);
+  EXPECT_EQ(s->share_min_dihedral_below_20, 0.0);
+
+  EXPECT_EQ(s->triangle_count, 12);
+  EXPECT_NEAR(s->triangle_min_angle_deg.min, 45.0, 1e-9);
+  EXPECT_NEAR(s->triangle_min_angle_deg.max, 45.0, 1e-9);
+}
+
+TEST(QualitySummary, HistogramCountsSumToElementCounts) {
+  Mesh mesh = testing::five_tet_cube();
+  mesh = testing::merge(mesh, testing::translated(testing::six_tet_cube(), {3, 0, 0}));
+  mesh.tets.push_back({0, 1, 2, 2});  // degenerate: still counted
+  mesh.tet_tags.push_back(0);
+  mesh.triangles = testing::octahedron().triangles;
+  mesh.triangle_tags.assign(mesh.triangles.size(), 0);
+  const absl::StatusOr<QualitySummary> s = summarize_quality(mesh);
+  ASSERT_TRUE(s.ok()) << s.status();
+  EXPECT_EQ(s->tet_count, 12);
+  EXPECT_EQ(s->tet_min_dihedral_hist.total(), 12);
+  EXPECT_EQ(s->tet_max_dihedral_hist.total(), 12);
+  EXPECT_EQ(s->tet_radius_ratio_hist.total(), 12);
+  EXPECT_EQ(s->triangle_min_angle_hist.total(), 8);
+  EXPECT_EQ(s->triangle_radius_ratio_hist.total(), 8);
+  EXPECT_EQ(s->tets_with_nonpositive_volume, 1);
+  EXPECT_NEAR(s->share_min_dihedral_below_10, 1.0 / 12.0, 1e-15);
+  EXPECT_EQ(s->tet_radius_ratio_hist.counts.front(), 1);  // the degenerate tet, ratio 0
+}
+
+TEST(QualitySummary, ShareBelowThresholdsCountsSlivers) {
+  Mesh mesh = testing::tet_mesh(
+      {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0.01}, {1, 1, 0.25}},
+      {{0, 1, 2, 3}, {0, 1, 2, 4}, {0, 1, 2, 5}});
+  const absl::StatusOr<QualitySummary> s = summarize_quality(mesh);
+  ASSERT_TRUE(s.ok()) << s.status();
+  // Sliver with apex 0.01 over (1,1): min dihedral < 10°; with apex 0.25: between 10° and 20°.
+  const double sliver = tet_quality(mesh.points, mesh.tets[1]).min_dihedral_deg;
+  const double flat = tet_quality(mesh.points, mesh.tets[2]).min_dihedral_deg;
+  ASSERT_LT(sliver, 10.0);
+  ASSERT_GE(flat, 10.0);
+  ASSERT_LT(flat, 20.0);
+  EXPECT_NEAR(s->share_min_dihedral_below_10, 1.0 / 3.0, 1e-15);
+  EXPECT_NEAR(s->share_min_dihedral_below_20, 2.0 / 3.0, 1e-15);
+}
+
+TEST(QualitySummary, IsDeterministic) {
+  const Mesh mesh = testing::six_tet_cube();
+  const QualitySummary a = *summarize_quality(mesh);
+  const QualitySummary b = *summarize_quality(mesh);
+  EXPECT_EQ(a.tet_radius_ratio.mean, b.tet_radius_ratio.mean);
+  EXPECT_EQ(a.tet_min_dihedral_hist.counts, b.tet_min_dihedral_hist.counts);
+}
+
+TEST(QualitySummary, EmptyMeshHasZeroCounts) {
+  const absl::StatusOr<QualitySummary> s = summarize_quality(Mesh{});
+  ASSERT_TRUE(s.ok());
+  EXPECT_EQ(s->tet_count, 0);
+  EXPECT_EQ(s->tet_volume.count, 0);
+  EXPECT_EQ(s->tet_min_dihedral_hist.total(), 0);
+}
+
+TEST(QualitySummary, OutOfRangeIndexIsInvalidArgumentNamingTheElement) {
+  Mesh mesh = testing::five_tet_cube();
+  mesh.tets[3][2] = 42;
+  const absl::StatusOr<QualitySummary> s = summarize_quality(mesh);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(s.status().message().find("tet 3"), std::string_view::npos);
+  EXPECT_NE(s.status().message().find("42"), std::string_view::npos);
+}
+
+}  // namespace
+}  // namespace afmesh

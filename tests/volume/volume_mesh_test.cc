@@ -1,0 +1,131 @@
+// Integration tests of the volume front: real solids meshed, then checked against invariants.
+#include <cmath>
+#include <numbers>
+
+#include "core/quality/measures.h"
+#include "core/quality/validate.h"
+#include "core/shapes/shapes.h"
+#include "core/volume/generate_volume_mesh.h"
+#include "gtest/gtest.h"
+
+namespace afmesh {
+namespace {
+
+// Meshes `front` and checks the result the way a user would: valid, boundary equal to the front,
+// volumes adding up, and no element worse than the quality bar.
+VolumeResult mesh_and_check(const Mesh& front, double h, double growth = 1.0) {
+  VolumeParams params;
+  params.size = h;
+  params.growth = growth;
+  absl::StatusOr<VolumeResult> result = generate_volume_mesh(front, params, no_progress());
+  EXPECT_TRUE(result.ok()) << result.status();
+  if (!result.ok()) return {};
+  const ValidationReport report = validate_volume_mesh(result->mesh, &front);
+  EXPECT_TRUE(report.valid()) << report.to_string();
+  // The input front's points come first, unchanged.
+  for (std::size_t p = 0; p < front.points.size(); ++p)
+    EXPECT_EQ(result->mesh.points[p], front.points[p]) << "point " << p;
+  return *std::move(result);
+}
+
+TEST(VolumeMesh, SingleTetFrontGivesOneTet) {
+  Mesh front;
+  front.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  front.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  front.triangle_tags = {0, 0, 0, 0};
+  const VolumeResult r = mesh_and_check(front, 1.0);
+  EXPECT_EQ(r.mesh.tets.size(), 1u);
+  EXPECT_EQ(r.mesh.points.size(), 4u);
+}
+
+TEST(VolumeMesh, CubeIsValidAndBoundaryEqualsFront) {
+  const Mesh front = box_surface({0, 0, 0}, {1, 1, 1}, 0.25);
+  const VolumeResult r = mesh_and_check(front, 0.25);
+  EXPECT_GT(r.mesh.tets.size(), 100u);
+}
+
+TEST(VolumeMesh, SphereIsValid) {
+  const Mesh front = sphere_surface({0, 0, 0}, 1.0, 0.2);
+  mesh_and_check(front, 0.2);
+}
+
+TEST(VolumeMesh, TorusIsValid) {
+  const Mesh front = torus_surface(1.0, 0.35, 0.12);
+  mesh_and_check(front, 0.12);
+}
+
+TEST(VolumeMesh, LBlockWithHoleIsValid) {
+  const Mesh front = l_block_with_hole_surface(1.0, 0.25);
+  mesh_and_check(front, 0.25);
+}
+
+TEST(VolumeMesh, GrowthGivesFewerElements) {
+  const Mesh front = box_surface({0, 0, 0}, {2, 2, 2}, 0.25);
+  const VolumeResult uniform = mesh_and_check(front, 1.0, 1.0);
+  const VolumeResult graded = mesh_and_check(front, 1.0, 1.3);
+  EXPECT_LT(graded.mesh.tets.size(), uniform.mesh.tets.size());
+}
+
+TEST(VolumeMesh, SameInputGivesIdenticalOutput) {
+  const Mesh front = sphere_surface({0, 0, 0}, 1.0, 0.25);
+  const VolumeResult a = mesh_and_check(front, 0.25);
+  const VolumeResult b = mesh_and_check(front, 0.25);
+  EXPECT_EQ(a.mesh.points, b.mesh.points);
+  EXPECT_EQ(a.mesh.tets, b.mesh.tets);
+}
+
+TEST(VolumeMesh, RejectsOpenFront) {
+  Mesh front = box_surface({0, 0, 0}, {1, 1, 1}, 0.5);
+  front.triangles.pop_back();
+  front.triangle_tags.pop_back();
+  VolumeParams params;
+  params.size = 0.5;
+  const auto r = generate_volume_mesh(front, params, no_progress());
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(r.status().message().find("closed"), std::string_view::npos) << r.status();
+}
+
+TEST(VolumeMesh, RejectsInwardFront) {
+  Mesh front = box_surface({0, 0, 0}, {1, 1, 1}, 0.5);
+  for (Triangle& t : front.triangles) std::swap(t[1], t[2]);
+  VolumeParams params;
+  params.size = 0.5;
+  const auto r = generate_volume_mesh(front, params, no_progress());
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.status().code(), absl::StatusCode::kInvalidArgument);
+}
+
+TEST(VolumeMesh, RejectsBadParams) {
+  const Mesh front = box_surface({0, 0, 0}, {1, 1, 1}, 0.5);
+  VolumeParams params;
+  params.size = -1;
+  EXPECT_EQ(generate_volume_mesh(front, params, no_progress()).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  params.size = 0.5;
+  params.growth = 0.5;
+  EXPECT_EQ(generate_volume_mesh(front, params, no_progress()).status().code(),
+            absl::StatusCode::kInvalidArgument);
+}
+
+class CancelAfter : public Progress {
+ public:
+  explicit CancelAfter(int n) : n_(n) {}
+  bool cancelled() const override { return ++calls_ > n_; }
+
+ private:
+  int n_;
+  mutable int calls_ = 0;
+};
+
+TEST(VolumeMesh, CancellationStopsTheFront) {
+  const Mesh front = sphere_surface({0, 0, 0}, 1.0, 0.1);
+  VolumeParams params;
+  params.size = 0.1;
+  CancelAfter progress(2);
+  const auto r = generate_volume_mesh(front, params, progress);
+  EXPECT_EQ(r.status().code(), absl::StatusCode::kCancelled);
+}
+
+}  // namespace
+}  // namespace afmesh
