@@ -24,5 +24,6 @@ using Action = std::function<int()>;
 // Each adds its subcommand to `app` and, when it is selected, stores its action in `action`.
 void add_stats_command(CLI::App& app, Action& action);
 void add_convert_command(CLI::App& app, Action& action);
+void add_volume_command(CLI::App& app, Action& action);
 
 }  // namespace afmesh::cli

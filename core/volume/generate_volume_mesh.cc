@@ -7,6 +7,7 @@
 
 #include "absl/strings/str_format.h"
 #include "core/geometry/vec.h"
+#include "core/quality/optimise.h"
 #include "core/volume/front_steps.h"
 
 namespace afmesh {
@@ -145,6 +146,16 @@ absl::Status back_off(MesherState& s, Index face, std::vector<std::uint8_t>& rep
   return absl::OkStatus();
 }
 
+absl::Status stuck_report(const MesherState& s, Index face, std::int64_t steps) {
+  const Triangle v = s.front.face(face).v;
+  const Point& x = s.points[v[0]];
+  return absl::FailedPreconditionError(absl::StrFormat(
+      "the front did not close after %d steps: %d tets built, %d front faces left, last face "
+      "(%d, %d, %d) near (%g, %g, %g); a target size much smaller than the input triangles can "
+      "cause this: give a size near the input's edge lengths",
+      steps, s.live_tets, s.front.size(), v[0], v[1], v[2], x[0], x[1], x[2]));
+}
+
 // Drops deleted tets and points no tet uses any more; input points keep their indices.
 Mesh compact_result(const MesherState& s, const Mesh& input) {
   Mesh out;
@@ -195,8 +206,13 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
 
   std::vector<std::uint8_t> repairs;
   std::int64_t steps = 0;
+  // A face is taken from the queue about once per element; a front that keeps failing and
+  // re-opening without closing stops here with a report instead of running on.
+  const std::int64_t max_steps = static_cast<std::int64_t>(10 * expected_tets) +
+                                 20 * static_cast<std::int64_t>(front.triangles.size()) + 100000;
   while (std::optional<Index> face = s.front.pop()) {                  // F6, F11
-    if (++steps % kCancelCheckInterval == 0) {
+    if (++steps > max_steps) return stuck_report(s, *face, steps);
+    if (steps % kCancelCheckInterval == 0) {
       if (progress.cancelled()) return absl::CancelledError("volume meshing cancelled");
       progress.report("front", std::min(0.99, static_cast<double>(s.live_tets) / expected_tets));
     }
@@ -213,6 +229,13 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
   result.mesh = compact_result(s, front);
   clock.lap("compact");
   progress.report("front", 1.0);
+  if (params.optimise) {
+    absl::StatusOr<OptimiseStats> stats =
+        optimise_tets(result.mesh, static_cast<Index>(front.points.size()), OptimiseParams{},
+                      progress);
+    if (!stats.ok()) return stats.status();
+    clock.lap("optimise");
+  }
   return result;
 }
 

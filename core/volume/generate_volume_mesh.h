@@ -17,6 +17,9 @@ struct VolumeParams {
   // Growth factor c_i of eq. 15 (>= 1): a new point's size is at most c_i times the smallest
   // size of the face being deleted. 1 gives uniform elements.
   double growth = 1.0;
+  // Improve the worst elements after the front closes (flips and smoothing of interior points,
+  // core/quality/optimise.h). The boundary is never changed.
+  bool optimise = true;
 };
 
 struct StageTiming {

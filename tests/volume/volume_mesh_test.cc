@@ -3,6 +3,7 @@
 #include <numbers>
 
 #include "core/quality/measures.h"
+#include "core/quality/optimise.h"
 #include "core/quality/validate.h"
 #include "core/shapes/shapes.h"
 #include "core/volume/generate_volume_mesh.h"
@@ -125,6 +126,51 @@ TEST(VolumeMesh, CancellationStopsTheFront) {
   CancelAfter progress(2);
   const auto r = generate_volume_mesh(front, params, progress);
   EXPECT_EQ(r.status().code(), absl::StatusCode::kCancelled);
+}
+
+}  // namespace
+}  // namespace afmesh
+
+namespace afmesh {
+namespace {
+
+double worst_min_dihedral(const Mesh& m) {
+  double worst = 180;
+  for (const Tet& t : m.tets) worst = std::min(worst, tet_quality(m.points, t).min_dihedral_deg);
+  return worst;
+}
+
+std::int64_t count_below(const Mesh& m, double degrees) {
+  std::int64_t n = 0;
+  for (const Tet& t : m.tets) n += tet_quality(m.points, t).min_dihedral_deg < degrees;
+  return n;
+}
+
+TEST(Optimise, KeepsTheMeshValidAndRaisesTheWorstElements) {
+  const Mesh front = sphere_surface({0, 0, 0}, 1.0, 0.2);
+  VolumeParams params;
+  params.size = 0.2;
+  params.optimise = false;
+  absl::StatusOr<VolumeResult> raw = generate_volume_mesh(front, params, no_progress());
+  ASSERT_TRUE(raw.ok()) << raw.status();
+  Mesh mesh = raw->mesh;
+  const absl::StatusOr<OptimiseStats> stats =
+      optimise_tets(mesh, static_cast<Index>(front.points.size()), OptimiseParams{}, no_progress());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_GT(stats->flips_23 + stats->flips_32 + stats->points_moved, 0);
+  const ValidationReport report = validate_volume_mesh(mesh, &front);
+  EXPECT_TRUE(report.valid()) << report.to_string();
+  for (std::size_t p = 0; p < front.points.size(); ++p) EXPECT_EQ(mesh.points[p], front.points[p]);
+  EXPECT_GT(worst_min_dihedral(mesh), worst_min_dihedral(raw->mesh));
+  EXPECT_LT(count_below(mesh, 20), count_below(raw->mesh, 20));
+}
+
+TEST(Optimise, MinSineOfTheRegularTetIsSinOfItsDihedralAngle) {
+  const Point a{1, 1, 1}, b{1, -1, -1}, c{-1, 1, -1}, d{-1, -1, 1};
+  const double s = tet_min_sine(b, a, c, d);  // positive orientation
+  EXPECT_NEAR(s, std::sin(std::acos(1.0 / 3.0)), 1e-12);
+  EXPECT_NEAR(tet_min_sine(a, b, c, d), -s, 1e-12);  // inverted: negative
+  EXPECT_EQ(tet_min_sine({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}), 0.0);  // flat
 }
 
 }  // namespace

@@ -1,0 +1,250 @@
+// afmesh volume IN -o OUT [--size H] [--growth C] [--server ADDR] [--json] [--quiet]
+//                         [--timeout SEC]
+// Fills the closed front in IN with tetrahedra through the MeshVolume call and writes OUT.
+// Without --server a private afmesh-server runs for the command on a local socket: the same
+// code path as a remote server. Formats follow the file extensions (core/io/mesh_io.h).
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "absl/strings/str_format.h"
+#include "client/commands.h"
+#include "client/interrupt_watcher.h"
+#include "client/progress_display.h"
+#include "client/server_launcher.h"
+#include "client/volume_call.h"
+#include "core/io/mesh_io.h"
+#include "grpc/grpc.h"
+
+namespace afmesh::cli {
+namespace {
+
+struct VolumeCommandOptions {
+  std::string input;
+  std::string output;
+  double size = 0.0;  // 0: the mean edge length of the front
+  double growth = 1.0;
+  std::string server;  // empty: start a private server
+  bool json = false;
+  bool quiet = false;
+  double timeout_seconds = 0.0;
+};
+
+void print_error(const absl::Status& status) {
+  std::fprintf(stderr, "afmesh volume: %s\n", std::string(status.message()).c_str());
+}
+
+// The exit code for a failed call (commands.h): what the user should do next differs.
+int exit_code_for(const absl::Status& status) {
+  switch (status.code()) {
+    case absl::StatusCode::kInvalidArgument:
+      return kExitBadInput;  // fix the input (the message names the element)
+    case absl::StatusCode::kUnavailable:
+    case absl::StatusCode::kResourceExhausted:
+    case absl::StatusCode::kUnimplemented:
+      return kExitUnavailable;  // the server cannot take the work: elsewhere or later
+    case absl::StatusCode::kFailedPrecondition:
+    case absl::StatusCode::kInternal:
+    case absl::StatusCode::kDeadlineExceeded:
+    case absl::StatusCode::kCancelled:
+      return kExitMeshingFailed;  // the mesh could not be produced (in time)
+    default:
+      return kExitInternal;
+  }
+}
+
+// The output must hold tetrahedra: checked before any meshing work.
+absl::Status check_output_path(const std::string& path) {
+  absl::StatusOr<MeshFormat> format = format_from_path(path);
+  if (!format.ok()) return format.status();
+  if (*format == MeshFormat::kStl || *format == MeshFormat::kObj) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "%s: STL and OBJ files cannot hold tetrahedra; use .msh, .mesh or .vtu", path));
+  }
+  return absl::OkStatus();
+}
+
+// The front to mesh: IN's points and triangles with their tags (tets in IN are ignored).
+absl::StatusOr<Mesh> read_front(const VolumeCommandOptions& options) {
+  ReadReport report;
+  absl::StatusOr<Mesh> mesh = read_mesh(options.input, &report);
+  if (!mesh.ok()) return mesh.status();
+  if (!options.quiet) {
+    for (const std::string& note : report.notes) {
+      std::fprintf(stderr, "afmesh volume: note: %s\n", note.c_str());
+    }
+  }
+  if (mesh->triangles.empty()) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "%s has no triangles: a closed triangulated front is needed", options.input));
+  }
+  if (!mesh->tets.empty() && !options.quiet) {
+    std::fprintf(stderr, "afmesh volume: note: ignoring the %zu tetrahedra of %s\n",
+                 mesh->tets.size(), options.input.c_str());
+  }
+  mesh->tets.clear();
+  mesh->tet_tags.clear();
+  return mesh;
+}
+
+// Mean length of the front's triangle edges (each shared edge counted from both sides): the
+// size that keeps the interior like the boundary when --size is not given. Triangles with an
+// index out of range are skipped here; the server rejects them, naming the triangle.
+double mean_edge_length(const Mesh& front) {
+  const auto in_range = [&front](Index i) {
+    return i >= 0 && static_cast<std::size_t>(i) < front.points.size();
+  };
+  double sum = 0.0;
+  std::size_t edges = 0;
+  for (const Triangle& triangle : front.triangles) {
+    if (!in_range(triangle[0]) || !in_range(triangle[1]) || !in_range(triangle[2])) continue;
+    for (int corner = 0; corner < 3; ++corner) {
+      const Point& a = front.points[triangle[corner]];
+      const Point& b = front.points[triangle[(corner + 1) % 3]];
+      sum += std::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
+      ++edges;
+    }
+  }
+  return edges == 0 ? 1.0 : sum / static_cast<double>(edges);
+}
+
+void print_summary(const VolumeCommandOptions& options, const VolumeSummary& summary) {
+  std::printf("%s: %llu points, %llu boundary triangles, %llu tetrahedra\n", options.output.c_str(),
+              static_cast<unsigned long long>(summary.point_count),
+              static_cast<unsigned long long>(summary.triangle_count),
+              static_cast<unsigned long long>(summary.tet_count));
+  std::printf("  dihedral angles  min %.2f°  max %.2f°  (%.3f%% of tets < 10°, %.3f%% < 20°)\n",
+              summary.min_dihedral_deg, summary.max_dihedral_deg, 100 * summary.share_below_10_deg,
+              100 * summary.share_below_20_deg);
+  std::printf("  radius ratio     min %.4f  mean %.4f\n", summary.min_radius_ratio,
+              summary.mean_radius_ratio);
+  std::printf("  validation       %s\n", summary.validation_passed ? "passed" : "FAILED");
+  for (const std::string& message : summary.validation_messages) {
+    std::printf("    %s\n", message.c_str());
+  }
+  std::printf("  time");
+  for (const auto& [stage, seconds] : summary.timings) {
+    std::printf("  %s %.3f s", stage.c_str(), seconds);
+  }
+  std::printf("\n");
+}
+
+// Exit status after SIGINT / SIGTERM, as a shell reports a process ended by the signal.
+int interrupted(int signal) {
+  std::fprintf(stderr, "afmesh volume: interrupted\n");
+  return 128 + signal;
+}
+
+int run_volume(const VolumeCommandOptions& options) {
+  // Ctrl-C cancels the call; everything below is then undone by the destructors (the private
+  // server stopped, its folder removed). Set up before any thread exists.
+  const auto canceller = std::make_shared<CallCanceller>();
+  const InterruptWatcher interrupts([canceller] { canceller->cancel(); });
+  // Held until exit: gRPC otherwise shuts its library down when the last channel goes away,
+  // which in 1.51 can wait seconds for an idle poller.
+  grpc_init();
+  if (absl::Status status = check_output_path(options.output); !status.ok()) {
+    print_error(status);
+    return kExitUsage;
+  }
+  ProgressDisplay progress(stderr, ProgressDisplay::mode_for(stderr, options.quiet));
+  progress.update("read", -1.0);
+  absl::StatusOr<Mesh> front = read_front(options);
+  if (!front.ok()) {
+    progress.finish();
+    print_error(front.status());
+    return kExitBadInput;
+  }
+
+  std::unique_ptr<PrivateServer> private_server;  // stopped on every way out of this function
+  std::string address = options.server;
+  if (address.empty()) {
+    progress.update("start", -1.0);
+    absl::StatusOr<std::unique_ptr<PrivateServer>> started = PrivateServer::start();
+    if (!started.ok()) {
+      progress.finish();
+      print_error(started.status());
+      return kExitUnavailable;
+    }
+    private_server = *std::move(started);
+    address = private_server->address();
+  }
+  if (interrupts.signal() != 0) return interrupted(interrupts.signal());
+
+  const VolumeCallOptions call_options{
+      .size = options.size > 0 ? options.size : mean_edge_length(*front),
+      .growth = options.growth,
+      .timeout_seconds = options.timeout_seconds,
+      .canceller = canceller.get()};
+  absl::StatusOr<VolumeCallResult> result = call_mesh_volume(
+      address, *front, call_options,
+      [&progress](std::string_view stage, double fraction) { progress.update(stage, fraction); },
+      [&progress, &options](std::string_view message) {
+        if (options.quiet) return;
+        progress.finish();
+        std::fprintf(stderr, "afmesh volume: warning: %.*s\n", static_cast<int>(message.size()),
+                     message.data());
+      });
+  if (!result.ok()) {
+    progress.finish();
+    if (interrupts.signal() != 0) return interrupted(interrupts.signal());
+    if (result.status().code() == absl::StatusCode::kDeadlineExceeded) {
+      print_error(absl::DeadlineExceededError(absl::StrFormat(
+          "meshing did not finish within --timeout %g s; the server stopped the job",
+          options.timeout_seconds)));
+      return kExitMeshingFailed;
+    }
+    if (result.status().code() == absl::StatusCode::kUnavailable) {
+      print_error(absl::UnavailableError(absl::StrFormat("cannot reach the server at %s: %s",
+                                                         address, result.status().message())));
+      return kExitUnavailable;
+    }
+    print_error(result.status());
+    return result.status().code() == absl::StatusCode::kDataLoss ? kExitInternal
+                                                                 : exit_code_for(result.status());
+  }
+
+  progress.update("write", -1.0);
+  if (absl::Status status = write_mesh(result->mesh, options.output); !status.ok()) {
+    progress.finish();
+    print_error(status);
+    return kExitInternal;
+  }
+  progress.finish();
+  if (options.json) {
+    std::cout << result->summary.json << std::flush;
+  } else if (!options.quiet) {
+    print_summary(options, result->summary);
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void add_volume_command(CLI::App& app, Action& action) {
+  auto options = std::make_shared<VolumeCommandOptions>();
+  CLI::App* command =
+      app.add_subcommand("volume", "fill a closed triangulated front with tetrahedra");
+  command->add_option("IN", options->input, "closed, outward-oriented front (.stl .obj .msh .mesh)")
+      ->required();
+  command->add_option("-o,--output", options->output, "volume mesh to write (.msh .mesh .vtu)")
+      ->required();
+  command
+      ->add_option("--size", options->size,
+                   "target edge length h (default: the mean edge length of IN)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--growth", options->growth, "growth factor c >= 1 (eq. 15)")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 1e6));
+  command->add_option("--server", options->server,
+                      "server address (host:port or unix:PATH); default: a private server");
+  command->add_flag("--json", options->json, "print the summary as JSON on stdout");
+  command->add_flag("--quiet", options->quiet, "print nothing but errors");
+  command->add_option("--timeout", options->timeout_seconds, "give up after SEC seconds")
+      ->check(CLI::PositiveNumber);
+  command->callback([options, &action] { action = [options] { return run_volume(*options); }; });
+}
+
+}  // namespace afmesh::cli

@@ -1,0 +1,86 @@
+// The client side of one MeshVolume call: streams a front up in slices, collects the events
+// and the mesh coming back, checks the answer is whole. No generated gRPC types in this header,
+// so that only volume_call.cc compiles them.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "absl/base/thread_annotations.h"
+#include "absl/status/statusor.h"
+#include "core/mesh/mesh.h"
+
+namespace grpc {
+class ClientContext;
+}
+
+namespace afmesh::cli {
+
+// Cancels a call from another thread (e.g. on Ctrl-C): the call ends CANCELLED and the server
+// stops its job.
+class CallCanceller {
+ public:
+  // Cancels the call in progress, or the next one as soon as it starts.
+  void cancel();
+  bool cancelled() const;
+
+  // For call_mesh_volume: the context of the call in progress (null when none).
+  void attach(grpc::ClientContext* context);
+
+ private:
+  mutable std::mutex mu_;
+  grpc::ClientContext* context_ ABSL_GUARDED_BY(mu_) = nullptr;
+  bool cancelled_ ABSL_GUARDED_BY(mu_) = false;
+};
+
+struct VolumeCallOptions {
+  double size = 0.0;    // SizeSpec.max_size (> 0)
+  double growth = 1.0;  // SizeSpec.growth (>= 1)
+  // Deadline of the whole call in seconds; 0 means none.
+  double timeout_seconds = 0.0;
+  // When set, cancels the call on request.
+  CallCanceller* canceller = nullptr;
+};
+
+// Where the call is, for the progress display: the client's own stages ("send", "receive")
+// and the server's Progress events; `fraction` in [0, 1] or negative when unknown.
+using ProgressCallback = std::function<void(std::string_view stage, double fraction)>;
+using WarningCallback = std::function<void(std::string_view message)>;
+
+// The Summary message, as plain values.
+struct VolumeSummary {
+  std::uint64_t point_count = 0;
+  std::uint64_t triangle_count = 0;
+  std::uint64_t tet_count = 0;
+  double min_dihedral_deg = 0.0;
+  double max_dihedral_deg = 0.0;
+  double share_below_10_deg = 0.0;
+  double share_below_20_deg = 0.0;
+  double min_radius_ratio = 0.0;
+  double mean_radius_ratio = 0.0;
+  bool validation_passed = false;
+  std::vector<std::string> validation_messages;
+  std::vector<std::pair<std::string, double>> timings;  // stage, seconds
+  // The Summary in protobuf's JSON mapping (lowerCamelCase fields, as mesher.proto documents).
+  std::string json;
+};
+
+struct VolumeCallResult {
+  Mesh mesh;  // points, the boundary triangles with tags, tets with tags
+  VolumeSummary summary;
+};
+
+// Runs MeshVolume against `address` with `front` (points N×3, triangles M×3 with tags).
+// Errors: the call's gRPC status as the absl::Status of the same code and message;
+// DATA_LOSS when the server's answer ends without a Summary or disagrees with it.
+absl::StatusOr<VolumeCallResult> call_mesh_volume(const std::string& address, const Mesh& front,
+                                                  const VolumeCallOptions& options,
+                                                  const ProgressCallback& on_progress,
+                                                  const WarningCallback& on_warning);
+
+}  // namespace afmesh::cli

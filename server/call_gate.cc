@@ -1,0 +1,33 @@
+#include "server/call_gate.h"
+
+namespace afmesh::server {
+
+bool CallGate::try_enter() {
+  std::lock_guard<std::mutex> lock(mu_);
+  if (closed_) return false;
+  ++active_;
+  return true;
+}
+
+void CallGate::leave() {
+  std::lock_guard<std::mutex> lock(mu_);
+  last_leave_ = std::chrono::steady_clock::now();
+  if (--active_ == 0) empty_.notify_all();
+}
+
+void CallGate::close() {
+  std::lock_guard<std::mutex> lock(mu_);
+  closed_ = true;
+}
+
+void CallGate::wait_until_empty() {
+  std::unique_lock<std::mutex> lock(mu_);
+  empty_.wait(lock, [this] { return active_ == 0; });
+}
+
+std::chrono::steady_clock::time_point CallGate::last_leave() {
+  std::lock_guard<std::mutex> lock(mu_);
+  return last_leave_;
+}
+
+}  // namespace afmesh::server

@@ -1,0 +1,37 @@
+// Counts the calls in progress and closes the door on new ones when the server drains.
+//
+// A graceful stop (SIGTERM) closes the gate, so new calls are refused with UNAVAILABLE and a
+// load balancer sends them elsewhere, waits until every admitted call has ended, and only then
+// shuts the gRPC server down, so no call in flight is cut short.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+
+#include "absl/base/thread_annotations.h"
+
+namespace afmesh::server {
+
+class CallGate {
+ public:
+  // Admits a call; false once close() was called.
+  bool try_enter();
+  // An admitted call has ended.
+  void leave();
+  // Refuses every later try_enter().
+  void close();
+  // Blocks until no admitted call remains.
+  void wait_until_empty();
+  // When the last admitted call ended (the steady clock's epoch if none has).
+  std::chrono::steady_clock::time_point last_leave();
+
+ private:
+  std::mutex mu_;
+  std::condition_variable empty_;
+  int active_ ABSL_GUARDED_BY(mu_) = 0;
+  bool closed_ ABSL_GUARDED_BY(mu_) = false;
+  std::chrono::steady_clock::time_point last_leave_ ABSL_GUARDED_BY(mu_);
+};
+
+}  // namespace afmesh::server

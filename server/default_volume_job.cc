@@ -1,0 +1,85 @@
+#include "server/default_volume_job.h"
+
+#include <chrono>
+#include <string>
+#include <utility>
+
+#include "absl/strings/str_cat.h"
+#include "core/quality/validate.h"
+#include "core/volume/generate_volume_mesh.h"
+
+namespace afmesh::server {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Appends the wall time since `start` to `timings` as `stage`.
+void add_timing(std::vector<StageTiming>& timings, std::string stage, Clock::time_point start) {
+  timings.push_back(
+      {std::move(stage), std::chrono::duration<double>(Clock::now() - start).count()});
+}
+
+absl::Status stop_if_cancelled(const Progress& progress) {
+  if (progress.cancelled()) return absl::CancelledError("volume meshing cancelled");
+  return absl::OkStatus();
+}
+
+// The validator's verdict: INTERNAL with the full report when a check failed, else the
+// summaries of the checks that warned.
+absl::StatusOr<VolumeValidation> validate_result(const Mesh& mesh, const Mesh& front) {
+  const ValidationReport report = validate_volume_mesh(mesh, &front);
+  if (!report.valid()) {
+    return absl::InternalError(
+        absl::StrCat("the volume mesh failed validation:\n", report.to_string()));
+  }
+  VolumeValidation validation{.passed = true, .messages = {}};
+  for (const Check& check : report.checks) {
+    if (check.outcome == CheckOutcome::kWarning) {
+      validation.messages.push_back(absl::StrCat(check.name, ": ", check.summary));
+    }
+  }
+  return validation;
+}
+
+}  // namespace
+
+VolumeQuality volume_quality(const QualitySummary& summary) {
+  return VolumeQuality{
+      .min_dihedral_deg = summary.tet_min_dihedral_deg.min,
+      .max_dihedral_deg = summary.tet_max_dihedral_deg.max,
+      .share_below_10_deg = summary.share_min_dihedral_below_10,
+      .share_below_20_deg = summary.share_min_dihedral_below_20,
+      .min_radius_ratio = summary.tet_radius_ratio.min,
+      .mean_radius_ratio = summary.tet_radius_ratio.mean,
+  };
+}
+
+absl::StatusOr<VolumeJobOutput> run_volume_job(const Mesh& front, const VolumeParams& params,
+                                               Progress& progress) {
+  absl::StatusOr<VolumeResult> volume = generate_volume_mesh(front, params, progress);
+  if (!volume.ok()) return volume.status();
+  VolumeJobOutput output{
+      .volume = *std::move(volume), .quality = {}, .validation = {}, .warnings = {}};
+  std::vector<StageTiming>& timings = output.volume.timings;
+
+  if (absl::Status status = stop_if_cancelled(progress); !status.ok()) return status;
+  progress.report("quality", -1.0);
+  Clock::time_point start = Clock::now();
+  absl::StatusOr<QualitySummary> quality = summarize_quality(output.volume.mesh);
+  if (!quality.ok()) return absl::InternalError(quality.status().message());
+  output.quality = volume_quality(*quality);
+  add_timing(timings, "quality", start);
+
+  if (absl::Status status = stop_if_cancelled(progress); !status.ok()) return status;
+  progress.report("validation", -1.0);
+  start = Clock::now();
+  absl::StatusOr<VolumeValidation> validation = validate_result(output.volume.mesh, front);
+  if (!validation.ok()) return validation.status();
+  output.validation = *std::move(validation);
+  add_timing(timings, "validation", start);
+  return output;
+}
+
+VolumeJob default_volume_job() { return run_volume_job; }
+
+}  // namespace afmesh::server

@@ -1,0 +1,88 @@
+// afmesh-server: serves afmesh.v1.Mesher (with gRPC health and reflection) until SIGTERM or
+// SIGINT, then stops accepting calls, lets those in flight finish and exits 0. A second signal
+// during that drain exits at once (status 1).
+#include <pthread.h>
+
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <thread>
+
+#include "CLI/CLI.hpp"
+#include "grpc/grpc.h"
+#include "server/default_volume_job.h"
+#include "server/server.h"
+
+namespace {
+
+// SIGTERM and SIGINT, blocked in every thread so that only sigwait() sees them.
+sigset_t stop_signals() {
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGINT);
+  return signals;
+}
+
+int wait_for_signal(const sigset_t& signals) {
+  int signal = 0;
+  while (sigwait(&signals, &signal) != 0) {
+  }
+  return signal;
+}
+
+void add_flags(CLI::App& app, afmesh::server::ServerOptions& options) {
+  app.add_option("--listen", options.listen, "host:port (port 0: any free port) or unix:PATH")
+      ->capture_default_str();
+  app.add_option("--workers", options.workers,
+                 "meshing jobs run at once (0: one per hardware thread)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--max-queue", options.max_queue,
+                 "calls admitted beyond the running ones; more get RESOURCE_EXHAUSTED")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--max-points", options.service.limits.max_points, "most input points per request")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-triangles", options.service.limits.max_triangles,
+                 "most input triangles per request")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_flag_callback(
+      "--quiet", [&options] { options.service.log_calls = false; }, "do not log each call");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const sigset_t signals = stop_signals();
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);  // before any thread starts
+  // Held until exit: gRPC otherwise shuts its library down when the server object goes away,
+  // which in 1.51 can wait seconds for an idle poller.
+  grpc_init();
+
+  afmesh::server::ServerOptions options;
+  CLI::App app{"afmesh-server: advancing-front meshing service (gRPC afmesh.v1.Mesher)"};
+  add_flags(app, options);
+  CLI11_PARSE(app, argc, argv);
+
+  auto server = afmesh::server::MesherServer::start(options, afmesh::server::default_volume_job());
+  if (!server.ok()) {
+    std::fprintf(stderr, "afmesh-server: %s\n", std::string(server.status().message()).c_str());
+    return 1;
+  }
+  std::fprintf(stderr, "afmesh-server: listening on %s\n", (*server)->address().c_str());
+
+  const int signal = wait_for_signal(signals);
+  std::fprintf(stderr, "afmesh-server: %s, draining calls in flight\n", strsignal(signal));
+  std::thread([&signals] {
+    wait_for_signal(signals);
+    std::fprintf(stderr, "afmesh-server: second signal, exiting without draining\n");
+    std::_Exit(1);
+  }).detach();
+  (*server)->shutdown();
+  std::fprintf(stderr, "afmesh-server: stopped\n");
+  return 0;
+}

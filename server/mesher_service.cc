@@ -1,0 +1,374 @@
+#include "server/mesher_service.h"
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <deque>
+#include <mutex>
+#include <new>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "absl/base/thread_annotations.h"
+#include "absl/status/statusor.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "afmesh/v1/mesher.grpc.pb.h"
+#include "grpcpp/grpcpp.h"
+#include "server/volume_output.h"
+
+namespace afmesh::server {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Request = v1::MeshVolumeRequest;
+using Response = v1::MeshVolumeResponse;
+
+// Least time between two Progress events of the same stage.
+constexpr auto kProgressInterval = std::chrono::milliseconds(100);
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// absl and gRPC status codes share their numeric values (both are google.rpc.Code).
+grpc::Status to_grpc(const absl::Status& status) {
+  return grpc::Status(static_cast<grpc::StatusCode>(status.code()), std::string(status.message()));
+}
+
+// Runs `job`, turning exceptions into statuses: the server never dies on a request.
+absl::StatusOr<VolumeJobOutput> run_guarded(const VolumeJob& job, const Mesh& front,
+                                            const VolumeParams& params, Progress& progress) {
+  try {
+    return job(front, params, progress);
+  } catch (const std::bad_alloc&) {
+    return absl::ResourceExhaustedError("the server ran out of memory meshing this input");
+  } catch (const std::exception& e) {
+    return absl::InternalError(absl::StrCat("the mesher failed: ", e.what()));
+  }
+}
+
+class MeshVolumeCall;
+
+// The Progress a job sees: cancelled() once the call is cancelled or past its deadline;
+// report() streams throttled Progress events.
+class CallProgress final : public Progress {
+ public:
+  explicit CallProgress(MeshVolumeCall& call) : call_(call) {}
+  void report(std::string_view stage, double fraction) override;
+  bool cancelled() const override;
+
+ private:
+  MeshVolumeCall& call_;
+};
+
+// One MeshVolume call. Life cycle:
+//   arrival   reserve a pool slot, or finish RESOURCE_EXHAUSTED at once;
+//   reading   each message goes through VolumeInput; an error finishes the call;
+//   half-close  final input checks, then the job is queued on the pool;
+//   job done  on success the result streams (VolumeOutputStream), the Summary last;
+//             on failure the job's status finishes the call, with no mesh slice sent.
+// The call is finished only once its job has returned, since the job uses this object. The
+// object is deleted when both gRPC (OnDone) and a running job have let go of it.
+class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
+ public:
+  MeshVolumeCall(grpc::CallbackServerContext* context, WorkerPool& pool, CallGate& gate,
+                 const VolumeJob& job, const ServiceOptions& options)
+      : context_(context),
+        pool_(pool),
+        gate_(gate),
+        job_(job),
+        log_calls_(options.log_calls),
+        input_(options.limits),
+        progress_(*this),
+        deadline_(context->deadline()),
+        receive_start_(Clock::now()) {
+    admitted_ = gate_.try_enter();
+    if (!admitted_) {
+      finish_with(absl::UnavailableError(
+          "the server is shutting down; retry (another replica can serve the call)"));
+      return;
+    }
+    slot_ = pool_.try_reserve();
+    if (!slot_) {
+      finish_with(absl::ResourceExhaustedError(absl::StrFormat(
+          "the server is busy: all %d workers and %d queue slots are taken; retry later",
+          pool_.workers(), pool_.max_queue())));
+      return;
+    }
+    StartRead(&request_);
+  }
+
+  ~MeshVolumeCall() override {
+    if (admitted_) gate_.leave();
+  }
+
+  void OnReadDone(bool ok) override {
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      if (finished_) return;
+    }
+    if (!ok) {
+      end_of_input();
+      return;
+    }
+    if (absl::Status status = add_input(); !status.ok()) {
+      finish_with(status);
+      return;
+    }
+    StartRead(&request_);
+  }
+
+  void OnWriteDone(bool ok) override {
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      writing_ = false;
+      if (!ok) {
+        // The stream is broken (the call was cancelled): nothing more can be sent.
+        cancel_requested_.store(true, std::memory_order_release);
+        outbox_.clear();
+        output_.reset();
+        if (job_state_ != JobState::kRunning) final_status_ = stop_status();
+      }
+    }
+    pump();
+  }
+
+  void OnCancel() override {
+    cancel_requested_.store(true, std::memory_order_release);
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      // A running job notices through progress_ and finishes the call when it returns.
+      if (job_state_ == JobState::kRunning) return;
+      output_.reset();
+      outbox_.clear();
+      final_status_ = stop_status();
+    }
+    pump();
+  }
+
+  void OnDone() override { release(); }
+
+  // True once the client cancelled or the deadline passed.
+  bool stop_requested() const {
+    return cancel_requested_.load(std::memory_order_acquire) ||
+           std::chrono::system_clock::now() >= deadline_;
+  }
+
+  // Queues a Progress event: always on a new stage, else at most every kProgressInterval
+  // (and on completion); an unsent event of the same stage is replaced by the newer one.
+  void post_progress(std::string_view stage, double fraction) {
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      if (finished_) return;
+      const Clock::time_point now = Clock::now();
+      const bool new_stage = stage != last_stage_;
+      if (!new_stage && fraction < 1.0 && now - last_progress_ < kProgressInterval) return;
+      last_stage_ = std::string(stage);
+      last_progress_ = now;
+      const bool replace = !new_stage && !outbox_.empty() && outbox_.back().has_progress();
+      Response& event = replace ? outbox_.back() : outbox_.emplace_back();
+      event.mutable_progress()->set_stage(std::string(stage));
+      event.mutable_progress()->set_fraction(fraction);
+    }
+    pump();
+  }
+
+ private:
+  enum class JobState { kNotStarted, kRunning, kDone };
+
+  absl::Status add_input() {
+    try {
+      return input_.add(request_);
+    } catch (const std::bad_alloc&) {
+      return absl::ResourceExhaustedError("the server ran out of memory receiving this input");
+    }
+  }
+
+  // Half-close (or a read failing because the call was cancelled): check the whole input and
+  // queue the job.
+  void end_of_input() {
+    if (context_->IsCancelled()) {
+      finish_with(absl::CancelledError("the call was cancelled while sending its input"));
+      return;
+    }
+    receive_seconds_ = seconds_since(receive_start_);
+    if (absl::Status status = input_.finish(); !status.ok()) {
+      finish_with(status);
+      return;
+    }
+    start_job();
+  }
+
+  void start_job() {
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      if (final_status_) return;  // cancelled meanwhile
+      job_state_ = JobState::kRunning;
+      // The job's reference. Taken inside a reaction, so before OnDone can run.
+      references_.fetch_add(1, std::memory_order_relaxed);
+    }
+    post_progress("queued", 0.0);
+    WorkerPool::Slot slot = std::move(*slot_);
+    slot_.reset();
+    pool_.run(std::move(slot), [this, front = input_.take_front(), params = input_.params(),
+                                queued_at = Clock::now()]() {
+      run_job(front, params, queued_at);
+      release();
+    });
+  }
+
+  // On a worker thread.
+  void run_job(const Mesh& front, const VolumeParams& params, Clock::time_point queued_at) {
+    std::vector<StageTiming> timings = {{"receive", receive_seconds_},
+                                        {"queue", seconds_since(queued_at)}};
+    absl::StatusOr<VolumeJobOutput> output =
+        stop_requested() ? absl::StatusOr<VolumeJobOutput>(stop_status_absl())
+                         : run_guarded(job_, front, params, progress_);
+    if (output.ok()) {
+      if (absl::Status status = check_job_output(*output); !status.ok()) output = status;
+    }
+    complete_job(std::move(output), std::move(timings));
+  }
+
+  // Records the job's outcome: its mesh streams unless the call was stopped meanwhile.
+  void complete_job(absl::StatusOr<VolumeJobOutput> output, std::vector<StageTiming> timings) {
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      job_state_ = JobState::kDone;
+      if (stop_requested()) {
+        final_status_ = stop_status();
+      } else if (output.ok()) {
+        log_counts_ = absl::StrFormat("%d points, %d tets", output->volume.mesh.points.size(),
+                                      output->volume.mesh.tets.size());
+        output_ = std::make_unique<VolumeOutputStream>(*std::move(output), std::move(timings));
+        final_status_ = grpc::Status::OK;
+      } else {
+        final_status_ = to_grpc(output.status());
+      }
+    }
+    pump();
+  }
+
+  // CANCELLED, or DEADLINE_EXCEEDED when the deadline has passed.
+  absl::Status stop_status_absl() const {
+    if (std::chrono::system_clock::now() >= deadline_) {
+      return absl::DeadlineExceededError("the call's deadline passed; meshing stopped");
+    }
+    return absl::CancelledError("the call was cancelled; meshing stopped");
+  }
+  grpc::Status stop_status() const { return to_grpc(stop_status_absl()); }
+
+  // Finishes the call with `status` (an error before any job ran).
+  void finish_with(const absl::Status& status) {
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      if (final_status_) return;
+      final_status_ = to_grpc(status);
+    }
+    pump();
+  }
+
+  // Starts the next write (queued events first, then the result), or finishes the call once
+  // everything is written and its final status is known. At most one write is in flight.
+  void pump() {
+    std::unique_lock<std::mutex> lock(mu_);
+    if (writing_ || finished_) return;
+    if (!outbox_.empty()) {
+      current_ = std::move(outbox_.front());
+      outbox_.pop_front();
+    } else if (output_ != nullptr && output_->next(current_)) {
+      // current_ holds the next result message
+    } else if (final_status_ && job_state_ != JobState::kRunning) {
+      finished_ = true;
+      const grpc::Status status = *final_status_;
+      const std::string counts = log_counts_;
+      lock.unlock();
+      log_finish(status, counts);
+      Finish(status);
+      return;
+    } else {
+      return;
+    }
+    writing_ = true;
+    lock.unlock();
+    StartWrite(&current_);
+  }
+
+  // One line per call on stderr: peer, then "OK, <counts>" or the status code and message.
+  void log_finish(const grpc::Status& status, const std::string& counts) const {
+    if (!log_calls_) return;
+    const std::string outcome =
+        status.ok() ? absl::StrCat("OK, ", counts)
+                    : absl::StrCat("code ", status.error_code(), ": ", status.error_message());
+    std::fprintf(stderr, "MeshVolume from %s: %s\n", context_->peer().c_str(), outcome.c_str());
+  }
+
+  // Drops one reference (gRPC's at OnDone, the job's when it returns); the last one deletes.
+  void release() {
+    if (references_.fetch_sub(1, std::memory_order_acq_rel) == 1) delete this;
+  }
+
+  grpc::CallbackServerContext* const context_;
+  WorkerPool& pool_;
+  CallGate& gate_;
+  bool admitted_ = false;  // passed the gate: counted until this object is deleted
+  const VolumeJob& job_;
+  const bool log_calls_;
+  VolumeInput input_;  // touched by reads only, one at a time
+  Request request_;    // the read in flight
+  std::optional<WorkerPool::Slot> slot_;
+  CallProgress progress_;
+  const std::chrono::system_clock::time_point deadline_;
+  const Clock::time_point receive_start_;
+  double receive_seconds_ = 0.0;  // written before the job is queued, read by the job
+  std::atomic<bool> cancel_requested_{false};
+  std::atomic<int> references_{1};  // gRPC's, plus the job's while it is queued or running
+
+  std::mutex mu_;
+  JobState job_state_ ABSL_GUARDED_BY(mu_) = JobState::kNotStarted;
+  std::deque<Response> outbox_ ABSL_GUARDED_BY(mu_);  // events waiting to be written
+  std::unique_ptr<VolumeOutputStream> output_ ABSL_GUARDED_BY(mu_);
+  std::optional<grpc::Status> final_status_ ABSL_GUARDED_BY(mu_);
+  std::string log_counts_ ABSL_GUARDED_BY(mu_);
+  bool writing_ ABSL_GUARDED_BY(mu_) = false;
+  bool finished_ ABSL_GUARDED_BY(mu_) = false;
+  Response current_;  // the write in flight; only touched while writing_ is false
+  std::string last_stage_ ABSL_GUARDED_BY(mu_);
+  Clock::time_point last_progress_ ABSL_GUARDED_BY(mu_);
+};
+
+void CallProgress::report(std::string_view stage, double fraction) {
+  call_.post_progress(stage, fraction);
+}
+
+bool CallProgress::cancelled() const { return call_.stop_requested(); }
+
+class MesherService final : public v1::Mesher::CallbackService {
+ public:
+  MesherService(WorkerPool& pool, CallGate& gate, VolumeJob job, const ServiceOptions& options)
+      : pool_(pool), gate_(gate), job_(std::move(job)), options_(options) {}
+
+  grpc::ServerBidiReactor<Request, Response>* MeshVolume(
+      grpc::CallbackServerContext* context) override {
+    return new MeshVolumeCall(context, pool_, gate_, job_, options_);
+  }
+
+ private:
+  WorkerPool& pool_;
+  CallGate& gate_;
+  const VolumeJob job_;
+  const ServiceOptions options_;
+};
+
+}  // namespace
+
+std::unique_ptr<grpc::Service> make_mesher_service(WorkerPool& pool, CallGate& gate, VolumeJob job,
+                                                   const ServiceOptions& options) {
+  return std::make_unique<MesherService>(pool, gate, std::move(job), options);
+}
+
+}  // namespace afmesh::server

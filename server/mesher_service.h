@@ -1,0 +1,29 @@
+// The afmesh.v1.Mesher gRPC service (callback API, one reactor per call).
+#pragma once
+
+#include <memory>
+
+#include "server/call_gate.h"
+#include "server/volume_input.h"
+#include "server/volume_job.h"
+#include "server/worker_pool.h"
+
+namespace grpc {
+class Service;
+}
+
+namespace afmesh::server {
+
+struct ServiceOptions {
+  InputLimits limits;
+  // One line on stderr per finished call (peer, status, counts).
+  bool log_calls = true;
+};
+
+// The Mesher service: MeshVolume calls pass `gate` (UNAVAILABLE once it is closed), reserve a
+// slot of `pool` (RESOURCE_EXHAUSTED when none is free), assemble and check their input, run
+// `job` on a worker and stream its result. `pool` and `gate` must outlive every call.
+std::unique_ptr<grpc::Service> make_mesher_service(WorkerPool& pool, CallGate& gate, VolumeJob job,
+                                                   const ServiceOptions& options);
+
+}  // namespace afmesh::server

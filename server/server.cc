@@ -1,0 +1,80 @@
+#include "server/server.h"
+
+#include <chrono>
+#include <thread>
+#include <utility>
+
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+#include "grpcpp/ext/proto_server_reflection_plugin.h"
+#include "grpcpp/grpcpp.h"
+#include "grpcpp/health_check_service_interface.h"
+#include "grpcpp/impl/service_type.h"
+
+namespace afmesh::server {
+namespace {
+
+// Time left to clients to read the end of their calls before the connections close.
+constexpr auto kFinishGrace = std::chrono::milliseconds(200);
+
+// `listen` with its port replaced by `port` (for "host:0"); unix: addresses are kept.
+std::string dial_address(const std::string& listen, int port) {
+  if (absl::StartsWith(listen, "unix:")) return listen;
+  const std::string::size_type colon = listen.rfind(':');
+  if (colon == std::string::npos) return listen;
+  return absl::StrCat(listen.substr(0, colon + 1), port);
+}
+
+int worker_count(int requested) {
+  if (requested > 0) return requested;
+  const unsigned hardware = std::thread::hardware_concurrency();
+  return hardware == 0 ? 1 : static_cast<int>(hardware);
+}
+
+}  // namespace
+
+absl::StatusOr<std::unique_ptr<MesherServer>> MesherServer::start(const ServerOptions& options,
+                                                                  VolumeJob job) {
+  // Process-wide switches of gRPC; both must be set before a server is built.
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+
+  std::unique_ptr<MesherServer> server(new MesherServer());
+  server->pool_ = std::make_unique<WorkerPool>(worker_count(options.workers), options.max_queue);
+  server->service_ =
+      make_mesher_service(*server->pool_, server->gate_, std::move(job), options.service);
+
+  grpc::ServerBuilder builder;
+  int port = 0;
+  builder.AddListeningPort(options.listen, grpc::InsecureServerCredentials(), &port);
+  builder.RegisterService(server->service_.get());
+  server->server_ = builder.BuildAndStart();
+  if (server->server_ == nullptr || port == 0) {
+    return absl::UnavailableError(absl::StrCat("cannot listen on ", options.listen,
+                                               " (address in use, bad address, or no permission)"));
+  }
+  server->address_ = dial_address(options.listen, port);
+  return server;
+}
+
+MesherServer::MesherServer() = default;
+
+MesherServer::~MesherServer() { shutdown(); }
+
+void MesherServer::shutdown() {
+  if (server_ != nullptr) {
+    gate_.close();
+    server_->GetHealthCheckService()->SetServingStatus(false);
+    gate_.wait_until_empty();
+    // A call's last bytes are written when it ends, but the client may not have read them:
+    // closing the connections at once can fail the call on its side ("Broken pipe").
+    std::this_thread::sleep_until(gate_.last_leave() + kFinishGrace);
+    server_->Shutdown();
+    server_->Wait();
+    server_.reset();
+  }
+  service_.reset();
+  pool_.reset();  // joins the workers (their queue is empty once every call is done)
+}
+
+}  // namespace afmesh::server

@@ -1,0 +1,61 @@
+// afmesh-server as a library: the Mesher service with its worker pool, the standard health
+// service and server reflection, listening on one address. Used by the afmesh-server
+// executable and, in-process, by the tests.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "server/call_gate.h"
+#include "server/mesher_service.h"
+#include "server/volume_job.h"
+#include "server/worker_pool.h"
+
+namespace grpc {
+class Server;
+}
+
+namespace afmesh::server {
+
+struct ServerOptions {
+  // host:port (port 0 picks a free one), or unix:PATH for a local socket.
+  std::string listen = "127.0.0.1:50051";
+  // Meshing jobs run at once; 0 means one per hardware thread.
+  int workers = 0;
+  // Calls admitted beyond the running ones (they wait in arrival order); a call arriving when
+  // workers + max_queue calls are in progress gets RESOURCE_EXHAUSTED.
+  int max_queue = 16;
+  ServiceOptions service;
+};
+
+class MesherServer {
+ public:
+  // Starts listening. UNAVAILABLE when the address cannot be bound.
+  static absl::StatusOr<std::unique_ptr<MesherServer>> start(const ServerOptions& options,
+                                                             VolumeJob job);
+  // Shuts down (see shutdown()).
+  ~MesherServer();
+  MesherServer(const MesherServer&) = delete;
+  MesherServer& operator=(const MesherServer&) = delete;
+
+  // The address clients dial: the listen address, with the chosen port when it asked for 0.
+  const std::string& address() const { return address_; }
+
+  // Drains, then stops: health turns NOT_SERVING and new calls get UNAVAILABLE; every call in
+  // flight finishes (its job and its whole result included); after a short grace for clients
+  // to read their last messages the gRPC server and the workers stop. Blocks until done;
+  // idempotent.
+  void shutdown();
+
+ private:
+  MesherServer();
+
+  CallGate gate_;
+  std::unique_ptr<WorkerPool> pool_;
+  std::unique_ptr<grpc::Service> service_;
+  std::unique_ptr<grpc::Server> server_;
+  std::string address_;
+};
+
+}  // namespace afmesh::server

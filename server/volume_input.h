@@ -1,0 +1,56 @@
+// Assembles the client stream of a MeshVolume call (header, point slices, triangle slices) into
+// a core Mesh and VolumeParams, checking everything that is cheap to check before any meshing
+// work: stream order, slice shapes, options, finite coordinates, size limits, declared counts,
+// non-empty input and indices in range. Every error names the message, element or limit.
+// Topological checks of the front (closed, oriented, no degenerate triangle) are the job's
+// (afmesh::validate_front), since they cost more than a pass over the arrays.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "absl/status/status.h"
+#include "afmesh/v1/mesher.pb.h"
+#include "core/mesh/mesh.h"
+#include "core/volume/generate_volume_mesh.h"
+
+namespace afmesh::server {
+
+// The server's size limits on one request (flags --max-points, --max-triangles).
+struct InputLimits {
+  std::int64_t max_points = 10'000'000;
+  std::int64_t max_triangles = 20'000'000;
+};
+
+class VolumeInput {
+ public:
+  explicit VolumeInput(const InputLimits& limits) : limits_(limits) {}
+
+  // Takes the next client message. INVALID_ARGUMENT for a malformed stream or bad values,
+  // RESOURCE_EXHAUSTED when the input goes over a limit. After an error the input is unusable.
+  absl::Status add(const v1::MeshVolumeRequest& request);
+
+  // Checks the whole input at half-close: a header was sent, points and triangles are present,
+  // counts match the header's, every index is in range.
+  absl::Status finish() const;
+
+  const VolumeParams& params() const { return params_; }
+  // The assembled front (N×3 points, M×3 triangles, M tags); leaves this input empty.
+  Mesh take_front() { return std::move(front_); }
+
+ private:
+  absl::Status add_header(const v1::MeshVolumeHeader& header);
+  absl::Status add_points(const v1::PointSlice& slice);
+  absl::Status add_triangles(const v1::TriangleSlice& slice);
+  absl::Status check_indices() const;
+
+  InputLimits limits_;
+  std::int64_t message_count_ = 0;  // messages taken so far, for error messages
+  bool has_header_ = false;
+  std::optional<std::uint64_t> declared_points_;
+  std::optional<std::uint64_t> declared_triangles_;
+  VolumeParams params_;
+  Mesh front_;
+};
+
+}  // namespace afmesh::server

@@ -1,0 +1,53 @@
+// The meshing job a MeshVolume call runs on a worker: core types in, core types out, no gRPC.
+//
+// The service takes the job as a function so that tests can run it with a fake (a slow job that
+// polls cancellation, a job that fails, a job that returns a fixed mesh) and so that the server
+// library does not depend on the mesher itself; afmesh-server passes default_volume_job().
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/common/progress.h"
+#include "core/mesh/mesh.h"
+#include "core/volume/generate_volume_mesh.h"
+
+namespace afmesh::server {
+
+// Quality figures of a tet mesh, as the Summary message reports them (angles in degrees).
+struct VolumeQuality {
+  double min_dihedral_deg = 0.0;
+  double max_dihedral_deg = 0.0;
+  double share_below_10_deg = 0.0;  // share of tets whose smallest dihedral angle is < 10°
+  double share_below_20_deg = 0.0;  // likewise < 20°
+  double min_radius_ratio = 0.0;    // 3 r_in / r_circ
+  double mean_radius_ratio = 0.0;
+};
+
+// The validator's verdict on the result.
+struct VolumeValidation {
+  bool passed = false;
+  std::vector<std::string> messages;  // one finding per entry
+};
+
+// What a successful job hands back to the service.
+struct VolumeJobOutput {
+  // The mesh (points: the front's first, in input order; triangles: the input front with its
+  // tags; tets positive, with tags) and the core's timings per stage.
+  VolumeResult volume;
+  VolumeQuality quality;
+  VolumeValidation validation;
+  // Notes for the user that did not stop the mesh; streamed as Warning messages.
+  std::vector<std::string> warnings;
+};
+
+// Meshes `front` (N points, M triangles with tags; already checked by the service for finite
+// coordinates and indices in range) with `params`, reporting to and polling `progress`.
+// Must return absl::CancelledError soon (well within 100 ms) after progress.cancelled() turns
+// true. The returned status code reaches the client as the call's status.
+using VolumeJob = std::function<absl::StatusOr<VolumeJobOutput>(
+    const Mesh& front, const VolumeParams& params, Progress& progress)>;
+
+}  // namespace afmesh::server

@@ -1,0 +1,170 @@
+#include "server/volume_output.h"
+
+#include <algorithm>
+#include <string>
+#include <utility>
+
+#include "absl/strings/str_format.h"
+
+namespace afmesh::server {
+namespace {
+
+// INTERNAL unless every index of `elements` (rows of K indices) is in [0, point_count).
+template <typename Element>
+absl::Status check_indices(const std::vector<Element>& elements, std::size_t point_count,
+                           const char* kind) {
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    for (const Index index : elements[e]) {
+      if (index < 0 || static_cast<std::size_t>(index) >= point_count) {
+        return absl::InternalError(
+            absl::StrFormat("the mesher returned %s %d with point index %d out of range [0, %d)",
+                            kind, e, index, point_count));
+      }
+    }
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::Status check_job_output(const VolumeJobOutput& output) {
+  const Mesh& mesh = output.volume.mesh;
+  if (mesh.triangle_tags.size() != mesh.triangles.size() ||
+      mesh.tet_tags.size() != mesh.tets.size()) {
+    return absl::InternalError(absl::StrFormat(
+        "the mesher returned %d triangle tags for %d triangles and %d tet tags for %d tets",
+        mesh.triangle_tags.size(), mesh.triangles.size(), mesh.tet_tags.size(), mesh.tets.size()));
+  }
+  if (absl::Status status = check_indices(mesh.triangles, mesh.points.size(), "triangle");
+      !status.ok()) {
+    return status;
+  }
+  return check_indices(mesh.tets, mesh.points.size(), "tet");
+}
+
+VolumeOutputStream::VolumeOutputStream(VolumeJobOutput output,
+                                       std::vector<StageTiming> timings_before)
+    : output_(std::move(output)), timings_before_(std::move(timings_before)) {}
+
+bool VolumeOutputStream::next(v1::MeshVolumeResponse& response) {
+  if (!send_start_) send_start_ = std::chrono::steady_clock::now();
+  response.Clear();
+  const Mesh& mesh = output_.volume.mesh;
+  switch (part_) {
+    case Part::kWarnings:
+      if (offset_ < output_.warnings.size()) {
+        response.mutable_warning()->set_message(output_.warnings[offset_++]);
+        return true;
+      }
+      part_ = Part::kPoints;
+      offset_ = 0;
+      [[fallthrough]];
+    case Part::kPoints:
+      if (offset_ < mesh.points.size()) {
+        next_points(*response.mutable_points());
+        advance_if_done(mesh.points.size());
+        return true;
+      }
+      part_ = Part::kTriangles;
+      [[fallthrough]];
+    case Part::kTriangles:
+      if (offset_ < mesh.triangles.size()) {
+        next_triangles(*response.mutable_triangles());
+        advance_if_done(mesh.triangles.size());
+        return true;
+      }
+      part_ = Part::kTets;
+      [[fallthrough]];
+    case Part::kTets:
+      if (offset_ < mesh.tets.size()) {
+        next_tets(*response.mutable_tets());
+        advance_if_done(mesh.tets.size());
+        return true;
+      }
+      part_ = Part::kSummary;
+      [[fallthrough]];
+    case Part::kSummary:
+      fill_summary(*response.mutable_summary());
+      part_ = Part::kDone;
+      return true;
+    case Part::kDone:
+      break;
+  }
+  return false;
+}
+
+void VolumeOutputStream::advance_if_done(std::size_t size) {
+  if (offset_ < size) return;
+  part_ = static_cast<Part>(static_cast<int>(part_) + 1);
+  offset_ = 0;
+}
+
+// Points [offset_, offset_ + n) flattened as x, y, z.
+void VolumeOutputStream::next_points(v1::PointSlice& slice) {
+  const std::vector<Point>& points = output_.volume.mesh.points;
+  const std::size_t end = std::min(points.size(), offset_ + kMaxSliceItems);
+  slice.mutable_xyz()->Reserve(static_cast<int>(3 * (end - offset_)));
+  for (std::size_t p = offset_; p < end; ++p) {
+    for (const double coordinate : points[p]) slice.add_xyz(coordinate);
+  }
+  offset_ = end;
+}
+
+void VolumeOutputStream::next_triangles(v1::TriangleSlice& slice) {
+  const Mesh& mesh = output_.volume.mesh;
+  const std::size_t end = std::min(mesh.triangles.size(), offset_ + kMaxSliceItems);
+  slice.mutable_indices()->Reserve(static_cast<int>(3 * (end - offset_)));
+  slice.mutable_tags()->Reserve(static_cast<int>(end - offset_));
+  for (std::size_t t = offset_; t < end; ++t) {
+    for (const Index index : mesh.triangles[t]) slice.add_indices(index);
+    slice.add_tags(mesh.triangle_tags[t]);
+  }
+  offset_ = end;
+}
+
+void VolumeOutputStream::next_tets(v1::TetSlice& slice) {
+  const Mesh& mesh = output_.volume.mesh;
+  const std::size_t end = std::min(mesh.tets.size(), offset_ + kMaxSliceItems);
+  slice.mutable_indices()->Reserve(static_cast<int>(4 * (end - offset_)));
+  slice.mutable_tags()->Reserve(static_cast<int>(end - offset_));
+  for (std::size_t t = offset_; t < end; ++t) {
+    for (const Index index : mesh.tets[t]) slice.add_indices(index);
+    slice.add_tags(mesh.tet_tags[t]);
+  }
+  offset_ = end;
+}
+
+void VolumeOutputStream::fill_summary(v1::Summary& summary) const {
+  const Mesh& mesh = output_.volume.mesh;
+  summary.set_point_count(mesh.points.size());
+  summary.set_triangle_count(mesh.triangles.size());
+  summary.set_tet_count(mesh.tets.size());
+
+  const VolumeQuality& quality = output_.quality;
+  v1::QualityFigures& figures = *summary.mutable_quality();
+  figures.set_min_dihedral_deg(quality.min_dihedral_deg);
+  figures.set_max_dihedral_deg(quality.max_dihedral_deg);
+  figures.set_share_below_10_deg(quality.share_below_10_deg);
+  figures.set_share_below_20_deg(quality.share_below_20_deg);
+  figures.set_min_radius_ratio(quality.min_radius_ratio);
+  figures.set_mean_radius_ratio(quality.mean_radius_ratio);
+
+  v1::Validation& validation = *summary.mutable_validation();
+  validation.set_passed(output_.validation.passed);
+  for (const std::string& message : output_.validation.messages) {
+    validation.add_messages(message);
+  }
+
+  auto add_timing = [&summary](const std::string& stage, double seconds) {
+    v1::StageTiming& timing = *summary.add_timings();
+    timing.set_stage(stage);
+    timing.set_seconds(seconds);
+  };
+  for (const StageTiming& t : timings_before_) add_timing(t.stage, t.seconds);
+  for (const StageTiming& t : output_.volume.timings) add_timing(t.stage, t.seconds);
+  add_timing(
+      "send",
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - *send_start_).count());
+}
+
+}  // namespace afmesh::server

@@ -1,0 +1,178 @@
+// `afmesh volume` as a user runs it: the afmesh and afmesh-server binaries, with a private server
+// (started beside the CLI, stopped afterwards) and with a shared one, on a tiny closed front.
+#include <signal.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <thread>
+
+#include "core/io/mesh_io.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+
+namespace afmesh {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+// The boundary of the unit corner tetrahedron, outward-oriented, as a Medit file.
+constexpr const char* kTetrahedronFront = R"(MeshVersionFormatted 2
+Dimension 3
+Vertices
+4
+0 0 0 0
+1 0 0 0
+0 1 0 0
+0 0 1 0
+Triangles
+4
+1 3 2 7
+1 2 4 7
+1 4 3 7
+2 3 4 7
+End
+)";
+
+// The same front with one triangle missing: not closed.
+constexpr const char* kOpenFront = R"(MeshVersionFormatted 2
+Dimension 3
+Vertices
+4
+0 0 0 0
+1 0 0 0
+0 1 0 0
+0 0 1 0
+Triangles
+3
+1 2 4 7
+1 4 3 7
+2 3 4 7
+End
+)";
+
+// `path` in single quotes, for the shell.
+std::string quoted(const fs::path& path) {
+  std::string text(1, '\'');
+  text.append(path.string()).push_back('\'');
+  return text;
+}
+
+class CliVolumeTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char pattern[] = "/tmp/afmesh-cli-test-XXXXXX";
+    ASSERT_NE(mkdtemp(pattern), nullptr);
+    dir_ = pattern;
+    fs::create_directory(dir_ / "tmp");
+    write_file(dir_ / "front.mesh", kTetrahedronFront);
+    write_file(dir_ / "open.mesh", kOpenFront);
+  }
+
+  void TearDown() override { fs::remove_all(dir_); }
+
+  static void write_file(const fs::path& path, const char* text) { std::ofstream(path) << text; }
+
+  static std::string read_file(const fs::path& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
+
+  // Runs `afmesh volume ARGS` with TMPDIR in the test folder; stdout and stderr go to files.
+  // Returns the exit status.
+  int run_volume(const std::string& args) {
+    const std::string command = "TMPDIR=" + quoted(dir_ / "tmp") + " " + AFMESH_CLI_BINARY +
+                                " volume " + args + " >" + quoted(dir_ / "stdout.txt") + " 2>" +
+                                quoted(dir_ / "stderr.txt");
+    const int status = std::system(command.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+  std::string stdout_text() const { return read_file(dir_ / "stdout.txt"); }
+  std::string stderr_text() const { return read_file(dir_ / "stderr.txt"); }
+
+  // True once the private server's folder is gone from TMPDIR.
+  bool private_folders_removed() const { return fs::is_empty(dir_ / "tmp"); }
+
+  fs::path dir_;
+};
+
+TEST_F(CliVolumeTest, PrivateServerMeshesTetrahedronFrontAndIsCleanedUp) {
+  const fs::path out = dir_ / "volume.msh";
+  ASSERT_EQ(run_volume(quoted(dir_ / "front.mesh") + " -o " + quoted(out) + " --size 1 --json"), 0)
+      << stderr_text();
+  EXPECT_THAT(stdout_text(), HasSubstr("\"tetCount\""));
+  EXPECT_THAT(stdout_text(), HasSubstr("\"passed\": true"));
+  EXPECT_TRUE(private_folders_removed());
+
+  absl::StatusOr<Mesh> mesh = read_mesh(out.string());
+  ASSERT_TRUE(mesh.ok()) << mesh.status();
+  EXPECT_GE(mesh->tets.size(), 1u);
+  EXPECT_EQ(mesh->triangles.size(), 4u);
+  EXPECT_EQ(mesh->triangle_tags, std::vector<Index>(4, 7));
+}
+
+TEST_F(CliVolumeTest, OpenFrontExitsWithBadInputNamingTheProblem) {
+  EXPECT_EQ(run_volume(quoted(dir_ / "open.mesh") + " -o " + quoted(dir_ / "v.msh") + " --quiet"),
+            3);
+  EXPECT_THAT(stderr_text(), HasSubstr("edge"));
+  EXPECT_FALSE(fs::exists(dir_ / "v.msh"));
+  EXPECT_TRUE(private_folders_removed());
+}
+
+TEST_F(CliVolumeTest, MissingInputFileExitsWithBadInput) {
+  EXPECT_EQ(run_volume(quoted(dir_ / "absent.stl") + " -o " + quoted(dir_ / "v.msh")), 3);
+  EXPECT_THAT(stderr_text(), HasSubstr("absent.stl"));
+}
+
+TEST_F(CliVolumeTest, OutputFormatWithoutTetrahedraIsAUsageError) {
+  EXPECT_EQ(run_volume(quoted(dir_ / "front.mesh") + " -o " + quoted(dir_ / "v.stl")), 2);
+  EXPECT_THAT(stderr_text(), HasSubstr("cannot hold tetrahedra"));
+}
+
+TEST_F(CliVolumeTest, UnreachableServerExitsWithUnavailable) {
+  const std::string address = "unix:" + (dir_ / "nobody.sock").string();
+  EXPECT_EQ(run_volume(quoted(dir_ / "front.mesh") + " -o " + quoted(dir_ / "v.msh") +
+                       " --server " + address),
+            5);
+  EXPECT_THAT(stderr_text(), HasSubstr("cannot reach the server"));
+}
+
+TEST_F(CliVolumeTest, SharedServerServesCliAndExitsZeroOnSigterm) {
+  const fs::path socket = dir_ / "shared.sock";
+  const std::string address = "unix:" + socket.string();
+  const pid_t server = fork();
+  ASSERT_GE(server, 0);
+  if (server == 0) {
+    execl(AFMESH_SERVER_BINARY, AFMESH_SERVER_BINARY, "--listen", address.c_str(), "--workers", "1",
+          "--quiet", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!fs::exists(socket) && std::chrono::steady_clock::now() < give_up) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+
+  const fs::path out = dir_ / "shared.vtu";
+  EXPECT_EQ(run_volume(quoted(dir_ / "front.mesh") + " -o " + quoted(out) + " --server " + address +
+                       " --quiet"),
+            0)
+      << stderr_text();
+  EXPECT_TRUE(fs::exists(out));
+  EXPECT_TRUE(private_folders_removed());
+
+  kill(server, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(waitpid(server, &status, 0), server);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+}
+
+}  // namespace
+}  // namespace afmesh

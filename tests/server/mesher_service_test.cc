@@ -1,0 +1,810 @@
+// The Mesher service in-process, on a unix socket (or a TCP port picked by the system), with
+// fake meshing jobs: streaming whole meshes in capped slices, admission control, cancellation
+// and deadlines reaching the job, input validation, health, and draining on shutdown.
+#include <stdlib.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <future>
+#include <limits>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "afmesh/v1/mesher.grpc.pb.h"
+#include "gmock/gmock.h"
+#include "grpc/grpc.h"
+#include "grpc/health/v1/health.grpc.pb.h"
+#include "grpcpp/generic/generic_stub.h"
+#include "grpcpp/grpcpp.h"
+#include "gtest/gtest.h"
+#include "server/server.h"
+#include "server/volume_output.h"
+
+namespace afmesh::server {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using ::testing::HasSubstr;
+using Request = v1::MeshVolumeRequest;
+using Response = v1::MeshVolumeResponse;
+
+constexpr std::size_t kMessageCap = 1 << 20;  // bytes of payload per message
+
+// ---------------------------------------------------------------------------------------------
+// Meshes and requests.
+
+// The boundary of the unit corner tetrahedron, outward-oriented: 4 points, 4 triangles.
+Mesh tetrahedron_front() {
+  Mesh front;
+  front.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  front.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  front.triangle_tags = {1, 2, 3, 4};
+  return front;
+}
+
+// A mesh large enough to need several slices of each kind, with coordinates that only survive
+// a bit-exact transfer (thirds, -0.0, subnormals, extremes) and negative tags (the longest
+// varints).
+Mesh large_mesh() {
+  constexpr int kPoints = 100'003;
+  constexpr int kTriangles = 40'000;
+  constexpr int kTets = 70'001;
+  Mesh mesh;
+  mesh.points.reserve(kPoints);
+  for (int i = 0; i < kPoints; ++i) {
+    const double third = i / 3.0;
+    const double z = i % 7 == 0 ? 4.9e-320 : (i % 11 == 0 ? -1.7e308 : std::sin(i));
+    mesh.points.push_back({third, i % 2 == 0 ? -0.0 : 1.0 / (i + 1), z});
+  }
+  for (int i = 0; i < kTriangles; ++i) {
+    mesh.triangles.push_back({i, (i + 1) % kPoints, (i + 2) % kPoints});
+    mesh.triangle_tags.push_back(i % 3 == 0 ? -1 : i);
+  }
+  for (int i = 0; i < kTets; ++i) {
+    mesh.tets.push_back({i % kPoints, (i + 5) % kPoints, (i + 9) % kPoints, (i + 13) % kPoints});
+    mesh.tet_tags.push_back(i % 4 == 0 ? std::numeric_limits<Index>::min() : i % 5);
+  }
+  return mesh;
+}
+
+Request header_request(double size, std::optional<std::uint64_t> points,
+                       std::optional<std::uint64_t> triangles) {
+  Request request;
+  v1::MeshVolumeHeader& header = *request.mutable_header();
+  header.mutable_options()->mutable_size()->set_max_size(size);
+  header.mutable_options()->mutable_size()->set_growth(1.2);
+  if (points) header.set_point_count(*points);
+  if (triangles) header.set_triangle_count(*triangles);
+  return request;
+}
+
+Request points_request(const std::vector<Point>& points, std::size_t begin, std::size_t end) {
+  Request request;
+  for (std::size_t p = begin; p < end; ++p) {
+    for (const double c : points[p]) request.mutable_points()->add_xyz(c);
+  }
+  return request;
+}
+
+Request triangles_request(const Mesh& front, std::size_t begin, std::size_t end) {
+  Request request;
+  for (std::size_t t = begin; t < end; ++t) {
+    for (const Index i : front.triangles[t]) request.mutable_triangles()->add_indices(i);
+    request.mutable_triangles()->add_tags(front.triangle_tags[t]);
+  }
+  return request;
+}
+
+// Header, then points and triangles in slices of `slice` items, interleaved.
+std::vector<Request> requests_for(const Mesh& front, std::size_t slice = 32768) {
+  std::vector<Request> requests = {
+      header_request(0.25, front.points.size(), front.triangles.size())};
+  const std::size_t longest = std::max(front.points.size(), front.triangles.size());
+  for (std::size_t begin = 0; begin < longest; begin += slice) {
+    if (begin < front.points.size()) {
+      requests.push_back(
+          points_request(front.points, begin, std::min(front.points.size(), begin + slice)));
+    }
+    if (begin < front.triangles.size()) {
+      requests.push_back(
+          triangles_request(front, begin, std::min(front.triangles.size(), begin + slice)));
+    }
+  }
+  return requests;
+}
+
+// True when both point arrays hold the same bits (so -0.0 differs from 0.0).
+bool same_bits(const std::vector<Point>& a, const std::vector<Point>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Point)) == 0;
+}
+
+// The mesh carried by the point, triangle and tet slices of `responses`.
+Mesh mesh_from(const std::vector<Response>& responses) {
+  Mesh mesh;
+  for (const Response& response : responses) {
+    if (response.has_points()) {
+      const auto& xyz = response.points().xyz();
+      for (int i = 0; i + 2 < xyz.size(); i += 3) {
+        mesh.points.push_back({xyz[i], xyz[i + 1], xyz[i + 2]});
+      }
+    } else if (response.has_triangles()) {
+      const auto& indices = response.triangles().indices();
+      for (int i = 0; i + 2 < indices.size(); i += 3) {
+        mesh.triangles.push_back({indices[i], indices[i + 1], indices[i + 2]});
+      }
+      for (const Index tag : response.triangles().tags()) mesh.triangle_tags.push_back(tag);
+    } else if (response.has_tets()) {
+      const auto& indices = response.tets().indices();
+      for (int i = 0; i + 3 < indices.size(); i += 4) {
+        mesh.tets.push_back({indices[i], indices[i + 1], indices[i + 2], indices[i + 3]});
+      }
+      for (const Index tag : response.tets().tags()) mesh.tet_tags.push_back(tag);
+    }
+  }
+  return mesh;
+}
+
+int count_events(const std::vector<Response>& responses, Response::EventCase kind) {
+  int count = 0;
+  for (const Response& response : responses) count += response.event_case() == kind ? 1 : 0;
+  return count;
+}
+
+bool carries_mesh(const Response& response) {
+  return response.has_points() || response.has_triangles() || response.has_tets();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Fake jobs.
+
+VolumeJobOutput output_with(Mesh mesh) {
+  VolumeJobOutput output;
+  output.volume.mesh = std::move(mesh);
+  output.volume.timings = {{"front", 0.5}, {"compact", 0.25}};
+  output.quality = {.min_dihedral_deg = 12.5,
+                    .max_dihedral_deg = 150.25,
+                    .share_below_10_deg = 0.0,
+                    .share_below_20_deg = 0.015,
+                    .min_radius_ratio = 0.3,
+                    .mean_radius_ratio = 0.8};
+  output.validation = {.passed = true, .messages = {"unused_points: none"}};
+  output.warnings = {"fake warning"};
+  return output;
+}
+
+// Returns `mesh` after reporting some progress.
+VolumeJob fixed_job(Mesh mesh) {
+  return [mesh = std::move(mesh)](const Mesh&, const VolumeParams&,
+                                  Progress& progress) -> absl::StatusOr<VolumeJobOutput> {
+    progress.report("front", 0.5);
+    progress.report("front", 1.0);
+    return output_with(mesh);
+  };
+}
+
+// Records what a job saw.
+struct JobProbe {
+  std::atomic<int> runs{0};
+  std::promise<void> started;               // set by the first run
+  std::promise<Clock::time_point> stopped;  // when the first run saw cancellation
+  Mesh front;                               // the first run's input
+  VolumeParams params;
+};
+
+// Polls cancellation every millisecond, like the core between elements; gives up (INTERNAL)
+// after 10 s so that a broken cancellation path fails the test instead of hanging it.
+VolumeJob slow_job(std::shared_ptr<JobProbe> probe) {
+  return [probe](const Mesh& front, const VolumeParams& params,
+                 Progress& progress) -> absl::StatusOr<VolumeJobOutput> {
+    const bool first = probe->runs.fetch_add(1) == 0;
+    if (first) {
+      probe->front = front;
+      probe->params = params;
+      probe->started.set_value();
+    }
+    const Clock::time_point give_up = Clock::now() + std::chrono::seconds(10);
+    while (Clock::now() < give_up) {
+      if (progress.cancelled()) {
+        if (first) probe->stopped.set_value(Clock::now());
+        return absl::CancelledError("stopped");
+      }
+      progress.report("front", -1.0);
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return absl::InternalError("the job was never cancelled");
+  };
+}
+
+// Counts runs and returns the tetrahedron meshed as one tet.
+VolumeJob counting_job(std::shared_ptr<JobProbe> probe) {
+  return [probe](const Mesh& front, const VolumeParams& params,
+                 Progress&) -> absl::StatusOr<VolumeJobOutput> {
+    if (probe->runs.fetch_add(1) == 0) {
+      probe->front = front;
+      probe->params = params;
+    }
+    Mesh mesh = front;
+    mesh.tets = {{0, 1, 2, 3}};
+    mesh.tet_tags = {0};
+    return output_with(std::move(mesh));
+  };
+}
+
+// ---------------------------------------------------------------------------------------------
+// Fixture: an in-process server and a stub.
+
+struct CallOutcome {
+  grpc::Status status;
+  std::vector<Response> responses;
+};
+
+class MesherServiceTest : public ::testing::Test {
+ protected:
+  // gRPC shuts its library down when its last object goes away, and in 1.51 that can wait for
+  // an executor thread polling with a 10 s timeout; keep it initialised for the whole run.
+  static void SetUpTestSuite() {
+    static const bool initialised = (grpc_init(), true);
+    (void)initialised;
+  }
+
+  void SetUp() override {
+    char pattern[] = "/tmp/afmesh-server-test-XXXXXX";
+    ASSERT_NE(mkdtemp(pattern), nullptr);
+    dir_ = pattern;
+  }
+
+  void TearDown() override {
+    if (server_ != nullptr) server_->shutdown();
+    std::filesystem::remove_all(dir_);
+  }
+
+  // Starts a server running `job` on a unix socket (unless `options.listen` is a TCP address).
+  void start(VolumeJob job, ServerOptions options = {}) {
+    if (options.listen == ServerOptions{}.listen) options.listen = "unix:" + dir_ + "/mesher.sock";
+    if (options.workers == 0) options.workers = 2;
+    options.service.log_calls = false;
+    absl::StatusOr<std::unique_ptr<MesherServer>> server =
+        MesherServer::start(options, std::move(job));
+    ASSERT_TRUE(server.ok()) << server.status();
+    server_ = *std::move(server);
+    channel_ = grpc::CreateChannel(server_->address(), grpc::InsecureChannelCredentials());
+    stub_ = v1::Mesher::NewStub(channel_);
+  }
+
+  // Sends `requests`, half-closes, reads every response.
+  CallOutcome call(const std::vector<Request>& requests, grpc::ClientContext& context) {
+    std::unique_ptr<grpc::ClientReaderWriter<Request, Response>> stream =
+        stub_->MeshVolume(&context);
+    for (const Request& request : requests) {
+      if (!stream->Write(request)) break;
+    }
+    stream->WritesDone();
+    CallOutcome outcome;
+    Response response;
+    while (stream->Read(&response)) outcome.responses.push_back(response);
+    outcome.status = stream->Finish();
+    return outcome;
+  }
+
+  CallOutcome call(const std::vector<Request>& requests) {
+    grpc::ClientContext context;
+    return call(requests, context);
+  }
+
+  // Expects the call to fail with `code` and a message holding every one of `parts`, with no
+  // mesh sent and no job run.
+  void expect_rejected(const std::vector<Request>& requests, grpc::StatusCode code,
+                       const std::vector<std::string>& parts) {
+    const CallOutcome outcome = call(requests);
+    EXPECT_EQ(outcome.status.error_code(), code) << outcome.status.error_message();
+    for (const std::string& part : parts) {
+      EXPECT_THAT(outcome.status.error_message(), HasSubstr(part));
+    }
+    for (const Response& response : outcome.responses) EXPECT_FALSE(carries_mesh(response));
+    EXPECT_EQ(probe_->runs.load(), 0);
+  }
+
+  std::string dir_;
+  std::unique_ptr<MesherServer> server_;
+  std::shared_ptr<grpc::Channel> channel_;
+  std::unique_ptr<v1::Mesher::Stub> stub_;
+  std::shared_ptr<JobProbe> probe_ = std::make_shared<JobProbe>();
+};
+
+// ---------------------------------------------------------------------------------------------
+// Streaming.
+
+TEST_F(MesherServiceTest, JobMeshStreamsBackWholeAndBitExactInCappedSlices) {
+  const Mesh mesh = large_mesh();
+  start(fixed_job(mesh));
+  const CallOutcome outcome = call(requests_for(tetrahedron_front()));
+  ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+
+  for (const Response& response : outcome.responses) {
+    EXPECT_LE(response.ByteSizeLong(), kMessageCap) << response.event_case();
+  }
+  EXPECT_GT(count_events(outcome.responses, Response::kPoints), 1);
+  EXPECT_GT(count_events(outcome.responses, Response::kTriangles), 1);
+  EXPECT_GT(count_events(outcome.responses, Response::kTets), 1);
+
+  const Mesh received = mesh_from(outcome.responses);
+  EXPECT_TRUE(same_bits(received.points, mesh.points));
+  EXPECT_EQ(received.triangles, mesh.triangles);
+  EXPECT_EQ(received.triangle_tags, mesh.triangle_tags);
+  EXPECT_EQ(received.tets, mesh.tets);
+  EXPECT_EQ(received.tet_tags, mesh.tet_tags);
+}
+
+TEST_F(MesherServiceTest, SummaryComesLastWithCountsQualityAndTimings) {
+  const Mesh mesh = large_mesh();
+  start(fixed_job(mesh));
+  const CallOutcome outcome = call(requests_for(tetrahedron_front()));
+  ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+  ASSERT_FALSE(outcome.responses.empty());
+  ASSERT_TRUE(outcome.responses.back().has_summary());
+  EXPECT_EQ(count_events(outcome.responses, Response::kSummary), 1);
+
+  const v1::Summary& summary = outcome.responses.back().summary();
+  EXPECT_EQ(summary.point_count(), mesh.points.size());
+  EXPECT_EQ(summary.triangle_count(), mesh.triangles.size());
+  EXPECT_EQ(summary.tet_count(), mesh.tets.size());
+  EXPECT_EQ(summary.quality().min_dihedral_deg(), 12.5);
+  EXPECT_EQ(summary.quality().share_below_20_deg(), 0.015);
+  EXPECT_EQ(summary.quality().mean_radius_ratio(), 0.8);
+  EXPECT_TRUE(summary.validation().passed());
+  ASSERT_EQ(summary.validation().messages_size(), 1);
+
+  std::vector<std::string> stages;
+  for (const v1::StageTiming& timing : summary.timings()) {
+    stages.push_back(timing.stage());
+    EXPECT_GE(timing.seconds(), 0.0);
+  }
+  EXPECT_THAT(stages, ::testing::ElementsAre("receive", "queue", "front", "compact", "send"));
+}
+
+TEST_F(MesherServiceTest, EventsPrecedeMeshSlicesInPointTriangleTetOrder) {
+  start(fixed_job(large_mesh()));
+  const CallOutcome outcome = call(requests_for(tetrahedron_front()));
+  ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+  ASSERT_TRUE(outcome.responses.front().has_progress());
+  EXPECT_EQ(outcome.responses.front().progress().stage(), "queued");
+  EXPECT_EQ(count_events(outcome.responses, Response::kWarning), 1);
+
+  int last_kind = 0;
+  bool mesh_started = false;
+  for (const Response& response : outcome.responses) {
+    if (carries_mesh(response)) mesh_started = true;
+    if (mesh_started) {
+      EXPECT_FALSE(response.has_progress() || response.has_warning());
+      EXPECT_GE(response.event_case(), last_kind);  // points < triangles < tets < summary
+      last_kind = response.event_case();
+    }
+  }
+  EXPECT_TRUE(mesh_started);
+}
+
+TEST_F(MesherServiceTest, JobReceivesTheFrontAndOptionsAsSent) {
+  start(counting_job(probe_));
+  const Mesh front = tetrahedron_front();
+  const CallOutcome outcome = call(requests_for(front, /*slice=*/1));
+  ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+  EXPECT_EQ(probe_->runs.load(), 1);
+  EXPECT_TRUE(same_bits(probe_->front.points, front.points));
+  EXPECT_EQ(probe_->front.triangles, front.triangles);
+  EXPECT_EQ(probe_->front.triangle_tags, front.triangle_tags);
+  EXPECT_EQ(probe_->params.size, 0.25);
+  EXPECT_EQ(probe_->params.growth, 1.2);
+}
+
+TEST_F(MesherServiceTest, TrianglesWithoutTagsGetTagZeroAndGrowthZeroMeansOne) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_for(tetrahedron_front());
+  requests[0].mutable_header()->mutable_options()->mutable_size()->clear_growth();
+  for (Request& request : requests) {
+    if (request.has_triangles()) request.mutable_triangles()->clear_tags();
+  }
+  const CallOutcome outcome = call(requests);
+  ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+  EXPECT_EQ(probe_->front.triangle_tags, std::vector<Index>(4, 0));
+  EXPECT_EQ(probe_->params.growth, 1.0);
+}
+
+TEST_F(MesherServiceTest, ServesOverTcpOnAPortPickedBySystem) {
+  ServerOptions options;
+  options.listen = "127.0.0.1:0";
+  start(counting_job(probe_), options);
+  EXPECT_NE(server_->address(), "127.0.0.1:0");
+  const CallOutcome outcome = call(requests_for(tetrahedron_front()));
+  EXPECT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+  EXPECT_EQ(mesh_from(outcome.responses).tets.size(), 1u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Job failures.
+
+TEST_F(MesherServiceTest, JobFailureStatusReachesClientWithoutMeshSlices) {
+  start([](const Mesh&, const VolumeParams&, Progress&) -> absl::StatusOr<VolumeJobOutput> {
+    return absl::FailedPreconditionError("front stuck at face 12 near (0.5, 0.5, 0.5)");
+  });
+  const CallOutcome outcome = call(requests_for(tetrahedron_front()));
+  EXPECT_EQ(outcome.status.error_code(), grpc::StatusCode::FAILED_PRECONDITION);
+  EXPECT_THAT(outcome.status.error_message(), HasSubstr("face 12"));
+  for (const Response& response : outcome.responses) {
+    EXPECT_FALSE(carries_mesh(response) || response.has_summary());
+  }
+}
+
+TEST_F(MesherServiceTest, JobExceptionBecomesInternalAndServerKeepsServing) {
+  start([](const Mesh&, const VolumeParams&, Progress&) -> absl::StatusOr<VolumeJobOutput> {
+    throw std::runtime_error("boom");
+  });
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const CallOutcome outcome = call(requests_for(tetrahedron_front()));
+    EXPECT_EQ(outcome.status.error_code(), grpc::StatusCode::INTERNAL);
+    EXPECT_THAT(outcome.status.error_message(), HasSubstr("boom"));
+  }
+}
+
+TEST_F(MesherServiceTest, JobMeshWithIndexOutOfRangeIsNotSent) {
+  Mesh broken = tetrahedron_front();
+  broken.tets = {{0, 1, 2, 3}, {0, 1, 2, 4}};
+  broken.tet_tags = {0, 0};
+  start(fixed_job(broken));
+  const CallOutcome outcome = call(requests_for(tetrahedron_front()));
+  EXPECT_EQ(outcome.status.error_code(), grpc::StatusCode::INTERNAL);
+  EXPECT_THAT(outcome.status.error_message(), HasSubstr("tet 1"));
+  for (const Response& response : outcome.responses) EXPECT_FALSE(carries_mesh(response));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Admission, cancellation, deadlines, shutdown.
+
+TEST_F(MesherServiceTest, CallFindingWorkersAndQueueFullGetsResourceExhausted) {
+  ServerOptions options;
+  options.workers = 1;
+  options.max_queue = 1;
+  start(slow_job(probe_), options);
+  const std::vector<Request> requests = requests_for(tetrahedron_front());
+
+  // Call 1 runs on the only worker.
+  grpc::ClientContext running_context;
+  auto running = stub_->MeshVolume(&running_context);
+  for (const Request& request : requests) ASSERT_TRUE(running->Write(request));
+  running->WritesDone();
+  ASSERT_EQ(probe_->started.get_future().wait_for(std::chrono::seconds(5)),
+            std::future_status::ready);
+
+  // Call 2 waits in the queue: its first event says so.
+  grpc::ClientContext queued_context;
+  auto queued = stub_->MeshVolume(&queued_context);
+  for (const Request& request : requests) ASSERT_TRUE(queued->Write(request));
+  queued->WritesDone();
+  Response first;
+  ASSERT_TRUE(queued->Read(&first));
+  ASSERT_TRUE(first.has_progress());
+  EXPECT_EQ(first.progress().stage(), "queued");
+
+  // Call 3 is refused at once.
+  const Clock::time_point asked = Clock::now();
+  const CallOutcome refused = call(requests);
+  const double seconds = std::chrono::duration<double>(Clock::now() - asked).count();
+  EXPECT_EQ(refused.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_THAT(refused.status.error_message(), HasSubstr("busy"));
+  EXPECT_LT(seconds, 2.0);
+
+  running_context.TryCancel();
+  queued_context.TryCancel();
+  EXPECT_EQ(running->Finish().error_code(), grpc::StatusCode::CANCELLED);
+  EXPECT_EQ(queued->Finish().error_code(), grpc::StatusCode::CANCELLED);
+}
+
+TEST_F(MesherServiceTest, CancellationReachesRunningJobWithin100ms) {
+  start(slow_job(probe_));
+  grpc::ClientContext context;
+  auto stream = stub_->MeshVolume(&context);
+  for (const Request& request : requests_for(tetrahedron_front())) {
+    ASSERT_TRUE(stream->Write(request));
+  }
+  stream->WritesDone();
+  ASSERT_EQ(probe_->started.get_future().wait_for(std::chrono::seconds(5)),
+            std::future_status::ready);
+
+  std::future<Clock::time_point> stopped = probe_->stopped.get_future();
+  const Clock::time_point cancelled_at = Clock::now();
+  context.TryCancel();
+  ASSERT_EQ(stopped.wait_for(std::chrono::seconds(5)), std::future_status::ready);
+  const double latency_ms =
+      std::chrono::duration<double, std::milli>(stopped.get() - cancelled_at).count();
+  std::printf("cancellation reached the job after %.2f ms\n", latency_ms);
+  EXPECT_LT(latency_ms, 1000.0);  // the target is 100 ms; generous against a loaded machine
+  EXPECT_EQ(stream->Finish().error_code(), grpc::StatusCode::CANCELLED);
+}
+
+TEST_F(MesherServiceTest, DeadlineStopsRunningJobAndCallEndsDeadlineExceeded) {
+  start(slow_job(probe_));
+  grpc::ClientContext context;
+  const auto deadline = std::chrono::system_clock::now() + std::chrono::milliseconds(300);
+  context.set_deadline(deadline);
+  std::future<Clock::time_point> stopped = probe_->stopped.get_future();
+  const CallOutcome outcome = call(requests_for(tetrahedron_front()), context);
+  EXPECT_EQ(outcome.status.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED);
+  ASSERT_EQ(stopped.wait_for(std::chrono::seconds(5)), std::future_status::ready);
+  const double late_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::system_clock::now() - deadline)
+          .count();
+  std::printf("the job had stopped %.2f ms after the deadline (upper bound)\n", late_ms);
+  EXPECT_LT(late_ms, 1000.0);
+  for (const Response& response : outcome.responses) EXPECT_FALSE(carries_mesh(response));
+}
+
+TEST_F(MesherServiceTest, ShutdownLetsCallInFlightFinishWhole) {
+  start([](const Mesh& front, const VolumeParams&, Progress&) -> absl::StatusOr<VolumeJobOutput> {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    Mesh mesh = front;
+    mesh.tets = {{0, 1, 2, 3}};
+    mesh.tet_tags = {7};
+    return output_with(std::move(mesh));
+  });
+  grpc::ClientContext context;
+  auto stream = stub_->MeshVolume(&context);
+  for (const Request& request : requests_for(tetrahedron_front())) {
+    ASSERT_TRUE(stream->Write(request));
+  }
+  stream->WritesDone();
+  Response first;
+  ASSERT_TRUE(stream->Read(&first));  // "queued": the job is on its way
+
+  std::thread stopper([this] { server_->shutdown(); });
+  std::vector<Response> responses = {first};
+  Response response;
+  while (stream->Read(&response)) responses.push_back(response);
+  const grpc::Status status = stream->Finish();
+  stopper.join();
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  ASSERT_TRUE(responses.back().has_summary());
+  EXPECT_EQ(mesh_from(responses).tet_tags, std::vector<Index>{7});
+}
+
+TEST_F(MesherServiceTest, DrainingServerRefusesNewCallsAndReportsNotServing) {
+  start(slow_job(probe_));
+  grpc::ClientContext running_context;
+  auto running = stub_->MeshVolume(&running_context);
+  for (const Request& request : requests_for(tetrahedron_front())) {
+    ASSERT_TRUE(running->Write(request));
+  }
+  running->WritesDone();
+  ASSERT_EQ(probe_->started.get_future().wait_for(std::chrono::seconds(5)),
+            std::future_status::ready);
+
+  std::thread stopper([this] { server_->shutdown(); });
+  auto health = grpc::health::v1::Health::NewStub(channel_);
+  grpc::health::v1::HealthCheckResponse::ServingStatus serving =
+      grpc::health::v1::HealthCheckResponse::SERVING;
+  const Clock::time_point give_up = Clock::now() + std::chrono::seconds(5);
+  while (serving == grpc::health::v1::HealthCheckResponse::SERVING && Clock::now() < give_up) {
+    grpc::ClientContext context;
+    grpc::health::v1::HealthCheckResponse response;
+    if (health->Check(&context, {}, &response).ok()) serving = response.status();
+  }
+  EXPECT_EQ(serving, grpc::health::v1::HealthCheckResponse::NOT_SERVING);
+
+  const CallOutcome refused = call(requests_for(tetrahedron_front()));
+  EXPECT_EQ(refused.status.error_code(), grpc::StatusCode::UNAVAILABLE);
+  EXPECT_THAT(refused.status.error_message(), HasSubstr("shutting down"));
+
+  running_context.TryCancel();
+  EXPECT_EQ(running->Finish().error_code(), grpc::StatusCode::CANCELLED);
+  stopper.join();
+}
+
+TEST_F(MesherServiceTest, HealthCheckReportsServing) {
+  start(counting_job(probe_));
+  auto health = grpc::health::v1::Health::NewStub(channel_);
+  grpc::ClientContext context;
+  grpc::health::v1::HealthCheckRequest request;
+  grpc::health::v1::HealthCheckResponse response;
+  const grpc::Status status = health->Check(&context, request, &response);
+  ASSERT_TRUE(status.ok()) << status.error_message();
+  EXPECT_EQ(response.status(), grpc::health::v1::HealthCheckResponse::SERVING);
+}
+
+// Waits for the next event of `queue` and expects it to be `tag`, completed.
+void expect_next(grpc::CompletionQueue& queue, void* tag) {
+  void* got = nullptr;
+  bool ok = false;
+  ASSERT_TRUE(queue.Next(&got, &ok));
+  EXPECT_EQ(got, tag);
+  EXPECT_TRUE(ok);
+}
+
+// Asks grpc.reflection.v1alpha.ServerReflection to list the services, through the generic
+// stub with hand-encoded bytes (Debian ships no reflection client stubs).
+TEST_F(MesherServiceTest, ReflectionListsTheMesherService) {
+  start(counting_job(probe_));
+  grpc::GenericStub stub(channel_);
+  grpc::CompletionQueue queue;
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
+  const auto call = stub.PrepareCall(
+      &context, "/grpc.reflection.v1alpha.ServerReflection/ServerReflectionInfo", &queue);
+  int tags[5];
+  call->StartCall(&tags[0]);
+  expect_next(queue, &tags[0]);
+
+  // ServerReflectionRequest{list_services: ""}: field 7, length-delimited, empty.
+  const char request_bytes[] = {0x3a, 0x00};
+  grpc::Slice slice(request_bytes, sizeof request_bytes);
+  call->Write(grpc::ByteBuffer(&slice, 1), &tags[1]);
+  expect_next(queue, &tags[1]);
+  call->WritesDone(&tags[2]);
+  expect_next(queue, &tags[2]);
+
+  grpc::ByteBuffer response;
+  call->Read(&response, &tags[3]);
+  expect_next(queue, &tags[3]);
+  std::vector<grpc::Slice> slices;
+  ASSERT_TRUE(response.Dump(&slices).ok());
+  std::string bytes;
+  for (const grpc::Slice& s : slices)
+    bytes.append(reinterpret_cast<const char*>(s.begin()), s.size());
+  EXPECT_THAT(bytes, HasSubstr("afmesh.v1.Mesher"));
+  EXPECT_THAT(bytes, HasSubstr("grpc.health.v1.Health"));
+
+  grpc::Status status;
+  call->Finish(&status, &tags[4]);
+  expect_next(queue, &tags[4]);
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  queue.Shutdown();
+  void* ignored_tag = nullptr;
+  bool ignored_ok = false;
+  while (queue.Next(&ignored_tag, &ignored_ok)) {
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Input validation: each rule, with the element or field named and no job run.
+
+TEST_F(MesherServiceTest, RejectsTriangleIndexOutOfRange) {
+  start(counting_job(probe_));
+  Mesh front = tetrahedron_front();
+  front.triangles[2] = {0, 7, 2};
+  expect_rejected(requests_for(front), grpc::StatusCode::INVALID_ARGUMENT,
+                  {"triangle 2", "point 7"});
+}
+
+TEST_F(MesherServiceTest, RejectsNegativeTriangleIndex) {
+  start(counting_job(probe_));
+  Mesh front = tetrahedron_front();
+  front.triangles[3] = {1, -2, 3};
+  expect_rejected(requests_for(front), grpc::StatusCode::INVALID_ARGUMENT, {"triangle 3", "-2"});
+}
+
+TEST_F(MesherServiceTest, RejectsNanCoordinate) {
+  start(counting_job(probe_));
+  Mesh front = tetrahedron_front();
+  front.points[2][1] = std::numeric_limits<double>::quiet_NaN();
+  expect_rejected(requests_for(front), grpc::StatusCode::INVALID_ARGUMENT, {"point 2", "y = nan"});
+}
+
+TEST_F(MesherServiceTest, RejectsInfiniteCoordinate) {
+  start(counting_job(probe_));
+  Mesh front = tetrahedron_front();
+  front.points[3][2] = -std::numeric_limits<double>::infinity();
+  expect_rejected(requests_for(front), grpc::StatusCode::INVALID_ARGUMENT, {"point 3", "z"});
+}
+
+TEST_F(MesherServiceTest, RejectsTriangleSliceBeforeHeader) {
+  start(counting_job(probe_));
+  const Mesh front = tetrahedron_front();
+  expect_rejected({triangles_request(front, 0, 4), header_request(0.25, 4, 4)},
+                  grpc::StatusCode::INVALID_ARGUMENT,
+                  {"message 1", "triangles slice before the header"});
+}
+
+TEST_F(MesherServiceTest, RejectsSecondHeader) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_for(tetrahedron_front());
+  requests.push_back(header_request(0.25, 4, 4));
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT, {"second header"});
+}
+
+TEST_F(MesherServiceTest, RejectsEmptyMessage) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_for(tetrahedron_front());
+  requests.insert(requests.begin() + 1, Request());
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT, {"message 2", "empty"});
+}
+
+TEST_F(MesherServiceTest, RejectsZeroPoints) {
+  start(counting_job(probe_));
+  const Mesh front = tetrahedron_front();
+  expect_rejected(
+      {header_request(0.25, std::nullopt, std::nullopt), triangles_request(front, 0, 4)},
+      grpc::StatusCode::INVALID_ARGUMENT, {"no points"});
+}
+
+TEST_F(MesherServiceTest, RejectsZeroTriangles) {
+  start(counting_job(probe_));
+  const Mesh front = tetrahedron_front();
+  expect_rejected(
+      {header_request(0.25, std::nullopt, std::nullopt), points_request(front.points, 0, 4)},
+      grpc::StatusCode::INVALID_ARGUMENT, {"no triangles"});
+}
+
+TEST_F(MesherServiceTest, RejectsStreamWithoutHeader) {
+  start(counting_job(probe_));
+  expect_rejected({}, grpc::StatusCode::INVALID_ARGUMENT, {"without a header"});
+}
+
+TEST_F(MesherServiceTest, RejectsPointCountDifferingFromHeader) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_for(tetrahedron_front());
+  requests[0].mutable_header()->set_point_count(5);
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
+                  {"declared 5 points", "4 were sent"});
+}
+
+TEST_F(MesherServiceTest, RejectsMoreTrianglesThanHeaderDeclared) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_for(tetrahedron_front());
+  requests[0].mutable_header()->set_triangle_count(3);
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
+                  {"4 triangles sent", "the 3 the header declared"});
+}
+
+TEST_F(MesherServiceTest, RejectsPointSliceNotMultipleOfThree) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_for(tetrahedron_front());
+  requests[1].mutable_points()->add_xyz(1.0);
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
+                  {"message 2", "not a multiple of 3"});
+}
+
+TEST_F(MesherServiceTest, RejectsTagCountDifferingFromTriangleCount) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_for(tetrahedron_front());
+  requests[2].mutable_triangles()->add_tags(9);
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT, {"5 tags for 4 triangles"});
+}
+
+TEST_F(MesherServiceTest, RejectsNonPositiveSize) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_for(tetrahedron_front());
+  requests[0].mutable_header()->mutable_options()->mutable_size()->set_max_size(0.0);
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT, {"options.size.max_size"});
+}
+
+TEST_F(MesherServiceTest, RejectsGrowthBelowOne) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_for(tetrahedron_front());
+  requests[0].mutable_header()->mutable_options()->mutable_size()->set_growth(0.5);
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT, {"options.size.growth"});
+}
+
+TEST_F(MesherServiceTest, InputOverPointLimitGetsResourceExhaustedNamingTheLimit) {
+  ServerOptions options;
+  options.service.limits.max_points = 3;
+  start(counting_job(probe_), options);
+  std::vector<Request> requests = requests_for(tetrahedron_front());
+  requests[0].mutable_header()->clear_point_count();
+  expect_rejected(requests, grpc::StatusCode::RESOURCE_EXHAUSTED, {"--max-points", "3"});
+}
+
+TEST_F(MesherServiceTest, HeaderDeclaringTooManyTrianglesIsRefusedAtOnce) {
+  ServerOptions options;
+  options.service.limits.max_triangles = 1000;
+  start(counting_job(probe_), options);
+  expect_rejected({header_request(0.25, 4, 1001)}, grpc::StatusCode::RESOURCE_EXHAUSTED,
+                  {"--max-triangles", "1001"});
+}
+
+}  // namespace
+}  // namespace afmesh::server
