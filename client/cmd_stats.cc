@@ -38,8 +38,9 @@ void print_histogram(std::ostream& out, const char* title, const Histogram& h, c
   for (int i = 0; i < bins; ++i) {
     if (h.counts[i] == 0) continue;
     const int bar = static_cast<int>((40 * h.counts[i] + most - 1) / most);
-    out << absl::StrFormat("  %7.3g-%-7.3g%-3s %10d %6.2f%% %s\n", h.bin_lo(i),
-                           h.bin_lo(i) + (h.hi - h.lo) / bins, unit, h.counts[i],
+    const std::string range = absl::StrFormat("[%g, %g)%s", h.bin_lo(i),
+                                              h.bin_lo(i) + (h.hi - h.lo) / bins, unit);
+    out << absl::StrFormat("  %-14s %10d %6.2f%% %s\n", range, h.counts[i],
                            100.0 * h.counts[i] / total, std::string(bar, '#'));
   }
 }
