@@ -98,7 +98,7 @@ double element_size_for_face(const MesherState& s, const Triangle& v) {
   const Point& c = s.points[v[2]];
   const Point centroid = scale(add(a, add(b, c)), 1.0 / 3.0);
   const double attached =
-      s.params.growth * std::min({s.point_size[v[0]], s.point_size[v[1]], s.point_size[v[2]]});
+      s.growth * std::min({s.point_size[v[0]], s.point_size[v[1]], s.point_size[v[2]]});
   const double wanted = std::min(s.size_field.size_at(centroid), attached);  // eq. 15
   const double edge = mean_edge(a, b, c);
   return std::clamp(wanted, 0.55 * edge, 1.6 * edge);

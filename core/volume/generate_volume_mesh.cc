@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include "absl/strings/str_format.h"
 #include "core/geometry/vec.h"
 #include "core/quality/optimise.h"
+#include "core/sizing/spec_size_field.h"
 #include "core/volume/front_steps.h"
 
 namespace afmesh {
@@ -104,7 +106,7 @@ bool delete_face(MesherState& s, Index face) {
       s.points.push_back(c.position);
       s.point_size.push_back(
           std::min(s.size_field.size_at(c.position),
-                   s.params.growth * std::min({s.point_size[v[0]], s.point_size[v[1]],
+                   s.growth * std::min({s.point_size[v[0]], s.point_size[v[1]],
                                                s.point_size[v[2]]})));
     }
     if (!volume::element_crosses_front(s, face, p)) {                  // F7.3
@@ -156,6 +158,18 @@ absl::Status stuck_report(const MesherState& s, Index face, std::int64_t steps) 
       steps, s.live_tets, s.front.size(), v[0], v[1], v[2], x[0], x[1], x[2]));
 }
 
+// F2: the size in space: the specification's sources and background grid (eq. 1–14), or one
+// uniform size.
+absl::StatusOr<std::unique_ptr<SizeField>> make_size_field(const VolumeParams& params,
+                                                           const Mesh& front) {
+  if (!params.spec) return std::make_unique<UniformSize>(params.size);
+  Box domain = empty_box();
+  for (const Point& p : front.points) enclose(domain, p);
+  absl::StatusOr<SpecSizeField> field = SpecSizeField::create(*params.spec, domain);
+  if (!field.ok()) return field.status();
+  return std::make_unique<SpecSizeField>(*std::move(field));
+}
+
 // Drops deleted tets and points no tet uses any more; input points keep their indices.
 Mesh compact_result(const MesherState& s, const Mesh& input) {
   Mesh out;
@@ -188,16 +202,23 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
                                                   Progress& progress) {
   VolumeResult result;
   StageClock clock(result.timings);
-  if (!(params.size > 0) || !std::isfinite(params.size))
-    return absl::InvalidArgumentError(absl::StrFormat("size must be > 0, got %g", params.size));
-  if (!(params.growth >= 1.0) || !std::isfinite(params.growth))
-    return absl::InvalidArgumentError(absl::StrFormat("growth must be >= 1, got %g", params.growth));
+  if (!params.spec) {
+    if (!(params.size > 0) || !std::isfinite(params.size))
+      return absl::InvalidArgumentError(absl::StrFormat("size must be > 0, got %g", params.size));
+    if (!(params.growth >= 1.0) || !std::isfinite(params.growth))
+      return absl::InvalidArgumentError(
+          absl::StrFormat("growth must be >= 1, got %g", params.growth));
+  }
   if (absl::Status st = validate_front(front); !st.ok()) return st;
+  absl::StatusOr<std::unique_ptr<SizeField>> size_field = make_size_field(params, front);
+  if (!size_field.ok()) return size_field.status();
+  const double growth = params.spec ? params.spec->growth : params.growth;
   clock.lap("validate");
 
-  const UniformSize size_field(params.size);
-  MesherState s(front, params, size_field, padded_bounds(front.points), mean_boundary_edge(front));
-  const double h = std::min(params.size, mean_boundary_edge(front));
+  MesherState s(front, growth, **size_field, padded_bounds(front.points),
+                mean_boundary_edge(front));
+  const double max_size = params.spec ? params.spec->max_size : params.size;
+  const double h = std::min(max_size, mean_boundary_edge(front));
   const double expected_tets =
       std::max(1.0, enclosed_volume(front) / (h * h * h / (6.0 * std::sqrt(2.0))));
   s.tets.reserve(static_cast<std::size_t>(expected_tets * 1.3));
@@ -206,12 +227,11 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
 
   std::vector<std::uint8_t> repairs;
   std::int64_t steps = 0;
-  // A face is taken from the queue about once per element; a front that keeps failing and
-  // re-opening without closing stops here with a report instead of running on.
-  const std::int64_t max_steps = static_cast<std::int64_t>(10 * expected_tets) +
-                                 20 * static_cast<std::int64_t>(front.triangles.size()) + 100000;
+  // A face is taken from the queue a little more than once per element it builds; a front that
+  // keeps failing and re-opening without building stops here with a report instead of running on.
+  const std::int64_t slack = 20 * static_cast<std::int64_t>(front.triangles.size()) + 100000;
   while (std::optional<Index> face = s.front.pop()) {                  // F6, F11
-    if (++steps > max_steps) return stuck_report(s, *face, steps);
+    if (++steps > 6 * s.live_tets + slack) return stuck_report(s, *face, steps);
     if (steps % kCancelCheckInterval == 0) {
       if (progress.cancelled()) return absl::CancelledError("volume meshing cancelled");
       progress.report("front", std::min(0.99, static_cast<double>(s.live_tets) / expected_tets));

@@ -2,12 +2,14 @@
 // steps F1–F11).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "absl/status/statusor.h"
 #include "core/common/progress.h"
 #include "core/mesh/mesh.h"
+#include "core/sizing/size_spec.h"
 
 namespace afmesh {
 
@@ -17,6 +19,9 @@ struct VolumeParams {
   // Growth factor c_i of eq. 15 (>= 1): a new point's size is at most c_i times the smallest
   // size of the face being deleted. 1 gives uniform elements.
   double growth = 1.0;
+  // The full size specification (sources, background grid; paper §4, eq. 1–14). When set, its
+  // max_size and growth replace `size` and `growth` above.
+  std::optional<SizeSpec> spec;
   // Improve the worst elements after the front closes (flips and smoothing of interior points,
   // core/quality/optimise.h). The boundary is never changed.
   bool optimise = true;

@@ -2,9 +2,9 @@
 
 namespace afmesh::volume {
 
-MesherState::MesherState(const Mesh& input, const VolumeParams& params_in,
-                         const SizeField& size_field_in, const Box& domain, double cell_size)
-    : params(params_in),
+MesherState::MesherState(const Mesh& input, double growth_in, const SizeField& size_field_in,
+                         const Box& domain, double cell_size)
+    : growth(growth_in),
       size_field(size_field_in),
       input_points(static_cast<Index>(input.points.size())),
       points(input.points),

@@ -37,11 +37,11 @@ class TetIncidence {
 };
 
 struct MesherState {
-  MesherState(const Mesh& input, const VolumeParams& params, const SizeField& size_field,
-              const Box& domain, double cell_size);
+  MesherState(const Mesh& input, double growth, const SizeField& size_field, const Box& domain,
+              double cell_size);
 
-  const VolumeParams& params;
-  const SizeField& size_field;
+  double growth;                // c_i of eq. 15
+  const SizeField& size_field;  // delta_bg / delta_s
   Index input_points = 0;
   std::vector<Point> points;
   std::vector<double> point_size;  // delta of each point (eq. 15)

@@ -175,3 +175,73 @@ TEST(Optimise, MinSineOfTheRegularTetIsSinOfItsDihedralAngle) {
 
 }  // namespace
 }  // namespace afmesh
+
+namespace afmesh {
+namespace {
+
+// Mean edge length of the tets whose centroid lies within [r_lo, r_hi) of x.
+double mean_edge_near(const Mesh& m, const Point& x, double r_lo, double r_hi) {
+  double sum = 0;
+  int n = 0;
+  for (const Tet& t : m.tets) {
+    Point c{0, 0, 0};
+    for (Index p : t)
+      for (int a = 0; a < 3; ++a) c[a] += m.points[p][a] / 4;
+    const double r = std::sqrt((c[0] - x[0]) * (c[0] - x[0]) + (c[1] - x[1]) * (c[1] - x[1]) +
+                               (c[2] - x[2]) * (c[2] - x[2]));
+    if (r < r_lo || r >= r_hi) continue;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        const Point& a = m.points[t[i]];
+        const Point& b = m.points[t[j]];
+        sum += std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                         (a[2] - b[2]) * (a[2] - b[2]));
+        ++n;
+      }
+  }
+  return n ? sum / n : 0.0;
+}
+
+TEST(VolumeMesh, PointSourceMakesElementsSmallNearIt) {
+  // A box with a coarse boundary, a point source at its centre.
+  const Mesh front = box_surface({-1, -1, -1}, {1, 1, 1}, 0.4);
+  VolumeParams params;
+  SizeSpec spec;
+  spec.max_size = 0.4;
+  spec.growth = 1.2;
+  SizeSource source;
+  source.points = {{0, 0, 0}};
+  source.delta0 = 0.12;
+  source.r0 = 0.1;
+  source.r1 = 0.5;
+  source.law = PowerLaw{1.0};
+  spec.sources.push_back(source);
+  params.spec = spec;
+  absl::StatusOr<VolumeResult> r = generate_volume_mesh(front, params, no_progress());
+  ASSERT_TRUE(r.ok()) << r.status();
+  EXPECT_TRUE(validate_volume_mesh(r->mesh, &front).valid());
+  const double near = mean_edge_near(r->mesh, {0, 0, 0}, 0.0, 0.3);
+  const double far = mean_edge_near(r->mesh, {0, 0, 0}, 0.9, 2.0);
+  EXPECT_GT(near, 0.0);
+  EXPECT_LT(near, 0.6 * far) << "near " << near << " far " << far;
+}
+
+TEST(VolumeMesh, BadSpecIsRejectedNamingTheField) {
+  const Mesh front = box_surface({0, 0, 0}, {1, 1, 1}, 0.5);
+  VolumeParams params;
+  SizeSpec spec;
+  spec.max_size = 0.5;
+  SizeSource source;
+  source.points = {{0, 0, 0}};
+  source.delta0 = 0.1;
+  source.r1 = -1;
+  source.law = PowerLaw{1.0};
+  spec.sources.push_back(source);
+  params.spec = spec;
+  const auto r = generate_volume_mesh(front, params, no_progress());
+  ASSERT_EQ(r.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(r.status().message().find("sources[0].r1"), std::string_view::npos) << r.status();
+}
+
+}  // namespace
+}  // namespace afmesh
