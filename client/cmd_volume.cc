@@ -1,19 +1,24 @@
-// afmesh volume IN -o OUT [--size H] [--growth C] [--server ADDR] [--json] [--quiet]
-//                         [--timeout SEC]
+// afmesh volume IN -o OUT [--size H] [--growth C] [--spec SPEC.json] [--server ADDR] [--json]
+//                         [--quiet] [--timeout SEC]
 // Fills the closed front in IN with tetrahedra through the MeshVolume call and writes OUT.
+// --spec sends a whole size specification (sources, background grid; design.md, "Size
+// specification"); --size and --growth, when given, override its maxSize and growth.
 // Without --server a private afmesh-server runs for the command on a local socket: the same
 // code path as a remote server. Formats follow the file extensions (core/io/mesh_io.h).
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "absl/strings/str_format.h"
 #include "client/commands.h"
 #include "client/interrupt_watcher.h"
 #include "client/progress_display.h"
 #include "client/server_launcher.h"
+#include "client/spec_file.h"
 #include "client/volume_call.h"
 #include "core/io/mesh_io.h"
 #include "grpc/grpc.h"
@@ -26,6 +31,9 @@ struct VolumeCommandOptions {
   std::string output;
   double size = 0.0;  // 0: the mean edge length of the front
   double growth = 1.0;
+  bool size_given = false;    // --size was on the command line
+  bool growth_given = false;  // --growth was on the command line
+  std::string spec_path;      // empty: a uniform size, no sources
   std::string server;  // empty: start a private server
   bool json = false;
   bool quiet = false;
@@ -110,6 +118,25 @@ double mean_edge_length(const Mesh& front) {
   return edges == 0 ? 1.0 : sum / static_cast<double>(edges);
 }
 
+// The size specification of --spec with the command line's overrides: --size, else the file's
+// maxSize, else the front's mean edge length; --growth, else the file's growth. Validated
+// (validate_size_spec); errors name the file and the field.
+absl::StatusOr<SizeSpec> spec_for(const VolumeCommandOptions& options, const Mesh& front) {
+  absl::StatusOr<SizeSpec> spec = read_size_spec_file(options.spec_path);
+  if (!spec.ok()) return spec.status();
+  if (options.size_given) {
+    spec->max_size = options.size;
+  } else if (spec->max_size == 0.0) {
+    spec->max_size = mean_edge_length(front);
+  }
+  if (options.growth_given) spec->growth = options.growth;
+  if (absl::Status status = validate_size_spec(*spec); !status.ok()) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("%s: %s", options.spec_path, status.message()));
+  }
+  return spec;
+}
+
 void print_summary(const VolumeCommandOptions& options, const VolumeSummary& summary) {
   std::printf("%s: %llu points, %llu boundary triangles, %llu tetrahedra\n", options.output.c_str(),
               static_cast<unsigned long long>(summary.point_count),
@@ -158,6 +185,17 @@ int run_volume(const VolumeCommandOptions& options) {
     return kExitBadInput;
   }
 
+  std::optional<SizeSpec> spec;
+  if (!options.spec_path.empty()) {
+    absl::StatusOr<SizeSpec> read = spec_for(options, *front);
+    if (!read.ok()) {
+      progress.finish();
+      print_error(read.status());
+      return kExitBadInput;
+    }
+    spec = *std::move(read);
+  }
+
   std::unique_ptr<PrivateServer> private_server;  // stopped on every way out of this function
   std::string address = options.server;
   if (address.empty()) {
@@ -176,6 +214,7 @@ int run_volume(const VolumeCommandOptions& options) {
   const VolumeCallOptions call_options{
       .size = options.size > 0 ? options.size : mean_edge_length(*front),
       .growth = options.growth,
+      .spec = std::move(spec),
       .timeout_seconds = options.timeout_seconds,
       .canceller = canceller.get()};
   absl::StatusOr<VolumeCallResult> result = call_mesh_volume(
@@ -238,13 +277,20 @@ void add_volume_command(CLI::App& app, Action& action) {
   command->add_option("--growth", options->growth, "growth factor c >= 1 (eq. 15)")
       ->capture_default_str()
       ->check(CLI::Range(1.0, 1e6));
+  command->add_option("--spec", options->spec_path,
+                      "size specification (JSON, design.md); --size and --growth override its "
+                      "maxSize and growth");
   command->add_option("--server", options->server,
                       "server address (host:port or unix:PATH); default: a private server");
   command->add_flag("--json", options->json, "print the summary as JSON on stdout");
   command->add_flag("--quiet", options->quiet, "print nothing but errors");
   command->add_option("--timeout", options->timeout_seconds, "give up after SEC seconds")
       ->check(CLI::PositiveNumber);
-  command->callback([options, &action] { action = [options] { return run_volume(*options); }; });
+  command->callback([options, command, &action] {
+    options->size_given = command->count("--size") > 0;
+    options->growth_given = command->count("--growth") > 0;
+    action = [options] { return run_volume(*options); };
+  });
 }
 
 }  // namespace afmesh::cli

@@ -25,5 +25,6 @@ using Action = std::function<int()>;
 void add_stats_command(CLI::App& app, Action& action);
 void add_convert_command(CLI::App& app, Action& action);
 void add_volume_command(CLI::App& app, Action& action);
+void add_sizes_command(CLI::App& app, Action& action);
 
 }  // namespace afmesh::cli

@@ -9,6 +9,7 @@
 #include "afmesh/v1/mesher.grpc.pb.h"
 #include "google/protobuf/util/json_util.h"
 #include "grpcpp/grpcpp.h"
+#include "proto/size_spec_convert.h"
 
 namespace afmesh::cli {
 namespace {
@@ -23,8 +24,12 @@ constexpr std::size_t kSliceItems = 32768;
 Request header_request(const Mesh& front, const VolumeCallOptions& options) {
   Request request;
   v1::MeshVolumeHeader& header = *request.mutable_header();
-  header.mutable_options()->mutable_size()->set_max_size(options.size);
-  header.mutable_options()->mutable_size()->set_growth(options.growth);
+  if (options.spec) {
+    *header.mutable_options()->mutable_size() = size_spec_to_proto(*options.spec);
+  } else {
+    header.mutable_options()->mutable_size()->set_max_size(options.size);
+    header.mutable_options()->mutable_size()->set_growth(options.growth);
+  }
   header.set_point_count(front.points.size());
   header.set_triangle_count(front.triangles.size());
   return request;

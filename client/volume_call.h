@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -14,6 +15,7 @@
 #include "absl/base/thread_annotations.h"
 #include "absl/status/statusor.h"
 #include "core/mesh/mesh.h"
+#include "core/sizing/size_spec.h"
 
 namespace grpc {
 class ClientContext;
@@ -41,6 +43,9 @@ class CallCanceller {
 struct VolumeCallOptions {
   double size = 0.0;    // SizeSpec.max_size (> 0)
   double growth = 1.0;  // SizeSpec.growth (>= 1)
+  // When set, the whole size specification is sent (its max_size and growth replace `size` and
+  // `growth`).
+  std::optional<SizeSpec> spec;
   // Deadline of the whole call in seconds; 0 means none.
   double timeout_seconds = 0.0;
   // When set, cancels the call on request.

@@ -3,9 +3,12 @@
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <utility>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "core/sizing/size_spec.h"
+#include "proto/size_spec_convert.h"
 
 namespace afmesh::server {
 namespace {
@@ -13,7 +16,9 @@ namespace {
 // "message 3" for the third message of the client stream (1-based, as a person counts).
 std::string message_name(std::int64_t count) { return absl::StrCat("message ", count); }
 
-// Checks options.size: max_size finite and > 0, growth 0 (meaning 1) or finite and >= 1.
+// Checks options.size: max_size finite and > 0, growth 0 (meaning 1) or finite and >= 1; with
+// sources or a background grid, the whole specification (validate_size_spec) goes to the job in
+// params.spec. Errors name the field under "options.size.".
 absl::Status params_from_options(const v1::VolumeOptions& options, VolumeParams& params) {
   const v1::SizeSpec& size = options.size();
   if (!std::isfinite(size.max_size()) || size.max_size() <= 0.0) {
@@ -27,6 +32,13 @@ absl::Status params_from_options(const v1::VolumeOptions& options, VolumeParams&
   }
   params.size = size.max_size();
   params.growth = growth;
+  if (size.sources_size() == 0 && !size.has_background()) return absl::OkStatus();
+  absl::StatusOr<SizeSpec> spec = size_spec_from_proto(size);
+  absl::Status status = spec.ok() ? validate_size_spec(*spec) : spec.status();
+  if (!status.ok()) {
+    return absl::InvalidArgumentError(absl::StrCat("options.size.", status.message()));
+  }
+  params.spec = *std::move(spec);
   return absl::OkStatus();
 }
 

@@ -15,6 +15,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <variant>
 #include <vector>
 
 #include "absl/status/status.h"
@@ -25,6 +26,7 @@
 #include "grpcpp/generic/generic_stub.h"
 #include "grpcpp/grpcpp.h"
 #include "gtest/gtest.h"
+#include "proto/size_spec_convert.h"
 #include "server/server.h"
 #include "server/volume_output.h"
 
@@ -804,6 +806,117 @@ TEST_F(MesherServiceTest, HeaderDeclaringTooManyTrianglesIsRefusedAtOnce) {
   start(counting_job(probe_), options);
   expect_rejected({header_request(0.25, 4, 1001)}, grpc::StatusCode::RESOURCE_EXHAUSTED,
                   {"--max-triangles", "1001"});
+}
+
+// ---------------------------------------------------------------------------------------------
+// Size specification: sources and background grids reach the job as params.spec; bad ones are
+// refused before any work, naming the field as the JSON spells it.
+
+// The tetrahedron's requests with options.size parsed from `json` (protobuf JSON of SizeSpec).
+std::vector<Request> requests_with_spec(const std::string& json) {
+  std::vector<Request> requests = requests_for(tetrahedron_front());
+  absl::StatusOr<v1::SizeSpec> spec = size_spec_proto_from_json(json);
+  EXPECT_TRUE(spec.ok()) << spec.status();
+  if (spec.ok()) *requests[0].mutable_header()->mutable_options()->mutable_size() = *spec;
+  return requests;
+}
+
+// A point source at the origin with the given fields spliced in (JSON members).
+std::string point_source_spec(const std::string& source_fields) {
+  return R"({"maxSize": 0.5, "growth": 1.2, "sources": [{)" + source_fields + "}]}";
+}
+
+constexpr const char* kOrigin = R"("points": [{"x": 0, "y": 0, "z": 0}])";
+
+TEST_F(MesherServiceTest, SpecWithSourcesReachesJobAsParamsSpec) {
+  start(counting_job(probe_));
+  const CallOutcome outcome = call(requests_with_spec(point_source_spec(
+      std::string(kOrigin) +
+      R"(, "delta0": 0.1, "r0": 0.2, "r1": 0.5, "polynomial": {"coefficients": [1.0, 0.5]})")));
+  ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+  ASSERT_TRUE(probe_->params.spec.has_value());
+  const SizeSpec& spec = *probe_->params.spec;
+  EXPECT_EQ(spec.max_size, 0.5);
+  EXPECT_EQ(spec.growth, 1.2);
+  ASSERT_EQ(spec.sources.size(), 1u);
+  EXPECT_EQ(spec.sources[0].r0, 0.2);
+  ASSERT_TRUE(std::holds_alternative<PolynomialLaw>(spec.sources[0].law));
+  EXPECT_EQ(std::get<PolynomialLaw>(spec.sources[0].law).coefficients,
+            (std::vector<double>{1.0, 0.5}));
+  EXPECT_FALSE(spec.background.has_value());
+}
+
+TEST_F(MesherServiceTest, UniformSizeLeavesParamsSpecUnset) {
+  start(counting_job(probe_));
+  const CallOutcome outcome = call(requests_for(tetrahedron_front()));
+  ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+  EXPECT_FALSE(probe_->params.spec.has_value());
+}
+
+TEST_F(MesherServiceTest, RejectsSourceWithNonPositiveR1) {
+  start(counting_job(probe_));
+  expect_rejected(requests_with_spec(point_source_spec(
+                      std::string(kOrigin) + R"(, "delta0": 0.1, "r1": 0, "power": {"gamma": 1})")),
+                  grpc::StatusCode::INVALID_ARGUMENT, {"options.size.sources[0].r1", "> 0"});
+}
+
+TEST_F(MesherServiceTest, RejectsSourceWithoutPoints) {
+  start(counting_job(probe_));
+  expect_rejected(
+      requests_with_spec(point_source_spec(R"("delta0": 0.1, "r1": 1, "power": {"gamma": 1})")),
+      grpc::StatusCode::INVALID_ARGUMENT, {"options.size.sources[0].points", "got 0"});
+}
+
+TEST_F(MesherServiceTest, RejectsSourceWithFourPoints) {
+  start(counting_job(probe_));
+  expect_rejected(requests_with_spec(point_source_spec(
+                      R"("points": [{}, {"x": 1}, {"y": 1}, {"z": 1}], "delta0": 0.1, "r1": 1,)"
+                      R"( "power": {"gamma": 1})")),
+                  grpc::StatusCode::INVALID_ARGUMENT, {"options.size.sources[0].points", "got 4"});
+}
+
+TEST_F(MesherServiceTest, RejectsNanDelta0SentAsJsonNan) {
+  start(counting_job(probe_));
+  expect_rejected(requests_with_spec(point_source_spec(
+                      std::string(kOrigin) +
+                      R"(, "delta0": "NaN", "r1": 1, "exponential": {"gamma": 1})")),
+                  grpc::StatusCode::INVALID_ARGUMENT, {"options.size.sources[0].delta0", "nan"});
+}
+
+TEST_F(MesherServiceTest, RejectsSourceWithoutLaw) {
+  start(counting_job(probe_));
+  expect_rejected(
+      requests_with_spec(point_source_spec(std::string(kOrigin) + R"(, "delta0": 0.1, "r1": 1)")),
+      grpc::StatusCode::INVALID_ARGUMENT, {"options.size.sources[0]", "no decay law"});
+}
+
+// A law this server does not know (a field number from a newer schema) arrives as an unknown
+// field, so the source has no law it can use.
+TEST_F(MesherServiceTest, RejectsSourceWhoseLawIsUnknownToTheServer) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_with_spec(
+      point_source_spec(std::string(kOrigin) + R"(, "delta0": 0.1, "r1": 1)"));
+  v1::SizeSource& source = *requests[0].mutable_header()->mutable_options()->mutable_size()
+                                ->mutable_sources(0);
+  source.GetReflection()->MutableUnknownFields(&source)->AddLengthDelimited(99, "");
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
+                  {"options.size.sources[0]", "no decay law"});
+}
+
+TEST_F(MesherServiceTest, RejectsBackgroundFile) {
+  start(counting_job(probe_));
+  expect_rejected(requests_with_spec(R"({"maxSize": 0.5, "background": {"file": "bg.msh"}})"),
+                  grpc::StatusCode::INVALID_ARGUMENT,
+                  {"options.size.background.file", "not supported yet"});
+}
+
+TEST_F(MesherServiceTest, RejectsInvertedBackgroundTet) {
+  start(counting_job(probe_));
+  expect_rejected(
+      requests_with_spec(R"({"maxSize": 0.5, "background": {
+          "points": [{}, {"x": 1}, {"y": 1}, {"z": 1}], "tets": [0, 2, 1, 3],
+          "sizes": [1, 1, 1, 1]}})"),
+      grpc::StatusCode::INVALID_ARGUMENT, {"options.size.background.tets[0]"});
 }
 
 }  // namespace

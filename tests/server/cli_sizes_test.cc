@@ -1,0 +1,217 @@
+// `afmesh sizes` and `afmesh volume --spec` through the real binaries: the paper's dome
+// specification (examples/dome/dome-sizes.json) reproduces its law, errors name the file, line
+// or field, and a box with a point source meshes into a valid volume mesh.
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/io/mesh_io.h"
+#include "core/quality/validate.h"
+#include "core/shapes/shapes.h"
+#include "gmock/gmock.h"
+#include "gtest/gtest.h"
+
+namespace afmesh {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+// `path` in single quotes, for the shell.
+std::string quoted(const fs::path& path) {
+  std::string text(1, '\'');
+  text.append(path.string()).push_back('\'');
+  return text;
+}
+
+fs::path dome_spec_path() { return fs::path(AFMESH_SOURCE_DIR) / "examples/dome/dome-sizes.json"; }
+
+// The dome's law (eq. 10, 13, 14) by hand: delta0 (1 + a1 rho + a2 rho^2), rho = max(0, (r - r0)
+// / r1), capped at maxSize (the default background grid is maxSize everywhere).
+double dome_size(const Point& x) {
+  constexpr double kMaxSize = 0.8, kDelta0 = 0.15, kR0 = 1.0, kR1 = 0.2, kA1 = 1.0, kA2 = 0.0;
+  const double r = std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+  const double rho = std::max(0.0, (r - kR0) / kR1);
+  return std::min(kMaxSize, kDelta0 * (1.0 + kA1 * rho + kA2 * rho * rho));
+}
+
+// The number of tets of `mesh` whose centroid is within `radius` of `centre`.
+int tets_near(const Mesh& mesh, const Point& centre, double radius) {
+  int count = 0;
+  for (const Tet& tet : mesh.tets) {
+    double d2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double c = (mesh.points[tet[0]][k] + mesh.points[tet[1]][k] + mesh.points[tet[2]][k] +
+                        mesh.points[tet[3]][k]) / 4.0;
+      d2 += (c - centre[k]) * (c - centre[k]);
+    }
+    count += d2 <= radius * radius ? 1 : 0;
+  }
+  return count;
+}
+
+class CliSizesTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char pattern[] = "/tmp/afmesh-sizes-test-XXXXXX";
+    ASSERT_NE(mkdtemp(pattern), nullptr);
+    dir_ = pattern;
+    fs::create_directory(dir_ / "tmp");
+  }
+
+  void TearDown() override { fs::remove_all(dir_); }
+
+  static void write_file(const fs::path& path, const std::string& text) {
+    std::ofstream(path) << text;
+  }
+
+  static std::string read_file(const fs::path& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }
+
+  // Runs `afmesh ARGS` (stdin from `input` when given) with TMPDIR in the test folder; stdout and
+  // stderr go to files. Returns the exit status.
+  int run(const std::string& args, const std::string& input = "") {
+    std::string command = "TMPDIR=" + quoted(dir_ / "tmp") + " " + AFMESH_CLI_BINARY + " " + args +
+                          " >" + quoted(dir_ / "stdout.txt") + " 2>" + quoted(dir_ / "stderr.txt");
+    if (!input.empty()) {
+      write_file(dir_ / "stdin.txt", input);
+      command += " <" + quoted(dir_ / "stdin.txt");
+    }
+    const int status = std::system(command.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+
+  std::string stdout_text() const { return read_file(dir_ / "stdout.txt"); }
+  std::string stderr_text() const { return read_file(dir_ / "stderr.txt"); }
+
+  // The numbers printed on stdout, one per line.
+  std::vector<double> printed_sizes() const {
+    std::istringstream in(stdout_text());
+    std::vector<double> sizes;
+    for (double size = 0.0; in >> size;) sizes.push_back(size);
+    return sizes;
+  }
+
+  fs::path dir_;
+};
+
+// Probe points inside r0, on it, across the decay (in several directions) and beyond the cap.
+const std::vector<Point> kDomeProbes = {
+    {0, 0, 0},       {0.3, 0.4, 0},   {0, 0, 1.0},         {0, 1.1, 0},   {0.72, 0.96, 0},
+    {0.9, 0.9, 0.3}, {1.5, 0, 0},     {-0.6, -0.8, -0.9},  {0, 2.0, 0},   {3, 3, 3},
+};
+
+std::string points_text(const std::vector<Point>& points) {
+  std::ostringstream out;
+  out.precision(17);
+  for (const Point& p : points) out << p[0] << ' ' << p[1] << "\t" << p[2] << '\n';
+  return out.str();
+}
+
+TEST_F(CliSizesTest, DomeSpecReproducesThePolynomialLawTo1e12) {
+  write_file(dir_ / "probe.xyz", points_text(kDomeProbes));
+  ASSERT_EQ(run("sizes --spec " + quoted(dome_spec_path()) + " --points " +
+                quoted(dir_ / "probe.xyz")),
+            0)
+      << stderr_text();
+  const std::vector<double> sizes = printed_sizes();
+  ASSERT_EQ(sizes.size(), kDomeProbes.size()) << stdout_text();
+  for (std::size_t i = 0; i < kDomeProbes.size(); ++i) {
+    const double expected = dome_size(kDomeProbes[i]);
+    EXPECT_NEAR(sizes[i], expected, 1e-12 * expected) << "probe " << i;
+  }
+  // The probes cover the constant core, the decay and the cap.
+  EXPECT_EQ(dome_size(kDomeProbes[0]), 0.15);
+  EXPECT_EQ(dome_size(kDomeProbes.back()), 0.8);
+}
+
+TEST_F(CliSizesTest, ReadsStdinWhenNoPointsFileAndSkipsBlankLines) {
+  ASSERT_EQ(run("sizes --spec " + quoted(dome_spec_path()), "1.2 0 0\n\n0 0 0\n"), 0)
+      << stderr_text();
+  const std::vector<double> sizes = printed_sizes();
+  ASSERT_EQ(sizes.size(), 2u);
+  EXPECT_NEAR(sizes[0], dome_size({1.2, 0, 0}), 1e-12);
+  EXPECT_EQ(sizes[1], 0.15);
+}
+
+TEST_F(CliSizesTest, MalformedPointLineExitsBadInputNamingTheLine) {
+  write_file(dir_ / "probe.xyz", "0 0 0\n1 2\n");
+  EXPECT_EQ(run("sizes --spec " + quoted(dome_spec_path()) + " --points " +
+                quoted(dir_ / "probe.xyz")),
+            3);
+  EXPECT_THAT(stderr_text(), HasSubstr("probe.xyz:2:"));
+}
+
+TEST_F(CliSizesTest, InvalidSpecExitsBadInputNamingFileAndField) {
+  write_file(dir_ / "bad.json", R"({"maxSize": 1, "sources": [{"points": [{}], "delta0": 0.1,
+      "r1": -1, "power": {"gamma": 1}}]})");
+  EXPECT_EQ(run("sizes --spec " + quoted(dir_ / "bad.json"), "0 0 0\n"), 3);
+  EXPECT_THAT(stderr_text(), HasSubstr("bad.json"));
+  EXPECT_THAT(stderr_text(), HasSubstr("sources[0].r1"));
+}
+
+TEST_F(CliSizesTest, MalformedJsonExitsBadInputNamingTheFile) {
+  write_file(dir_ / "bad.json", R"({"maxSize": 1, "sources": [{"cubic": {}}]})");
+  EXPECT_EQ(run("sizes --spec " + quoted(dir_ / "bad.json"), "0 0 0\n"), 3);
+  EXPECT_THAT(stderr_text(), HasSubstr("bad.json"));
+  EXPECT_THAT(stderr_text(), HasSubstr("cubic"));
+}
+
+TEST_F(CliSizesTest, BackgroundFileIsRefusedClearly) {
+  write_file(dir_ / "bg.json", R"({"maxSize": 1, "background": {"file": "background.msh"}})");
+  EXPECT_EQ(run("sizes --spec " + quoted(dir_ / "bg.json"), "0 0 0\n"), 3);
+  EXPECT_THAT(stderr_text(),
+              HasSubstr("background files are not supported yet; give the grid inline"));
+}
+
+// A point source at the centre of a box refines the interior: the mesh is valid and has more
+// tets within r1 of the source than the uniform mesh of the same box (without --spec).
+TEST_F(CliSizesTest, VolumeWithPointSourceSpecMeshesABoxValidlyAndRefinesNearTheSource) {
+  const Mesh front = box_surface({0, 0, 0}, {2, 2, 2}, 0.5);
+  ASSERT_TRUE(write_mesh(front, (dir_ / "box.mesh").string()).ok());
+  write_file(dir_ / "spec.json", R"({"maxSize": 0.5, "growth": 1.2, "sources": [
+      {"points": [{"x": 1, "y": 1, "z": 1}], "delta0": 0.15, "r0": 0.0, "r1": 0.5,
+       "power": {"gamma": 1.0}}]})");
+  ASSERT_EQ(run("volume " + quoted(dir_ / "box.mesh") + " -o " + quoted(dir_ / "spec.msh") +
+                " --spec " + quoted(dir_ / "spec.json") + " --quiet"),
+            0)
+      << stderr_text();
+  ASSERT_EQ(run("volume " + quoted(dir_ / "box.mesh") + " -o " + quoted(dir_ / "uniform.msh") +
+                " --size 0.5 --growth 1.2 --quiet"),
+            0)
+      << stderr_text();
+  absl::StatusOr<Mesh> refined = read_mesh((dir_ / "spec.msh").string());
+  absl::StatusOr<Mesh> uniform = read_mesh((dir_ / "uniform.msh").string());
+  ASSERT_TRUE(refined.ok()) << refined.status();
+  ASSERT_TRUE(uniform.ok()) << uniform.status();
+  const ValidationReport report = validate_volume_mesh(*refined, &front);
+  EXPECT_TRUE(report.valid()) << report.to_string();
+  const int refined_near = tets_near(*refined, {1, 1, 1}, 0.5);
+  const int uniform_near = tets_near(*uniform, {1, 1, 1}, 0.5);
+  EXPECT_GT(refined_near, 2 * uniform_near) << refined_near << " vs " << uniform_near;
+}
+
+TEST_F(CliSizesTest, VolumeSpecErrorExitsBadInputBeforeMeshing) {
+  ASSERT_TRUE(write_mesh(box_surface({0, 0, 0}, {1, 1, 1}, 0.5), (dir_ / "box.mesh").string()).ok());
+  write_file(dir_ / "spec.json", R"({"maxSize": 0.5, "sources": [{"delta0": 0.2, "r1": 0.5,
+      "power": {"gamma": 1.0}}]})");
+  EXPECT_EQ(run("volume " + quoted(dir_ / "box.mesh") + " -o " + quoted(dir_ / "box.msh") +
+                " --spec " + quoted(dir_ / "spec.json") + " --quiet"),
+            3);
+  EXPECT_THAT(stderr_text(), HasSubstr("sources[0].points"));
+  EXPECT_FALSE(fs::exists(dir_ / "box.msh"));
+}
+
+}  // namespace
+}  // namespace afmesh
