@@ -1,0 +1,471 @@
+#!/usr/bin/python3
+"""Peer meshers on the same surface as afmesh-bench-volume: gmsh (3-D Delaunay and HXT), netgen
+and tetgen, each on one thread and in a fresh process, with the same speed, memory and quality
+figures (see /work/shared/peers.md for how each is driven).
+
+  peers.py volume --surface PREFIX --size H [--tools gmsh-delaunay,gmsh-hxt,netgen,tetgen]
+                  [--timeout SECONDS] [--json]
+      PREFIX.mesh (Medit, exact coordinates) and PREFIX.smesh (tetgen) are written by
+      `afmesh-bench-volume --surface PREFIX`.
+  peers.py io --stl IN.stl --out OUT.msh [--json]
+      gmsh converting binary STL to MSH 4.1 (merge + write), the peer of afmesh-bench-io.
+  peers.py quality MESH.mesh
+      the quality figures of a Medit volume mesh, computed as below (a cross-check of the C++).
+
+What is measured, per tool:
+  time       wall seconds of the volume phase only: gmsh model.mesh.generate(3), netgen
+             GenerateVolumeMesh, tetgen's own "Total running seconds" minus "Output seconds"
+             (so reading the small .smesh is included, writing the result is not).
+  bytes/tet  (peak resident memory during that phase - resident memory before it) / tets. For
+             gmsh and netgen the peak (VmHWM) is reset just before the phase, as in
+             afmesh-bench-volume; for tetgen, a separate process, it is its peak RSS minus the peak
+             RSS of tetgen meshing a single tetrahedron (the program's own footprint).
+  quality    as core/quality/measures.h: per tet the smallest of the six dihedral angles (pi minus
+             the angle between outward face normals) and the radius ratio 3 r_in / r_circ =
+             108 V^2 / (A |m|); over the mesh the min dihedral, the shares below 10 and 20 degrees,
+             and the min and mean radius ratio.
+"""
+
+import argparse
+import json
+import math
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+TOOLS = ("gmsh-delaunay", "gmsh-hxt", "netgen", "tetgen")
+GMSH_ALGORITHM_3D = {"gmsh-delaunay": 1, "gmsh-hxt": 10}
+TETGEN_VOLUME_FACTOR = 0.34  # tetgen -a: max tet volume = 0.34 h^3 (peers.md)
+TETGEN_QUALITY = "1.2"        # tetgen -q: radius-edge bound
+QUALITY_CHUNK = 500_000       # tets per numpy batch when measuring quality
+
+
+# ---------------------------------------------------------------------------------------------
+# Resident memory of this process (Linux /proc), as bench/process_memory.h.
+
+def _status_kilobytes(key):
+    with open("/proc/self/status") as status:
+        for line in status:
+            if line.startswith(key + ":"):
+                return int(line.split()[1]) * 1024
+    raise RuntimeError(f"/proc/self/status has no {key} line")
+
+
+class PeakMemoryProbe:
+    """Peak resident memory of one phase: start() resets VmHWM, finish() reads it."""
+
+    def start(self):
+        try:
+            with open("/proc/self/clear_refs", "w") as clear_refs:
+                clear_refs.write("5")
+            self.peak_was_reset = True
+        except OSError:
+            self.peak_was_reset = False
+        self.start_bytes = _status_kilobytes("VmRSS")
+
+    def finish(self):
+        self.peak_bytes = _status_kilobytes("VmHWM")
+
+    def figures(self, tets):
+        return {"rss_before_bytes": self.start_bytes, "rss_peak_bytes": self.peak_bytes,
+                "bytes_per_tet": (self.peak_bytes - self.start_bytes) / max(tets, 1),
+                "peak_reset": self.peak_was_reset}
+
+
+class PhaseClock:
+    """Wall and CPU seconds of one phase of this process."""
+
+    def __enter__(self):
+        self._wall, self._cpu = time.perf_counter(), time.process_time()
+        return self
+
+    def __exit__(self, *exc):
+        self.seconds = time.perf_counter() - self._wall
+        self.cpu_seconds = time.process_time() - self._cpu
+
+
+# ---------------------------------------------------------------------------------------------
+# Quality, as core/quality/measures.cc.
+
+def _angle_between(u, v):
+    """Angles in [0, pi] between rows of u and v (atan2 of |u x v| and u.v); 0 if both vanish."""
+    sine = np.linalg.norm(np.cross(u, v), axis=1)
+    cosine = np.einsum("ij,ij->i", u, v)
+    return np.where((sine == 0.0) & (cosine == 0.0), 0.0, np.arctan2(sine, cosine))
+
+
+def _min_dihedral_degrees(p0, p1, p2, p3):
+    """Smallest dihedral angle (degrees) of each tet; rows of p0..p3 are its corners."""
+    normals = [np.cross(p2 - p1, p3 - p1), np.cross(p3 - p0, p2 - p0),
+               np.cross(p1 - p0, p3 - p0), np.cross(p2 - p0, p1 - p0)]
+    defined = [np.einsum("ij,ij->i", n, n) > 0.0 for n in normals]
+    smallest = np.full(len(p0), np.inf)
+    for i in range(4):
+        for j in range(i + 1, 4):
+            angle = np.where(defined[i] & defined[j], _angle_between(normals[i], -normals[j]), 0.0)
+            smallest = np.minimum(smallest, angle)
+    return np.degrees(smallest)
+
+
+def _radius_ratio(p0, p1, p2, p3):
+    """3 r_in / r_circ = 108 V^2 / (A |m|) of each tet; 0 for a flat one."""
+    b, c, d = p1 - p0, p2 - p0, p3 - p0
+    volume = np.einsum("ij,ij->i", np.cross(b, c), d) / 6.0
+    area = 0.5 * (np.linalg.norm(np.cross(p2 - p1, p3 - p1), axis=1)
+                  + np.linalg.norm(np.cross(c, d), axis=1)
+                  + np.linalg.norm(np.cross(b, d), axis=1)
+                  + np.linalg.norm(np.cross(b, c), axis=1))
+    sq = lambda v: np.einsum("ij,ij->i", v, v)[:, None]
+    m = sq(b) * np.cross(c, d) + sq(c) * np.cross(d, b) + sq(d) * np.cross(b, c)
+    denominator = area * np.linalg.norm(m, axis=1)
+    ok = (volume != 0.0) & (denominator > 0.0)
+    return np.where(ok, 108.0 * volume * volume / np.where(ok, denominator, 1.0), 0.0)
+
+
+def tet_quality_summary(points, tets):
+    """Quality figures of tets (K x 4, 0-based) over points (N x 3), as summarize_quality."""
+    points = np.asarray(points, dtype=np.float64)
+    tets = np.asarray(tets, dtype=np.int64)
+    if len(tets) == 0:
+        return {"min_dihedral": None, "share_below_10": None, "share_below_20": None,
+                "min_radius_ratio": None, "mean_radius_ratio": None}
+    min_dihedral, below_10, below_20, min_ratio, ratios = math.inf, 0, 0, math.inf, []
+    for start in range(0, len(tets), QUALITY_CHUNK):
+        corners = [points[tets[start:start + QUALITY_CHUNK, k]] for k in range(4)]
+        dihedral = _min_dihedral_degrees(*corners)
+        ratio = _radius_ratio(*corners)
+        min_dihedral = min(min_dihedral, float(dihedral.min()))
+        below_10 += int(np.count_nonzero(dihedral < 10.0))
+        below_20 += int(np.count_nonzero(dihedral < 20.0))
+        min_ratio = min(min_ratio, float(ratio.min()))
+        ratios.append(ratio)
+    return {"min_dihedral": min_dihedral, "share_below_10": below_10 / len(tets),
+            "share_below_20": below_20 / len(tets), "min_radius_ratio": min_ratio,
+            "mean_radius_ratio": math.fsum(np.concatenate(ratios)) / len(tets)}
+
+
+# ---------------------------------------------------------------------------------------------
+# Input: the surface afmesh-bench-volume wrote.
+
+def read_medit(path):
+    """Points (N x 3), triangles (M x 3) and tets (K x 4), 0-based, of a Medit ascii file."""
+    import meshio
+    mesh = meshio.read(path, file_format="medit")
+    cells = mesh.cells_dict
+    empty = lambda n: np.zeros((0, n), dtype=np.int64)
+    return (np.asarray(mesh.points, dtype=np.float64),
+            np.asarray(cells.get("triangle", empty(3)), dtype=np.int64),
+            np.asarray(cells.get("tetra", empty(4)), dtype=np.int64))
+
+
+# ---------------------------------------------------------------------------------------------
+# The peers, each run inside a child process (see run_child).
+
+def gmsh_volume(tool, points, triangles, size):
+    """gmsh: the triangles as one discrete surface, a surface loop and a volume; times
+    generate(3) with Mesh.Algorithm3D = 1 (Delaunay) or 10 (HXT), one thread."""
+    import gmsh
+    gmsh.initialize([], False)
+    try:
+        for name, value in (("General.Terminal", 1), ("General.Verbosity", 2),
+                            ("General.NumThreads", 1), ("Mesh.MaxNumThreads3D", 1),
+                            ("Mesh.Algorithm3D", GMSH_ALGORITHM_3D[tool])):
+            gmsh.option.setNumber(name, value)
+        gmsh.model.add("case")
+        surface = gmsh.model.addDiscreteEntity(2)
+        gmsh.model.mesh.addNodes(2, surface, np.arange(1, len(points) + 1), points.ravel())
+        gmsh.model.mesh.addElementsByType(surface, 2, [], (triangles + 1).ravel())
+        loop = gmsh.model.geo.addSurfaceLoop([surface])
+        gmsh.model.geo.addVolume([loop])
+        gmsh.model.geo.synchronize()
+        probe = PeakMemoryProbe()
+        probe.start()
+        with PhaseClock() as clock:
+            gmsh.model.mesh.generate(3)
+        probe.finish()
+        node_tags, coords, _ = gmsh.model.mesh.getNodes()
+        _, tet_nodes = gmsh.model.mesh.getElementsByType(4)
+        index = np.zeros(int(node_tags.max()) + 1, dtype=np.int64)
+        index[node_tags.astype(np.int64)] = np.arange(len(node_tags))
+        mesh_points = coords.reshape(-1, 3)
+        tets = index[tet_nodes.astype(np.int64)].reshape(-1, 4)
+    finally:
+        gmsh.finalize()
+    return clock, probe, mesh_points, tets, {"options": f"Mesh.Algorithm3D={GMSH_ALGORITHM_3D[tool]}"}
+
+
+def netgen_volume(tool, points, triangles, size):
+    """netgen: the triangles as outward Element2Ds of one face descriptor; times
+    GenerateVolumeMesh(MeshingParameters(maxh=h)) (Delaunay core, advancing front near the
+    boundary, then optimisation)."""
+    from netgen.csg import Pnt
+    from netgen.meshing import Element2D, FaceDescriptor, MeshingParameters, MeshPoint, Mesh
+    mesh = Mesh(dim=3)
+    face = mesh.Add(FaceDescriptor(surfnr=1, domin=1, domout=0, bc=1))
+    ids = [mesh.Add(MeshPoint(Pnt(*p))) for p in points.tolist()]
+    for a, b, c in triangles.tolist():
+        mesh.Add(Element2D(face, [ids[a], ids[b], ids[c]]))
+    parameters = MeshingParameters(maxh=size)
+    probe = PeakMemoryProbe()
+    probe.start()
+    with PhaseClock() as clock:
+        mesh.GenerateVolumeMesh(parameters)
+    probe.finish()
+    mesh_points = np.array([p.p for p in mesh.Points()], dtype=np.float64)
+    tets = np.array([[v.nr - 1 for v in e.vertices] for e in mesh.Elements3D()],
+                    dtype=np.int64).reshape(-1, 4)
+    return clock, probe, mesh_points, tets, {"options": f"maxh={size:g}"}
+
+
+# tetgen's timing lines, e.g. "Total running seconds:  1.23".
+_TETGEN_SECONDS = re.compile(r"^(Total running|Output) seconds:\s+([0-9.eE+-]+)", re.M)
+
+
+def _run_tetgen(arguments, cwd):
+    """Runs tetgen under /usr/bin/time, returning (stdout, peak RSS bytes, cpu seconds, exit
+    status). GNU time forks from its own small process: a child forked from this Python process
+    would count Python's resident memory in its peak (ru_maxrss survives exec)."""
+    usage_path = os.path.join(cwd, "usage.txt")
+    process = subprocess.run(["/usr/bin/time", "-f", "%M %U %S", "-o", usage_path, "tetgen",
+                              *arguments], cwd=cwd, stdout=subprocess.PIPE,
+                             stderr=subprocess.STDOUT, text=True)
+    with open(usage_path) as f:
+        usage = f.read().split()
+    if process.returncode != 0 or len(usage) < 3:
+        return process.stdout, 0, 0.0, process.returncode or 1
+    kilobytes, user, system = usage[-3:]
+    return process.stdout, int(kilobytes) * 1024, float(user) + float(system), 0
+
+
+def _tetgen_footprint(workdir):
+    """Peak RSS of tetgen meshing one tetrahedron: what the program costs without a mesh."""
+    with open(os.path.join(workdir, "one.smesh"), "w") as f:
+        f.write("4 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n"
+                "4 0\n3 1 3 2\n3 1 2 4\n3 1 4 3\n3 2 3 4\n0\n0\n")
+    _, peak, _, _ = _run_tetgen(["-pYQ", "one.smesh"], workdir)
+    return peak
+
+
+def _read_tetgen_table(path, columns):
+    """Indices and the first `columns` values after them of each row of a tetgen .node/.ele file
+    (header line, then one row per item; '#' starts a comment)."""
+    with open(path) as f:
+        lines = [line.split("#", 1)[0].strip() for line in f]
+    lines = [line for line in lines if line]
+    count = int(lines[0].split()[0])
+    rows = lines[1:1 + count]
+    width = len(rows[0].split()) if rows else columns + 1
+    values = np.array(" ".join(rows).split(), dtype=np.float64).reshape(count, width)
+    return values[:, 0], values[:, 1:1 + columns]
+
+
+def tetgen_volume(tool, points, triangles, size, smesh_path):
+    """tetgen -pYq1.2 -a<0.34 h^3> on the .smesh (-Y keeps the surface as given)."""
+    workdir = tempfile.mkdtemp(prefix="afmesh-tetgen-")
+    try:
+        shutil.copy(smesh_path, os.path.join(workdir, "case.smesh"))  # no dots: tetgen reads
+        footprint = _tetgen_footprint(workdir)                       # "a.b" as iteration b
+        max_volume = TETGEN_VOLUME_FACTOR * size ** 3
+        arguments = [f"-pYq{TETGEN_QUALITY}", f"-a{max_volume:.6g}", "case.smesh"]
+        started = time.perf_counter()
+        output, peak, cpu, status = _run_tetgen(arguments, workdir)
+        wall = time.perf_counter() - started
+        if status != 0:
+            raise RuntimeError(f"tetgen {' '.join(arguments)} exited with {status}: "
+                               + " | ".join(output.strip().splitlines()[-3:]))
+        seconds = dict(_TETGEN_SECONDS.findall(output))
+        clock = PhaseClock()
+        clock.seconds = float(seconds["Total running"]) - float(seconds.get("Output", 0.0))
+        clock.cpu_seconds = cpu
+        probe = PeakMemoryProbe()
+        probe.start_bytes, probe.peak_bytes, probe.peak_was_reset = footprint, peak, True
+        first, node_xyz = _read_tetgen_table(os.path.join(workdir, "case.1.node"), 3)
+        _, ele = _read_tetgen_table(os.path.join(workdir, "case.1.ele"), 4)
+        tets = ele.astype(np.int64) - int(first[0])
+        extra = {"options": " ".join(arguments[:2]), "process_wall_seconds": wall}
+        return clock, probe, node_xyz, tets, extra
+    finally:
+        shutil.rmtree(workdir, ignore_errors=True)
+
+
+def measure_volume(tool, surface_prefix, size):
+    """Runs one peer on the surface and returns its figures (a dict)."""
+    points, triangles, _ = read_medit(surface_prefix + ".mesh")
+    if tool in GMSH_ALGORITHM_3D:
+        run = gmsh_volume(tool, points, triangles, size)
+    elif tool == "netgen":
+        run = netgen_volume(tool, points, triangles, size)
+    else:
+        run = tetgen_volume(tool, points, triangles, size, surface_prefix + ".smesh")
+    clock, probe, mesh_points, tets, extra = run
+    figures = {"tool": tool, "size": size, "surface_points": len(points),
+               "surface_triangles": len(triangles), "tets": len(tets),
+               "points": len(mesh_points), "seconds": clock.seconds,
+               "cpu_seconds": clock.cpu_seconds}
+    figures.update(probe.figures(len(tets)))
+    figures.update(tet_quality_summary(mesh_points, tets))
+    figures.update(extra)
+    return figures
+
+
+def measure_io(stl_path, msh_path):
+    """gmsh: merge a binary STL and write it as MSH 4.1 ascii, timing both."""
+    import gmsh
+    probe = PeakMemoryProbe()
+    gmsh.initialize([], False)
+    try:
+        gmsh.option.setNumber("General.Terminal", 1)
+        gmsh.option.setNumber("General.Verbosity", 2)
+        gmsh.option.setNumber("General.NumThreads", 1)
+        probe.start()
+        with PhaseClock() as read_clock:
+            gmsh.merge(stl_path)
+        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+        gmsh.option.setNumber("Mesh.Binary", 0)
+        with PhaseClock() as write_clock:
+            gmsh.write(msh_path)
+        probe.finish()
+        node_tags, _, _ = gmsh.model.mesh.getNodes()
+        triangle_tags, _ = gmsh.model.mesh.getElementsByType(2)
+    finally:
+        gmsh.finalize()
+    return {"tool": "gmsh", "points": len(node_tags), "triangles": len(triangle_tags),
+            "read_seconds": read_clock.seconds, "write_seconds": write_clock.seconds,
+            "seconds": read_clock.seconds + write_clock.seconds,
+            "stl_bytes": os.path.getsize(stl_path), "msh_bytes": os.path.getsize(msh_path),
+            "rss_before_bytes": probe.start_bytes, "rss_peak_bytes": probe.peak_bytes,
+            "bytes_per_triangle": (probe.peak_bytes - probe.start_bytes) / max(len(triangle_tags), 1)}
+
+
+# ---------------------------------------------------------------------------------------------
+# Fresh process per measurement.
+
+def run_child(job, result_path):
+    """In the child: runs `job` (a dict) and writes its figures as JSON to result_path."""
+    if job["kind"] == "volume":
+        figures = measure_volume(job["tool"], job["surface"], job["size"])
+    else:
+        figures = measure_io(job["stl"], job["out"])
+    with open(result_path, "w") as f:
+        json.dump(figures, f)
+
+
+def _log_tail(path, lines=4):
+    with open(path, errors="replace") as f:
+        text = [line.strip() for line in f if line.strip() and not set(line.strip()) <= set("+")]
+    return " | ".join(text[-lines:])
+
+
+def in_fresh_process(job, timeout):
+    """Runs `job` in a new Python process (one thread: OMP_NUM_THREADS=1) and returns its figures,
+    or {"error": ...} naming what went wrong (the child's last log lines)."""
+    with tempfile.TemporaryDirectory(prefix="afmesh-peer-") as tmp:
+        result_path, log_path = os.path.join(tmp, "result.json"), os.path.join(tmp, "log.txt")
+        env = dict(os.environ, OMP_NUM_THREADS="1")
+        command = [sys.executable, os.path.abspath(__file__), "_child", json.dumps(job), result_path]
+        with open(log_path, "w") as log:
+            child = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, env=env,
+                                     start_new_session=True)
+            try:
+                child.wait(timeout=timeout)
+            except subprocess.TimeoutExpired:
+                os.killpg(child.pid, signal.SIGKILL)  # the child and its tetgen, nothing else
+                child.wait()
+                return {"error": f"timed out after {timeout:.0f} s (killed)"}
+        if child.returncode != 0 or not os.path.exists(result_path):
+            return {"error": f"exit status {child.returncode}: {_log_tail(log_path)}"}
+        with open(result_path) as f:
+            return json.load(f)
+
+
+# ---------------------------------------------------------------------------------------------
+# Printing.
+
+def _fmt(value, spec):
+    return "-" if value is None else format(value, spec)
+
+
+def print_volume(figures):
+    tool = figures.get("tool", "?")
+    if "error" in figures:
+        print(f"{tool:14s} FAILED: {figures['error']}")
+        return
+    print(f"{tool:14s} {figures['tets']} tets, {figures['points']} points "
+          f"({figures.get('options', '')})")
+    print(f"  time         {figures['seconds']:.3f} s wall, {figures['cpu_seconds']:.3f} s cpu: "
+          f"{figures['tets'] / figures['seconds']:.0f} tets/s")
+    print(f"  memory       before {figures['rss_before_bytes'] / 2**20:.1f} MiB, peak "
+          f"{figures['rss_peak_bytes'] / 2**20:.1f} MiB: {figures['bytes_per_tet']:.0f} bytes/tet")
+    print(f"  quality      min dihedral {_fmt(figures['min_dihedral'], '.2f')} deg, "
+          f"<10 deg {100 * figures['share_below_10']:.3f}%, "
+          f"<20 deg {100 * figures['share_below_20']:.3f}%, radius ratio min "
+          f"{_fmt(figures['min_radius_ratio'], '.4f')} mean {_fmt(figures['mean_radius_ratio'], '.4f')}")
+
+
+def print_io(figures):
+    if "error" in figures:
+        print(f"gmsh io FAILED: {figures['error']}")
+        return
+    print(f"gmsh merge + write MSH 4.1: {figures['points']} points, {figures['triangles']} triangles")
+    print(f"  time         read {figures['read_seconds']:.3f} s + write {figures['write_seconds']:.3f} s"
+          f" = {figures['seconds']:.3f} s")
+    print(f"  memory       before {figures['rss_before_bytes'] / 2**20:.1f} MiB, peak "
+          f"{figures['rss_peak_bytes'] / 2**20:.1f} MiB: {figures['bytes_per_triangle']:.0f} bytes/triangle")
+
+
+# ---------------------------------------------------------------------------------------------
+
+def parse_arguments(argv):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    commands = parser.add_subparsers(dest="command", required=True)
+    volume = commands.add_parser("volume", help="mesh a surface with the peers")
+    volume.add_argument("--surface", required=True, help="PREFIX of PREFIX.mesh and PREFIX.smesh")
+    volume.add_argument("--size", type=float, required=True, help="target edge length h")
+    volume.add_argument("--tools", default=",".join(TOOLS), help="comma-separated: " + ",".join(TOOLS))
+    volume.add_argument("--timeout", type=float, default=3600.0, help="seconds per tool")
+    volume.add_argument("--json", action="store_true", help="one JSON object per tool and line")
+    io = commands.add_parser("io", help="gmsh converting STL to MSH 4.1")
+    io.add_argument("--stl", required=True)
+    io.add_argument("--out", required=True)
+    io.add_argument("--timeout", type=float, default=3600.0)
+    io.add_argument("--json", action="store_true")
+    quality = commands.add_parser("quality", help="quality figures of a Medit volume mesh")
+    quality.add_argument("mesh")
+    return parser.parse_args(argv)
+
+
+def main(argv):
+    if len(argv) == 3 and argv[0] == "_child":
+        run_child(json.loads(argv[1]), argv[2])
+        return 0
+    args = parse_arguments(argv)
+    if args.command == "quality":
+        points, _, tets = read_medit(args.mesh)
+        print(json.dumps(tet_quality_summary(points, tets)))
+        return 0
+    if args.command == "io":
+        figures = in_fresh_process({"kind": "io", "stl": args.stl, "out": args.out}, args.timeout)
+        print(json.dumps(figures)) if args.json else print_io(figures)
+        return 1 if "error" in figures else 0
+    failed = False
+    for tool in args.tools.split(","):
+        if tool not in TOOLS:
+            sys.exit(f"peers.py: unknown tool '{tool}'; known: {', '.join(TOOLS)}")
+        job = {"kind": "volume", "tool": tool, "surface": args.surface, "size": args.size}
+        figures = in_fresh_process(job, args.timeout)
+        figures.setdefault("tool", tool)
+        failed |= "error" in figures
+        print(json.dumps(figures), flush=True) if args.json else print_volume(figures)
+        sys.stdout.flush()
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
