@@ -270,8 +270,10 @@ def tetgen_volume(tool, points, triangles, size, smesh_path):
     """tetgen -pYq1.2 -a<0.34 h^3> on the .smesh (-Y keeps the surface as given)."""
     workdir = tempfile.mkdtemp(prefix="afmesh-tetgen-")
     try:
-        shutil.copy(smesh_path, os.path.join(workdir, "case.smesh"))  # no dots: tetgen reads
-        footprint = _tetgen_footprint(workdir)                       # "a.b" as iteration b
+        # A name without dots (tetgen takes "a.b" as iteration b of "a"), and the .smesh alone
+        # (given "case.smesh", tetgen opens case.poly instead when one exists).
+        shutil.copy(smesh_path, os.path.join(workdir, "case.smesh"))
+        footprint = _tetgen_footprint(workdir)
         max_volume = TETGEN_VOLUME_FACTOR * size ** 3
         arguments = [f"-pYq{TETGEN_QUALITY}", f"-a{max_volume:.6g}", "case.smesh"]
         started = time.perf_counter()
@@ -359,7 +361,7 @@ def run_child(job, result_path):
 
 def _log_tail(path, lines=4):
     with open(path, errors="replace") as f:
-        text = [line.strip() for line in f if line.strip() and not set(line.strip()) <= set("+")]
+        text = [line.strip() for line in f if line.strip() and not set(line.strip()) <= set("+*")]
     return " | ".join(text[-lines:])
 
 
@@ -452,7 +454,10 @@ def main(argv):
         return 0
     if args.command == "io":
         figures = in_fresh_process({"kind": "io", "stl": args.stl, "out": args.out}, args.timeout)
-        print(json.dumps(figures)) if args.json else print_io(figures)
+        if args.json:
+            print(json.dumps(figures))
+        else:
+            print_io(figures)
         return 1 if "error" in figures else 0
     failed = False
     for tool in args.tools.split(","):
@@ -462,7 +467,10 @@ def main(argv):
         figures = in_fresh_process(job, args.timeout)
         figures.setdefault("tool", tool)
         failed |= "error" in figures
-        print(json.dumps(figures), flush=True) if args.json else print_volume(figures)
+        if args.json:
+            print(json.dumps(figures))
+        else:
+            print_volume(figures)
         sys.stdout.flush()
     return 1 if failed else 0
 
