@@ -49,4 +49,15 @@ void add_element(MesherState& s, Index face, Index p);
 // tets removed.
 std::int64_t open_cavity(MesherState& s, Index face, int rings);
 
+// F11, the end game: collects into `pocket` the front faces connected to `face` through shared
+// edges (the closed pocket of unmeshed space it bounds), sorted. False when the pocket has more
+// than `max_faces` faces (it is not a small pocket).
+bool collect_pocket(MesherState& s, Index face, std::size_t max_faces, std::vector<Index>& pocket);
+
+// F11, the end game: fills the small pocket bounded by `face` from one kernel point that sees
+// all of its faces (a new point near the pocket's centre, else one of its corners), each element
+// checked by F7.3 before it is added. Returns the number of elements added (0 when the pocket is
+// too large or no kernel point was found).
+std::int64_t fill_pocket(MesherState& s, Index face, std::size_t max_faces);
+
 }  // namespace afmesh::volume

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <memory>
 
+#include "absl/container/flat_hash_map.h"
+
 #include "absl/strings/str_format.h"
 #include "core/geometry/vec.h"
 #include "core/quality/optimise.h"
@@ -19,6 +21,7 @@ using volume::MesherState;
 
 constexpr int kAttemptsBeforeBackOff = 6;  // queue classes a face passes before a cavity opens
 constexpr int kMaxCavityRings = 4;
+constexpr std::size_t kMaxPocketFaces = 256;  // larger unmeshed regions are not pockets
 constexpr int kCancelCheckInterval = 256;  // faces between cancellation checks
 
 class StageClock {
@@ -121,30 +124,49 @@ bool delete_face(MesherState& s, Index face) {
   return false;
 }
 
-// The back-off for a face that failed in every queue class: re-open the elements around it,
-// one ring more each time the same corner is involved again.
-absl::Status back_off(MesherState& s, Index face, std::vector<std::uint8_t>& repairs) {
+// Back-off bookkeeping: how often the front had to re-open its elements in each region. Counted
+// by place, not by point, because re-meshing replaces the points: the region of a face of size d
+// is its cell in a grid whose spacing is the power of two just above 2d.
+class RepairCounts {
+ public:
+  int& at(const Point& x, double d) {
+    const int level = static_cast<int>(std::ceil(std::log2(2.0 * d)));
+    const double cell = std::ldexp(1.0, level);
+    std::array<std::int64_t, 4> key{level, 0, 0, 0};
+    for (int a = 0; a < 3; ++a) key[a + 1] = static_cast<std::int64_t>(std::floor(x[a] / cell));
+    return counts_[key];
+  }
+
+ private:
+  absl::flat_hash_map<std::array<std::int64_t, 4>, int> counts_;
+};
+
+// The back-off for a face that failed in every queue class (F11): fill the small pocket it
+// bounds from one kernel point; failing that, re-open the elements around it, one ring more each
+// time the same region needs it again.
+absl::Status back_off(MesherState& s, Index face, RepairCounts& repairs) {
   const Triangle v = s.front.face(face).v;
   const std::uint32_t stamp = s.front.face(face).stamp;
-  int rings = 1;
-  for (Index p : v) {
-    if (static_cast<std::size_t>(p) >= repairs.size()) repairs.resize(p + 1, 0);
-    rings = std::max(rings, 1 + static_cast<int>(repairs[p]));
+  if (volume::fill_pocket(s, face, kMaxPocketFaces) > 0) {
+    const FrontFace& f = s.front.face(face);
+    if (f.alive && f.stamp == stamp) s.front.requeue(face, volume::element_size_for_face(s, v));
+    return absl::OkStatus();
   }
-  const Point& x = s.points[v[0]];
+  const Point centroid =
+      scale(add(s.points[v[0]], add(s.points[v[1]], s.points[v[2]])), 1.0 / 3.0);
+  int& count = repairs.at(centroid, volume::element_size_for_face(s, v));
+  const int rings = 1 + count;
+  const Point& x = centroid;
   if (rings > kMaxCavityRings) {
     return absl::FailedPreconditionError(absl::StrFormat(
         "the front got stuck at face (%d, %d, %d) near (%g, %g, %g) after re-opening its "
         "surroundings %d times; %d tets built, %d front faces left",
         v[0], v[1], v[2], x[0], x[1], x[2], kMaxCavityRings, s.live_tets, s.front.size()));
   }
-  for (Index p : v) ++repairs[p];
-  const std::int64_t removed = volume::open_cavity(s, face, rings);
+  ++count;
+  volume::open_cavity(s, face, rings);
   const FrontFace& f = s.front.face(face);
-  if (f.alive && f.stamp == stamp) {
-    if (removed == 0) ++repairs[v[0]], ++repairs[v[1]], ++repairs[v[2]];
-    s.front.requeue(face, volume::element_size_for_face(s, v));
-  }
+  if (f.alive && f.stamp == stamp) s.front.requeue(face, volume::element_size_for_face(s, v));
   return absl::OkStatus();
 }
 
@@ -225,7 +247,7 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
   s.points.reserve(front.points.size() + static_cast<std::size_t>(expected_tets / 4));
   load_initial_front(s, front);
 
-  std::vector<std::uint8_t> repairs;
+  RepairCounts repairs;
   std::int64_t steps = 0;
   // A face is taken from the queue a little more than once per element it builds; a front that
   // keeps failing and re-opening without building stops here with a report instead of running on.
@@ -244,6 +266,9 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
     }
     if (absl::Status st = back_off(s, *face, repairs); !st.ok()) return st;
   }
+  if (s.front.size() != 0)  // every live face is queued; an empty queue means an empty front
+    return absl::InternalError(absl::StrFormat(
+        "the front queue ran empty with %d faces left on the front", s.front.size()));
   clock.lap("front");
 
   result.mesh = compact_result(s, front);

@@ -1,9 +1,16 @@
-// Unit tests of the front's data structures: bins, lookup table and priority queue.
+// Unit tests of the front's data structures (bins, lookup table, priority queue) and of the
+// end-game pocket fill.
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <random>
 
+#include "core/geometry/predicates.h"
+#include "core/geometry/vec.h"
+#include "core/sizing/size_field.h"
 #include "core/volume/front.h"
 #include "core/volume/front_bins.h"
+#include "core/volume/front_steps.h"
 #include "gtest/gtest.h"
 
 namespace afmesh {
@@ -101,6 +108,54 @@ TEST(Front, PointsLeaveTheBinsWithTheirLastFace) {
   near.clear();
   front.bins().points_near(Box{{-1, -1, -1}, {2, 2, 2}}, near);
   EXPECT_TRUE(near.empty());
+}
+
+// The end game (F11): a pocket whose corners admit no element (Schönhardt's twisted prism, all
+// three side diagonals reflex) is filled from a kernel point inside it, every element positive,
+// and the front is empty after.
+TEST(FillPocket, SchoenhardtPrismIsFilledFromAKernelPoint) {
+  Mesh input;
+  const double pi = std::numbers::pi;
+  for (int i = 0; i < 3; ++i) {
+    const double a = pi / 2 + 2 * pi * i / 3;
+    input.points.push_back({std::cos(a), std::sin(a), 0.0});
+  }
+  for (int i = 0; i < 3; ++i) {
+    const double a = pi / 2 + 2 * pi * i / 3 + pi / 6;
+    input.points.push_back({std::cos(a), std::sin(a), 1.0});
+  }
+  input.triangles = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3},
+                     {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
+  // No tet on the six corners fits: each candidate crosses a side or a reflex edge.
+  const UniformSize size(1.0);
+  volume::MesherState s(input, 1.0, size, Box{{-2, -2, -1}, {2, 2, 2}}, 0.5);
+  s.point_size.assign(input.points.size(), 1.0);
+  for (const Triangle& t : input.triangles) s.front.add({t[0], t[2], t[1]}, 1.0);
+  for (Index f = 0; f < 8; ++f)
+    for (Index p = 0; p < 6; ++p) {
+      const Triangle& v = s.front.face(f).v;
+      if (p == v[0] || p == v[1] || p == v[2]) continue;
+      if (orient3d(s.points[v[0]], s.points[v[1]], s.points[v[2]], s.points[p]) <= 0) continue;
+      EXPECT_TRUE(volume::element_crosses_front(s, f, p)) << "face " << f << " point " << p;
+    }
+
+  std::vector<Index> pocket;
+  ASSERT_TRUE(volume::collect_pocket(s, 0, 256, pocket));
+  EXPECT_EQ(pocket.size(), 8u);
+  EXPECT_FALSE(volume::collect_pocket(s, 0, 5, pocket));  // larger than allowed
+
+  EXPECT_EQ(volume::fill_pocket(s, 0, 256), 8);
+  EXPECT_EQ(s.front.size(), 0);
+  EXPECT_EQ(s.points.size(), 7u);
+  double volume = 0;
+  for (const Tet& t : s.tets) {
+    ASSERT_GT(orient3d(s.points[t[0]], s.points[t[1]], s.points[t[2]], s.points[t[3]]), 0);
+    volume += orient3d_fast(s.points[t[0]], s.points[t[1]], s.points[t[2]], s.points[t[3]]) / 6;
+  }
+  double enclosed = 0;
+  for (const Triangle& t : input.triangles)
+    enclosed += dot(input.points[t[0]], cross(input.points[t[1]], input.points[t[2]])) / 6;
+  EXPECT_NEAR(volume, enclosed, 1e-12);
 }
 
 }  // namespace

@@ -60,6 +60,42 @@ TEST(VolumeMesh, LBlockWithHoleIsValid) {
   mesh_and_check(front, 0.25);
 }
 
+// Schönhardt's twisted prism: its three side quads are split along reflex diagonals, so no
+// tetrahedralisation of its six corners exists. The front closes it only through the end game
+// (F11): a pocket filled from a new kernel point.
+TEST(VolumeMesh, SchoenhardtPrismNeedsAndGetsAKernelPoint) {
+  Mesh front;
+  const double pi = std::numbers::pi;
+  for (int i = 0; i < 3; ++i) {
+    const double a = pi / 2 + 2 * pi * i / 3;
+    front.points.push_back({std::cos(a), std::sin(a), 0.0});
+  }
+  for (int i = 0; i < 3; ++i) {
+    const double a = pi / 2 + 2 * pi * i / 3 + pi / 6;  // the top turned by 30 degrees
+    front.points.push_back({std::cos(a), std::sin(a), 1.0});
+  }
+  front.triangles = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3},
+                     {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
+  front.triangle_tags.assign(front.triangles.size(), 0);
+  const VolumeResult r = mesh_and_check(front, 1.0);
+  EXPECT_GT(r.mesh.points.size(), 6u);  // a Steiner point was needed
+}
+
+// Sizes and shapes where the front used to churn at its end: every one must close, valid.
+TEST(VolumeMesh, EveryShapeClosesAtManySizes) {
+  const Mesh sphere = sphere_surface({0, 0, 0}, 1.0, 0.15);
+  const Mesh torus = torus_surface(1.0, 0.35, 0.13);
+  const Mesh box = box_surface({0, 0, 0}, {1, 1, 1}, 0.13);
+  const Mesh lblock = l_block_with_hole_surface(1.0, 0.12);
+  for (double h : {0.13, 0.16}) {
+    SCOPED_TRACE(h);
+    mesh_and_check(sphere, h);
+    mesh_and_check(torus, h);
+    mesh_and_check(box, h);
+    mesh_and_check(lblock, h);
+  }
+}
+
 TEST(VolumeMesh, GrowthGivesFewerElements) {
   const Mesh front = box_surface({0, 0, 0}, {2, 2, 2}, 0.25);
   const VolumeResult uniform = mesh_and_check(front, 1.0, 1.0);

@@ -1,0 +1,167 @@
+// The end game of the volume front (F11): a face that no candidate point can close usually
+// bounds a small closed pocket of unmeshed space whose shape leaves no room for a well-shaped
+// element. Such a pocket is filled from one point that sees every face of it: the pocket is then
+// star-shaped about that point and the elements (face, point) tile it.
+#include <algorithm>
+#include <cmath>
+
+#include "core/geometry/predicates.h"
+#include "core/geometry/vec.h"
+#include "core/volume/front_steps.h"
+
+namespace afmesh::volume {
+namespace {
+
+constexpr int kPocketChebyshevSteps = 64;
+
+Box segment_box(const Point& a, const Point& b) {
+  Box box{a, a};
+  enclose(box, b);
+  return box;
+}
+
+bool has_corner(const Triangle& t, Index p) { return t[0] == p || t[1] == p || t[2] == p; }
+
+// Signed distance of x from the plane of face (a, b, c), positive on its unmeshed side.
+double height_above(const Point& a, const Point& b, const Point& c, const Point& x) {
+  const Point n = cross(sub(b, a), sub(c, a));
+  const double len = norm(n);
+  return len > 0 ? dot(n, sub(x, a)) / len : 0.0;
+}
+
+// A point inside the pocket far from all its face planes: starting from the centroid of the
+// pocket's corners, repeatedly steps away from the nearest face plane (a subgradient ascent of
+// the smallest height, an approximate Chebyshev centre). Exactness is not needed here: the
+// elements it yields are checked by the exact predicates before they are added.
+Point pocket_centre(const MesherState& s, const std::vector<Index>& pocket) {
+  Point c{0, 0, 0};
+  double count = 0;
+  for (Index f : pocket)
+    for (Index p : s.front.face(f).v) {
+      c = add(c, s.points[p]);
+      count += 1;
+    }
+  c = scale(c, 1.0 / count);
+  double step = 0;
+  for (Index f : pocket) {
+    const Triangle& v = s.front.face(f).v;
+    step = std::max(step, norm(sub(s.points[v[0]], c)));
+  }
+  step *= 0.25;
+  for (int it = 0; it < kPocketChebyshevSteps; ++it) {
+    double worst = 0;
+    Point direction{0, 0, 0};
+    bool first = true;
+    for (Index f : pocket) {
+      const Triangle& v = s.front.face(f).v;
+      const Point& a = s.points[v[0]];
+      const Point& b = s.points[v[1]];
+      const Point& cc = s.points[v[2]];
+      const double h = height_above(a, b, cc, c);
+      if (first || h < worst) {
+        worst = h;
+        const Point n = cross(sub(b, a), sub(cc, a));
+        direction = scale(n, 1.0 / norm(n));
+        first = false;
+      }
+    }
+    c = add(c, scale(direction, step));
+    step *= 0.9;
+  }
+  return c;
+}
+
+}  // namespace
+
+bool collect_pocket(MesherState& s, Index face, std::size_t max_faces,
+                    std::vector<Index>& pocket) {
+  pocket.clear();
+  pocket.push_back(face);
+  std::vector<Index>& near = s.near_faces;
+  for (std::size_t i = 0; i < pocket.size(); ++i) {
+    const Triangle v = s.front.face(pocket[i]).v;
+    for (int e = 0; e < 3; ++e) {
+      const Index a = v[e], b = v[(e + 1) % 3];
+      near.clear();
+      s.front.bins().faces_near(segment_box(s.points[a], s.points[b]), near);
+      for (Index g : near) {
+        const Triangle& w = s.front.face(g).v;
+        if (!has_corner(w, a) || !has_corner(w, b)) continue;
+        if (std::find(pocket.begin(), pocket.end(), g) != pocket.end()) continue;
+        if (pocket.size() == max_faces) return false;
+        pocket.push_back(g);
+      }
+    }
+  }
+  std::sort(pocket.begin(), pocket.end());
+  return true;
+}
+
+std::int64_t fill_pocket(MesherState& s, Index face, std::size_t max_faces) {
+  std::vector<Index> pocket;
+  if (!collect_pocket(s, face, max_faces, pocket)) return 0;
+
+  // The kernel point: a new point at the pocket's centre, else one of its corners.
+  std::vector<Index> corners;
+  for (Index f : pocket)
+    for (Index p : s.front.face(f).v) corners.push_back(p);
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+
+  auto sees_all = [&](Index p) {
+    for (Index f : pocket) {
+      const Triangle& v = s.front.face(f).v;
+      if (has_corner(v, p)) continue;
+      if (orient3d(s.points[v[0]], s.points[v[1]], s.points[v[2]], s.points[p]) <= 0)
+        return false;
+    }
+    return true;
+  };
+
+  Index kernel = kInvalidIndex;
+  bool new_point = false;
+  {
+    const Point c = pocket_centre(s, pocket);
+    s.points.push_back(c);
+    const Index p = static_cast<Index>(s.points.size() - 1);
+    if (sees_all(p)) {
+      double smallest = s.point_size[corners[0]];
+      for (Index q : corners) smallest = std::min(smallest, s.point_size[q]);
+      s.point_size.push_back(std::min(s.size_field.size_at(c), smallest));
+      kernel = p;
+      new_point = true;
+    } else {
+      s.points.pop_back();
+    }
+  }
+  if (kernel == kInvalidIndex) {
+    for (Index q : corners)
+      if (sees_all(q)) {
+        kernel = q;
+        break;
+      }
+  }
+  if (kernel == kInvalidIndex) return 0;
+
+  // Every face of the pocket forms its element with the kernel; each element is checked against
+  // the front (F7.3) exactly as in the normal loop, so the mesh stays valid whatever happens.
+  // Adding an element frees and reuses face slots: remember which face each slot held.
+  std::vector<std::uint32_t> stamps;
+  for (Index f : pocket) stamps.push_back(s.front.face(f).stamp);
+  std::int64_t added = 0;
+  for (std::size_t i = 0; i < pocket.size(); ++i) {
+    const Index f = pocket[i];
+    const FrontFace& ff = s.front.face(f);
+    if (!ff.alive || ff.stamp != stamps[i] || has_corner(ff.v, kernel)) continue;
+    if (element_crosses_front(s, f, kernel)) continue;
+    add_element(s, f, kernel);
+    ++added;
+  }
+  if (new_point && added == 0) {
+    s.points.pop_back();
+    s.point_size.pop_back();
+  }
+  return added;
+}
+
+}  // namespace afmesh::volume
