@@ -122,7 +122,13 @@ double mean_edge_length(const Mesh& front) {
 // maxSize, else the front's mean edge length; --growth, else the file's growth. Validated
 // (validate_size_spec); errors name the file and the field.
 absl::StatusOr<SizeSpec> spec_for(const VolumeCommandOptions& options, const Mesh& front) {
-  absl::StatusOr<SizeSpec> spec = read_size_spec_file(options.spec_path);
+  ReadReport report;
+  absl::StatusOr<SizeSpec> spec = read_size_spec_file(options.spec_path, &report);
+  if (!options.quiet) {
+    for (const std::string& note : report.notes) {
+      std::fprintf(stderr, "afmesh volume: note: %s\n", note.c_str());
+    }
+  }
   if (!spec.ok()) return spec.status();
   if (options.size_given) {
     spec->max_size = options.size;
