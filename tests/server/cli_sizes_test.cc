@@ -277,6 +277,27 @@ TEST_F(CliSizesTest, VolumeWithBackgroundFileMeshesValidlyAndFinerThanMaxSize) {
   EXPECT_GT(graded->tets.size(), uniform->tets.size());
 }
 
+// The grid travels in the call's first message: one over gRPC's 4 MiB is refused by the client,
+// naming the limit, before any server starts.
+TEST_F(CliSizesTest, VolumeWithBackgroundGridOverTheMessageLimitExitsBadInput) {
+  ASSERT_TRUE(write_mesh(box_surface({0, 0, 0}, {1, 1, 1}, 0.5), (dir_ / "box.mesh").string()).ok());
+  Mesh grid;
+  grid.points = {{-1, -1, -1}, {3, -1, -1}, {-1, 3, -1}, {-1, -1, 3}};
+  grid.tets = {{0, 1, 2, 3}};
+  grid.tet_tags = {0};
+  for (int i = 0; i < 160000; ++i) grid.points.push_back({i * 1e-5, 0.5, 0.5});
+  ASSERT_TRUE(write_sized_grid(grid, std::vector<double>(grid.points.size(), 0.5),
+                               (dir_ / "huge.msh").string())
+                  .ok());
+  write_file(dir_ / "spec.json", R"({"maxSize": 0.5, "background": {"file": "huge.msh"}})");
+  EXPECT_EQ(run("volume " + quoted(dir_ / "box.mesh") + " -o " + quoted(dir_ / "box.msh") +
+                " --spec " + quoted(dir_ / "spec.json") + " --quiet"),
+            3);
+  EXPECT_THAT(stderr_text(), HasSubstr("a background grid of 160004 points and 1 tets"));
+  EXPECT_THAT(stderr_text(), HasSubstr("more than the 4 MiB the call's first message can carry"));
+  EXPECT_FALSE(fs::exists(dir_ / "box.msh"));
+}
+
 // A point source at the centre of a box refines the interior: the mesh is valid and has more
 // tets within r1 of the source than the uniform mesh of the same box (without --spec).
 TEST_F(CliSizesTest, VolumeWithPointSourceSpecMeshesABoxValidlyAndRefinesNearTheSource) {
