@@ -48,8 +48,8 @@ struct Throughput {
 struct Measurement {
   Case c;
   int points = 0;
-  Throughput full;    // pruning off
-  Throughput pruned;  // pruning on
+  Throughput full;             // pruning off
+  Throughput pruned;           // pruning on
   double build_seconds = 0.0;  // SpecSizeField::create with pruning (the cells)
 };
 
@@ -61,9 +61,9 @@ SizeSpec random_spec(int count, bool clustered, std::mt19937& rng) {
   spec.max_size = 0.3;
   for (int i = 0; i < count; ++i) {
     SizeSource s;
-    const Point p = clustered ? Point{0.49 + 0.02 * u(rng), 0.49 + 0.02 * u(rng),
-                                      0.49 + 0.02 * u(rng)}
-                              : Point{u(rng), u(rng), u(rng)};
+    const Point p = clustered
+                        ? Point{0.49 + 0.02 * u(rng), 0.49 + 0.02 * u(rng), 0.49 + 0.02 * u(rng)}
+                        : Point{u(rng), u(rng), u(rng)};
     s.points.push_back(p);
     for (int k = 0; k < i % 3; ++k) {
       s.points.push_back({p[0] + 0.1 * u(rng), p[1] + 0.1 * u(rng), p[2] + 0.1 * u(rng)});
@@ -130,8 +130,8 @@ void print_json(const Measurement& m) {
 
 void print_header() {
   std::printf("afmesh-bench-sizing: SpecSizeField evaluations per second, one thread\n");
-  std::printf("%9s %9s %13s %13s %13s %13s %9s %8s\n", "sources", "points", "single/s",
-              "single/s", "batch/s", "batch/s", "pruning", "build s");
+  std::printf("%9s %9s %13s %13s %13s %13s %9s %8s\n", "sources", "points", "single/s", "single/s",
+              "batch/s", "batch/s", "pruning", "build s");
   std::printf("%9s %9s %13s %13s %13s %13s %9s %8s\n", "", "", "no pruning", "pruning",
               "no pruning", "pruning", "speed-up", "(cells)");
 }
@@ -159,8 +159,9 @@ int run(const Options& o) {
     std::fflush(stdout);
   }
   if (!o.json) {
-    std::printf("(c: sources clustered within 0.02 of the centre; speed-up: batch pruning / batch "
-                "no pruning; peers: gmsh, netgen and tetgen have no source fields, no ratio)\n");
+    std::printf(
+        "(c: sources clustered within 0.02 of the centre; speed-up: batch pruning / batch "
+        "no pruning; peers: gmsh, netgen and tetgen have no source fields, no ratio)\n");
   }
   std::fprintf(stderr, "afmesh-bench-sizing: checksum %.17g\n", checksum);
   return 0;
@@ -176,10 +177,12 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   app.add_option("--clustered", o.clustered, "source counts clustered at the centre")
       ->delimiter(',');
-  app.add_option("--points", o.points, "evaluation points per case (default 200000, 20000 from "
-                                       "1000 sources)")
+  app.add_option("--points", o.points,
+                 "evaluation points per case (default 200000, 20000 from "
+                 "1000 sources)")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--runs", o.runs, "passes per figure; the best is kept")->check(CLI::PositiveNumber);
+  app.add_option("--runs", o.runs, "passes per figure; the best is kept")
+      ->check(CLI::PositiveNumber);
   app.add_flag("--json", o.json, "print one JSON object per case instead of the table");
   CLI11_PARSE(app, argc, argv);
   return afmesh::bench::run(o);

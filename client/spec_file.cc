@@ -25,9 +25,9 @@ absl::StatusOr<BackgroundGridSpec> read_background_file(const std::string& spec_
                                                         const v1::BackgroundGrid& grid,
                                                         ReadReport* report) {
   if (grid.points_size() > 0 || grid.tets_size() > 0 || grid.sizes_size() > 0) {
-    return absl::InvalidArgumentError(absl::StrCat(
-        "background gives both a file (\"", grid.file(),
-        "\") and an inline grid (points, tets or sizes); give one of them"));
+    return absl::InvalidArgumentError(
+        absl::StrCat("background gives both a file (\"", grid.file(),
+                     "\") and an inline grid (points, tets or sizes); give one of them"));
   }
   absl::StatusOr<SizedGrid> read = read_sized_grid(resolve_beside(spec_path, grid.file()), report);
   if (!read.ok()) {
@@ -52,9 +52,9 @@ absl::StatusOr<SizeSpec> read_size_spec_file(const std::string& path, ReadReport
   }
   absl::StatusOr<v1::SizeSpec> message = size_spec_proto_from_json(json);
   if (!message.ok()) {
-    return absl::InvalidArgumentError(absl::StrCat(
-        path, ": not a size specification (protobuf JSON of afmesh.v1.SizeSpec): ",
-        message.status().message()));
+    return absl::InvalidArgumentError(
+        absl::StrCat(path, ": not a size specification (protobuf JSON of afmesh.v1.SizeSpec): ",
+                     message.status().message()));
   }
   std::optional<BackgroundGridSpec> from_file;
   if (message->has_background() && !message->background().file().empty()) {
@@ -67,7 +67,8 @@ absl::StatusOr<SizeSpec> read_size_spec_file(const std::string& path, ReadReport
     message->clear_background();
   }
   absl::StatusOr<SizeSpec> spec = size_spec_from_proto(*message);
-  if (!spec.ok()) return absl::InvalidArgumentError(absl::StrCat(path, ": ", spec.status().message()));
+  if (!spec.ok())
+    return absl::InvalidArgumentError(absl::StrCat(path, ": ", spec.status().message()));
   if (from_file) spec->background = *std::move(from_file);
   return spec;
 }

@@ -132,8 +132,8 @@ absl::StatusOr<std::vector<double>> parse_medit_sol(std::string_view text,
 
 absl::Status write_medit_sol(std::span<const double> sizes, OutputBuffer& out) {
   AFMESH_RETURN_IF_ERROR(check_sizes_for_writing(sizes, sizes.size()));
-  out.put(str_cat("MeshVersionFormatted 2\nDimension 3\n\nSolAtVertices\n", sizes.size(),
-                  "\n1 1\n"));
+  out.put(
+      str_cat("MeshVersionFormatted 2\nDimension 3\n\nSolAtVertices\n", sizes.size(), "\n1 1\n"));
   for (const double size : sizes) {
     out.put_double(size);
     out.put('\n');

@@ -50,9 +50,10 @@ absl::Status read_view_header(TextScanner& scanner, ViewHeader& header) {
   }
   AFMESH_RETURN_IF_ERROR(read_tag_count(scanner, "the number of integer tags", count));
   if (count < 3) {
-    return scanner.error(str_cat("a $NodeData view needs at least 3 integer tags (time step, "
-                                 "number of components, number of nodes), found ",
-                                 count));
+    return scanner.error(
+        str_cat("a $NodeData view needs at least 3 integer tags (time step, "
+                "number of components, number of nodes), found ",
+                count));
   }
   for (std::int64_t i = 0; i < count; ++i) {
     std::int64_t value = 0;

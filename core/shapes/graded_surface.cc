@@ -55,25 +55,24 @@ class SurfaceRefiner {
       const Triangle& tri = surface.triangles[t];
       for (const Index v : tri) {
         if (v < 0 || static_cast<std::size_t>(v) >= mesh_.points.size()) {
-          return absl::InvalidArgumentError(
-              absl::StrCat("triangle ", t, " refers to point ", v, ", but there are ",
-                           mesh_.points.size(), " points"));
+          return absl::InvalidArgumentError(absl::StrCat("triangle ", t, " refers to point ", v,
+                                                         ", but there are ", mesh_.points.size(),
+                                                         " points"));
         }
       }
       if (tri[0] == tri[1] || tri[1] == tri[2] || tri[2] == tri[0]) {
-        return absl::InvalidArgumentError(
-            absl::StrCat("triangle ", t, " repeats a point (", tri[0], ", ", tri[1], ", ", tri[2],
-                         ")"));
+        return absl::InvalidArgumentError(absl::StrCat("triangle ", t, " repeats a point (", tri[0],
+                                                       ", ", tri[1], ", ", tri[2], ")"));
       }
       const auto slot = static_cast<Index>(t);
       mesh_.triangles.push_back(tri);
       mesh_.triangle_tags.push_back(t < surface.triangle_tags.size() ? surface.triangle_tags[t]
-                                                                      : 0);
+                                                                     : 0);
       for (int k = 0; k < 3; ++k) {
         if (!attach(edge_key(tri[k], tri[(k + 1) % 3]), slot)) {
-          return absl::InvalidArgumentError(absl::StrCat(
-              "the edge (", tri[k], ", ", tri[(k + 1) % 3], ") of triangle ", t,
-              " is in more than two triangles: the surface must be a manifold"));
+          return absl::InvalidArgumentError(
+              absl::StrCat("the edge (", tri[k], ", ", tri[(k + 1) % 3], ") of triangle ", t,
+                           " is in more than two triangles: the surface must be a manifold"));
         }
       }
     }
@@ -125,8 +124,8 @@ class SurfaceRefiner {
 
   // Adds triangle t to the edge; false when the edge has two triangles already.
   bool attach(EdgeKey key, Index t) {
-    EdgeTriangles& triangles = edges_.try_emplace(key, EdgeTriangles{kInvalidIndex, kInvalidIndex})
-                                   .first->second;
+    EdgeTriangles& triangles =
+        edges_.try_emplace(key, EdgeTriangles{kInvalidIndex, kInvalidIndex}).first->second;
     if (triangles[0] == kInvalidIndex) {
       triangles[0] = t;
     } else if (triangles[1] == kInvalidIndex) {

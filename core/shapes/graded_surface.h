@@ -2,12 +2,12 @@
 // as given, so a graded volume mesh needs a graded boundary; this makes one from any SizeField).
 //
 // Longest-edge bisection (Rivara's LEPP refinement): while some edge is longer than
-// max_ratio × the size at its midpoint (GradedSurfaceParams), the longest such edge is taken; following its longest-edge
-// propagation path (the longest edge of an adjacent triangle, if longer, and so on) a terminal
-// edge is reached, which is the longest edge of both its triangles, and it is split at its
-// midpoint together with both triangles. Splitting only longest edges keeps the triangles' shapes
-// (right isosceles triangles stay right isosceles), and splitting an edge in both of its
-// triangles keeps the surface conforming, closed and oriented. New points lie on the input's
+// max_ratio × the size at its midpoint (GradedSurfaceParams), the longest such edge is taken;
+// following its longest-edge propagation path (the longest edge of an adjacent triangle, if longer,
+// and so on) a terminal edge is reached, which is the longest edge of both its triangles, and it is
+// split at its midpoint together with both triangles. Splitting only longest edges keeps the
+// triangles' shapes (right isosceles triangles stay right isosceles), and splitting an edge in both
+// of its triangles keeps the surface conforming, closed and oriented. New points lie on the input's
 // flat triangles (no projection onto a curved surface); ridges and corners are kept.
 //
 // Deterministic: edges are taken by decreasing length, ties by their point indices.

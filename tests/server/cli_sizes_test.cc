@@ -204,8 +204,8 @@ TEST_F(CliSizesTest, BackgroundMshFileBesideTheSpecIsInterpolatedExactly) {
   write_linear_grid(dir_ / "specs" / "grids" / "linear.msh");
   write_file(dir_ / "specs" / "spec.json",
              R"({"maxSize": 10, "background": {"file": "grids/linear.msh"}})");
-  ASSERT_EQ(run("sizes --spec " + quoted(dir_ / "specs" / "spec.json"), points_text(kGridProbes)),
-            0)
+  ASSERT_EQ(
+      run("sizes --spec " + quoted(dir_ / "specs" / "spec.json"), points_text(kGridProbes)), 0)
       << stderr_text();
   expect_linear_sizes(printed_sizes());
 }
@@ -259,7 +259,8 @@ TEST_F(CliSizesTest, VolumeWithBackgroundFileMeshesValidlyAndFinerThanMaxSize) {
   const Mesh front = box_surface({0, 0, 0}, {2, 2, 2}, 0.25);
   ASSERT_TRUE(write_mesh(front, (dir_ / "box.mesh").string()).ok());
   write_linear_grid(dir_ / "linear.msh", 0.25);
-  write_file(dir_ / "spec.json", R"({"maxSize": 1.0, "growth": 1.5, "background": {"file": "linear.msh"}})");
+  write_file(dir_ / "spec.json",
+             R"({"maxSize": 1.0, "growth": 1.5, "background": {"file": "linear.msh"}})");
   ASSERT_EQ(run("volume " + quoted(dir_ / "box.mesh") + " -o " + quoted(dir_ / "graded.msh") +
                 " --spec " + quoted(dir_ / "spec.json") + " --quiet"),
             0)
@@ -280,7 +281,8 @@ TEST_F(CliSizesTest, VolumeWithBackgroundFileMeshesValidlyAndFinerThanMaxSize) {
 // The grid travels in the call's first message: one over gRPC's 4 MiB is refused by the client,
 // naming the limit, before any server starts.
 TEST_F(CliSizesTest, VolumeWithBackgroundGridOverTheMessageLimitExitsBadInput) {
-  ASSERT_TRUE(write_mesh(box_surface({0, 0, 0}, {1, 1, 1}, 0.5), (dir_ / "box.mesh").string()).ok());
+  const Mesh front = box_surface({0, 0, 0}, {1, 1, 1}, 0.5);
+  ASSERT_TRUE(write_mesh(front, (dir_ / "box.mesh").string()).ok());
   Mesh grid;
   grid.points = {{-1, -1, -1}, {3, -1, -1}, {-1, 3, -1}, {-1, -1, 3}};
   grid.tets = {{0, 1, 2, 3}};

@@ -29,8 +29,8 @@ void expect_linear_field_reproduced(const std::string& name) {
       read_sized_grid(std::string(AFMESH_SOURCE_DIR) + "/tests/data/" + name);
   ASSERT_TRUE(file.ok()) << file.status();
   const BackgroundGrid grid = grid_from(*std::move(file));
-  std::vector<Point> probes = {{0, 0, 0}, {1, 1, 0.5}, {0.5, 0.5, 0.25}, {1, 0, 0.25},
-                               {0, 0.5, 0.5}};
+  std::vector<Point> probes = {
+      {0, 0, 0}, {1, 1, 0.5}, {0.5, 0.5, 0.25}, {1, 0, 0.25}, {0, 0.5, 0.5}};
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int i = 0; i < 1000; ++i) probes.push_back({u(rng), u(rng), 0.5 * u(rng)});

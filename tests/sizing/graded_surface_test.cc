@@ -69,8 +69,8 @@ double smallest_angle_deg(const Mesh& mesh) {
     for (int k = 0; k < 3; ++k) {
       const Point u = sub(mesh.points[t[(k + 1) % 3]], mesh.points[t[k]]);
       const Point v = sub(mesh.points[t[(k + 2) % 3]], mesh.points[t[k]]);
-      smallest = std::min(smallest, std::acos(dot(u, v) / (norm(u) * norm(v))) * 180.0 /
-                                        std::numbers::pi);
+      smallest =
+          std::min(smallest, std::acos(dot(u, v) / (norm(u) * norm(v))) * 180.0 / std::numbers::pi);
     }
   }
   return smallest;
@@ -81,8 +81,8 @@ Mesh tagged_cube(double h) {
   Mesh cube = box_surface({0, 0, 0}, {1, 1, 1}, h);
   for (std::size_t i = 0; i < cube.triangles.size(); ++i) {
     const Triangle& t = cube.triangles[i];
-    const Point n = cross(sub(cube.points[t[1]], cube.points[t[0]]),
-                          sub(cube.points[t[2]], cube.points[t[0]]));
+    const Point n =
+        cross(sub(cube.points[t[1]], cube.points[t[0]]), sub(cube.points[t[2]], cube.points[t[0]]));
     for (int axis = 0; axis < 3; ++axis) {
       if (n[axis] != 0.0) cube.triangle_tags[i] = 1 + 2 * axis + (n[axis] > 0 ? 1 : 0);
     }
@@ -181,8 +181,7 @@ TEST(GradedSurface, RefusesBadInputAndRunawayRefinement) {
                                 "in more than two triangles"));
   fan.triangles = {{0, 1, 7}};
   fan.triangle_tags = {0};
-  EXPECT_EQ(grade_surface(fan, UniformSize(1)).status().code(),
-            absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(grade_surface(fan, UniformSize(1)).status().code(), absl::StatusCode::kInvalidArgument);
   GradedSurfaceParams params;
   params.max_triangles = 1000;
   EXPECT_EQ(grade_surface(tagged_cube(0.5), UniformSize(0.01), params).status().code(),

@@ -41,8 +41,7 @@ SizeSpec corner_source_spec() {
   SizeSpec spec;
   spec.max_size = kMaxSize;
   spec.growth = kGrowth;
-  spec.sources.push_back(
-      SizeSource{{{0.0, 0.0, 0.0}}, kDelta0, kR0, kR1, PowerLaw{.gamma = 1.0}});
+  spec.sources.push_back(SizeSource{{{0.0, 0.0, 0.0}}, kDelta0, kR0, kR1, PowerLaw{.gamma = 1.0}});
   return spec;
 }
 
@@ -54,7 +53,8 @@ std::vector<std::array<Index, 2>> tet_edges(const Mesh& mesh) {
     for (int i = 0; i < 4; ++i) {
       for (int j = i + 1; j < 4; ++j) {
         const Index a = std::min(tet[i], tet[j]), b = std::max(tet[i], tet[j]);
-        if (seen.insert((std::uint64_t(a) << 32) | std::uint32_t(b)).second) edges.push_back({a, b});
+        if (seen.insert((std::uint64_t(a) << 32) | std::uint32_t(b)).second)
+          edges.push_back({a, b});
       }
     }
   }
@@ -84,8 +84,8 @@ TEST(GradedCube, MeanTetEdgeLengthPerDistanceBinFollowsThePointSourceLaw) {
   EXPECT_TRUE(report.valid()) << report.to_string();
 
   // Bins narrow where the size is small (the law's range over a bin stays below ~40%).
-  const std::vector<double> bounds = {0.0, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5, 0.6,
-                                      0.8, 1.0,  1.2, 1.4, 1.6, 1.8};
+  const std::vector<double> bounds = {0.0, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.5,
+                                      0.6, 0.8,  1.0, 1.2,  1.4, 1.6, 1.8};
   std::vector<Bin> bins;
   for (std::size_t i = 0; i + 1 < bounds.size(); ++i) bins.push_back({bounds[i], bounds[i + 1]});
   for (const auto& [a, b] : tet_edges(mesh)) {
@@ -114,8 +114,8 @@ TEST(GradedCube, MeanTetEdgeLengthPerDistanceBinFollowsThePointSourceLaw) {
     const double expected = law(0.5 * (bin.lo + bin.hi));
     const double mean = bin.length_sum / bin.edges;
     const double ratio = mean / expected;
-    std::printf("%4zu %6.2f-%-6.2f %7d %9.4f %9.4f %7.3f %14.3f%s\n", i, bin.lo, bin.hi,
-                bin.edges, expected, mean, ratio, bin.relative_sum / bin.edges,
+    std::printf("%4zu %6.2f-%-6.2f %7d %9.4f %9.4f %7.3f %14.3f%s\n", i, bin.lo, bin.hi, bin.edges,
+                expected, mean, ratio, bin.relative_sum / bin.edges,
                 bin.edges < kMinEdges ? "  (too few edges: not tested)" : "");
     if (bin.edges < kMinEdges) continue;
     ++tested;
