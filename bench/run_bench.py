@@ -1,6 +1,8 @@
 #!/usr/bin/python3
 """The benchmark tables: afmesh's volume mesher against gmsh (Delaunay, HXT), netgen and tetgen on
-the same surfaces, and core/io converting a ~1M-triangle STL against gmsh. Run by scripts/bench.sh.
+the same surfaces, core/io converting a ~1M-triangle STL against gmsh, and the size field's
+evaluations per second with 1 to 1000 sources (afmesh alone: the peers have no source fields).
+Run by scripts/bench.sh.
 
 Every measurement is a fresh process, run one after the other (never in parallel): afmesh by
 afmesh-bench-volume / afmesh-bench-io, the peers by bench/peers.py. Each case first runs afmesh,
@@ -63,6 +65,11 @@ def parse_arguments(argv):
     parser.add_argument("--io", dest="io", action="store_true", default=True)
     parser.add_argument("--no-io", dest="io", action="store_false", help="skip the io benchmark")
     parser.add_argument("--io-only", action="store_true", help="only the io benchmark")
+    parser.add_argument("--sizing", dest="sizing", action="store_true", default=True)
+    parser.add_argument("--no-sizing", dest="sizing", action="store_false",
+                        help="skip the size-field throughput benchmark")
+    parser.add_argument("--sizing-only", action="store_true",
+                        help="only the size-field throughput benchmark")
     args = parser.parse_args(argv)
     for override in args.size:
         key, h = override.split("=")
@@ -180,6 +187,15 @@ def run_io(args):
     return [ours, gmsh]
 
 
+def run_sizing(args):
+    print("\n== size field: evaluations per second with 1 to 1000 sources, pruning off / on ==",
+          flush=True)
+    print(f"   start: {load_line()}", flush=True)
+    rows = run_json_lines([os.path.join(args.build_dir, "bench", "afmesh-bench-sizing"), "--json"])
+    print_sizing_table(rows)
+    return rows
+
+
 # ---------------------------------------------------------------------------------------------
 # Printing.
 
@@ -250,6 +266,28 @@ def print_io_table(rows):
     sys.stdout.flush()
 
 
+def print_sizing_table(rows):
+    print(f"   {'sources':>8s} {'points':>8s} {'single/s':>12s} {'single/s':>12s} "
+          f"{'batch/s':>12s} {'batch/s':>12s} {'pruning':>8s} {'build s':>8s}")
+    print(f"   {'':>8s} {'':>8s} {'no pruning':>12s} {'pruning':>12s} {'no pruning':>12s} "
+          f"{'pruning':>12s} {'speed-up':>8s} {'(cells)':>8s}")
+    for row in rows:
+        if "error" in row:
+            print(f"   afmesh-bench-sizing FAILED: {row['error']}")
+            continue
+        label = f"{row['sources']}{'c' if row['clustered'] else ' '}"
+        print(f"   {label:>8s} {row['points']:>8,} {row['single_no_pruning']:>12,.0f} "
+              f"{row['single_pruning']:>12,.0f} {row['batch_no_pruning']:>12,.0f} "
+              f"{row['batch_pruning']:>12,.0f} {row['batch_pruning'] / row['batch_no_pruning']:>7.1f}x "
+              f"{row['build_seconds']:>8.3f}")
+    print("   (c: 1000 sources clustered within 0.02 of the cube's centre, the hard case for "
+          "pruning; single = size_at per point, batch = sizes_at over all points; speed-up = "
+          "batch pruning / batch no pruning)")
+    print("   peers: gmsh, netgen and tetgen have no point/line/triangle source fields to evaluate, "
+          "so there is nothing to compare and no afmesh/peer ratio")
+    sys.stdout.flush()
+
+
 def print_growth(shape, cases):
     """Time per tet of afmesh at the largest target over the smallest."""
     rows = {t: r[0] for t, r in cases.items() if "error" not in r[0]}
@@ -280,15 +318,17 @@ def main(argv):
     print("   every figure from a fresh process, one at a time, one thread each "
           "(OMP_NUM_THREADS=1; gmsh General.NumThreads=1, Mesh.MaxNumThreads3D=1)")
     results = {}
-    if not args.io_only:
+    if not (args.io_only or args.sizing_only):
         for shape in args.shapes.split(","):
             cases = {}
             for target in args.targets.split(","):
                 cases[target] = run_case(args, tools, shape, target)
             print_growth(shape, cases)
             results[shape] = cases
-    if args.io or args.io_only:
+    if args.io_only or (args.io and not args.sizing_only):
         results["io"] = run_io(args)
+    if args.sizing_only or (args.sizing and not args.io_only):
+        results["sizing"] = run_sizing(args)
     with open(os.path.join(args.work_dir, "results.json"), "w") as f:
         json.dump(results, f, indent=1)
     print(f"\n{load_line()}\nfigures saved in {os.path.join(args.work_dir, 'results.json')}")

@@ -2,7 +2,8 @@
 // Probes a size specification: reads `x y z` per line from FILE (stdin when omitted) and prints
 // the size at each point, one per line, in input order, with full double precision (%.17g).
 // Blank lines are skipped. Computed locally with core's SpecSizeField over the probe points'
-// bounding box: no server is involved.
+// bounding box: no server is involved. A background grid file named by the specification is read
+// as for `afmesh volume` (client/spec_file.h); notes about it go to stderr.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -84,7 +85,11 @@ Box bounding_box(const std::vector<Point>& points) {
 }
 
 int run_sizes(const SizesCommandOptions& options) {
-  absl::StatusOr<SizeSpec> spec = read_size_spec_file(options.spec_path);
+  ReadReport report;
+  absl::StatusOr<SizeSpec> spec = read_size_spec_file(options.spec_path, &report);
+  for (const std::string& note : report.notes) {
+    std::fprintf(stderr, "afmesh sizes: note: %s\n", note.c_str());
+  }
   if (spec.ok()) {
     if (absl::Status status = validate_size_spec(*spec); !status.ok()) {
       spec = absl::InvalidArgumentError(

@@ -19,6 +19,7 @@
 #include "client/progress_display.h"
 #include "client/server_launcher.h"
 #include "client/spec_file.h"
+#include "proto/size_spec_convert.h"
 #include "client/volume_call.h"
 #include "core/io/mesh_io.h"
 #include "grpc/grpc.h"
@@ -118,11 +119,33 @@ double mean_edge_length(const Mesh& front) {
   return edges == 0 ? 1.0 : sum / static_cast<double>(edges);
 }
 
+// The specification travels in the call's first message, whole (an inline background grid
+// included), and gRPC refuses messages over 4 MiB (its default, which the server keeps: it
+// answers "Received message larger than max"); the other header fields take a few bytes.
+absl::Status check_fits_in_header(const SizeSpec& spec) {
+  constexpr std::size_t kMaxSpecBytes = 4 * 1024 * 1024 - 1024;
+  const std::size_t bytes = size_spec_to_proto(spec).ByteSizeLong();
+  if (bytes <= kMaxSpecBytes) return absl::OkStatus();
+  const std::size_t points = spec.background ? spec.background->points.size() : 0;
+  const std::size_t tets = spec.background ? spec.background->tets.size() : 0;
+  return absl::InvalidArgumentError(absl::StrFormat(
+      "the size specification takes %.2f MiB on the wire (%zu sources, a background grid of %zu "
+      "points and %zu tets), more than the 4 MiB the call's first message can carry: use a "
+      "coarser background grid, or sources",
+      static_cast<double>(bytes) / (1024.0 * 1024.0), spec.sources.size(), points, tets));
+}
+
 // The size specification of --spec with the command line's overrides: --size, else the file's
 // maxSize, else the front's mean edge length; --growth, else the file's growth. Validated
 // (validate_size_spec); errors name the file and the field.
 absl::StatusOr<SizeSpec> spec_for(const VolumeCommandOptions& options, const Mesh& front) {
-  absl::StatusOr<SizeSpec> spec = read_size_spec_file(options.spec_path);
+  ReadReport report;
+  absl::StatusOr<SizeSpec> spec = read_size_spec_file(options.spec_path, &report);
+  if (!options.quiet) {
+    for (const std::string& note : report.notes) {
+      std::fprintf(stderr, "afmesh volume: note: %s\n", note.c_str());
+    }
+  }
   if (!spec.ok()) return spec.status();
   if (options.size_given) {
     spec->max_size = options.size;
@@ -131,6 +154,10 @@ absl::StatusOr<SizeSpec> spec_for(const VolumeCommandOptions& options, const Mes
   }
   if (options.growth_given) spec->growth = options.growth;
   if (absl::Status status = validate_size_spec(*spec); !status.ok()) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("%s: %s", options.spec_path, status.message()));
+  }
+  if (absl::Status status = check_fits_in_header(*spec); !status.ok()) {
     return absl::InvalidArgumentError(
         absl::StrFormat("%s: %s", options.spec_path, status.message()));
   }

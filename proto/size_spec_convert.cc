@@ -46,8 +46,9 @@ absl::StatusOr<BackgroundGridSpec> background_from_proto(const v1::BackgroundGri
   if (!grid.file().empty()) {
     return absl::InvalidArgumentError(absl::StrCat(
         "background.file (\"", grid.file(),
-        "\"): background files are not supported yet; give the grid inline "
-        "(background.points, background.tets, background.sizes)"));
+        "\"): servers never open client paths; the client must read the grid file and send the "
+        "grid inline (background.points, background.tets, background.sizes), as the afmesh "
+        "CLI does"));
   }
   if (grid.tets_size() % 4 != 0) {
     return absl::InvalidArgumentError(

@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # The benchmarks: afmesh's volume mesher against gmsh (Delaunay, HXT), netgen and tetgen on the
-# same sphere and torus surfaces at about 50k, 500k and 2M tets, and core/io converting a
-# ~1M-triangle STL to MSH 4.1 against gmsh. Prints one table per case; see bench/run_bench.py.
+# same sphere and torus surfaces at about 50k, 500k and 2M tets, core/io converting a
+# ~1M-triangle STL to MSH 4.1 against gmsh, and the size field's evaluations per second with 1 to
+# 1000 sources (afmesh alone: the peers have no source fields). Prints one table per case; see
+# bench/run_bench.py.
 #
 # Usage: scripts/bench.sh [bench/run_bench.py options]
 #   scripts/bench.sh                                   everything (netgen at 2M takes tens of minutes)
 #   scripts/bench.sh --netgen-max-target 500k          skip netgen at 2M (the tables say so)
 #   scripts/bench.sh --targets 50k,500k --no-io        the quick cases only
+#   scripts/bench.sh --sizing-only                     the size-field throughput alone
 #   scripts/bench.sh --shapes sphere --tools afmesh,tetgen --size sphere:2M=0.031
 # Environment: AFMESH_BENCH_BUILD_DIR (default build/release, the release preset),
 #              AFMESH_BENCH_JOBS (build parallelism, default 2).
@@ -21,7 +24,8 @@ if [[ -z "${AFMESH_BENCH_BUILD_DIR:-}" ]]; then
 else
   cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 fi
-cmake --build "$build_dir" --target afmesh-bench-volume afmesh-bench-io -j "${AFMESH_BENCH_JOBS:-2}"
+cmake --build "$build_dir" --target afmesh-bench-volume afmesh-bench-io \
+  afmesh-bench-sizing -j "${AFMESH_BENCH_JOBS:-2}"
 
 exec /usr/bin/python3 bench/run_bench.py --build-dir "$build_dir" \
   --work-dir "$build_dir/bench-work" "$@"

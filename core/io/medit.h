@@ -16,9 +16,19 @@
 //
 // Writing: MeshVersionFormatted 2 (double precision: readers such as meshio read version 1 as
 // float), Dimension 3, Vertices with ref 0, Triangles and Tetrahedra with their tags, End.
+//
+// Solution files (.sol, ascii; the sizes of a background grid, beside its .mesh): the same
+// header, then `SolAtVertices`, the vertex count, `1 1` (one solution, of type 1: a scalar) and
+// one value per vertex in vertex order, then `End`. The reader wants exactly that: one
+// SolAtVertices section with one scalar per vertex of the mesh, each finite and > 0; other
+// keywords, other solution types (vectors, metrics), a wrong count or a bad value are errors
+// naming the line. Binary .solb files are not read.
 #pragma once
 
+#include <cstddef>
+#include <span>
 #include <string_view>
+#include <vector>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
@@ -35,5 +45,13 @@ absl::StatusOr<Mesh> parse_medit(std::string_view text, std::string_view source_
 // Writes `mesh` (points N×3, triangles M×3, tets K×4, with tags) as Medit ascii to `out` and
 // flushes it.
 absl::Status write_medit(const Mesh& mesh, OutputBuffer& out);
+
+// The sizes in the Medit solution text `text` of a mesh with `num_vertices` vertices (see above).
+absl::StatusOr<std::vector<double>> parse_medit_sol(std::string_view text,
+                                                    std::string_view source_name,
+                                                    std::size_t num_vertices);
+
+// Writes `sizes` (one per vertex, finite and > 0) as a Medit ascii .sol to `out` and flushes it.
+absl::Status write_medit_sol(std::span<const double> sizes, OutputBuffer& out);
 
 }  // namespace afmesh

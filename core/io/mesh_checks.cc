@@ -48,6 +48,20 @@ absl::Status check_mesh_for_writing(const Mesh& mesh) {
   return check_indices(mesh.tets, mesh.points.size(), "tetrahedron");
 }
 
+absl::Status check_sizes_for_writing(std::span<const double> sizes, std::size_t num_points) {
+  if (sizes.size() != num_points) {
+    return absl::InvalidArgumentError(str_cat("the grid has ", num_points, " points but ",
+                                              sizes.size(), " sizes (one per point is needed)"));
+  }
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    if (!std::isfinite(sizes[i]) || sizes[i] <= 0.0) {
+      return absl::InvalidArgumentError(
+          str_cat("size ", i, " must be finite and > 0, got ", sizes[i]));
+    }
+  }
+  return absl::OkStatus();
+}
+
 absl::Status check_triangles_only(const Mesh& mesh, std::string_view format) {
   if (mesh.tets.empty()) return absl::OkStatus();
   return absl::InvalidArgumentError(str_cat(

@@ -8,7 +8,8 @@
 //   .vtu        VTK XML UnstructuredGrid   no                       ascii
 //
 // How tags travel and what each reader passes over is documented in the per-format headers
-// (stl.h, obj.h, msh.h, medit.h, vtu.h), which also read from and write to memory.
+// (stl.h, obj.h, msh.h, medit.h, vtu.h), which also read from and write to memory. Background
+// grids with a size per point (MSH $NodeData, Medit .mesh + .sol) are read by sized_grid.h.
 //
 // Errors: NOT_FOUND / PERMISSION_DENIED / ... when a file cannot be opened or written (with the
 // path and the system's reason); INVALID_ARGUMENT for an unknown extension, malformed content

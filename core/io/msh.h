@@ -15,6 +15,11 @@
 //  - Sections other than $MeshFormat, $Entities, $Nodes, $Elements are skipped (with a note,
 //    except $Comments); $PartitionedEntities is an error (partitioned meshes are not read).
 //    MSH 4.0, 3 and binary 2.x are errors saying which versions are read.
+//  - $NodeData is skipped with a note by parse_msh. parse_msh_sized_grid reads the first
+//    $NodeData view as a size per node (a background grid): it must have one component and give
+//    every node of $Nodes exactly one finite size > 0; unknown node tags, a wrong count, a
+//    missing view or a bad size are errors naming the line (or byte offset). Later views are
+//    skipped with a note.
 //  - Malformed input is INVALID_ARGUMENT naming the source and the line (ascii) or byte offset
 //    (binary): wrong counts, unknown node tags, non-finite coordinates, truncation, garbage.
 //
@@ -25,14 +30,18 @@
 //    untagged elements; meshio 5 does not (its gmsh:physical list loses step with the blocks).
 //  - All nodes in one block (tags 1..N in point order, coordinates as shortest round-trip
 //    doubles); element tags 1..M for triangles in order, then M+1..M+K for tets.
+//  - write_msh_sized_grid appends one $NodeData view "size" (time 0, step 0, one component,
+//    tag i+1 -> sizes[i]), which gmsh opens as a post-processing view of the mesh.
 #pragma once
 
+#include <span>
 #include <string_view>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "core/io/output_buffer.h"
 #include "core/io/read_report.h"
+#include "core/io/sized_grid.h"
 #include "core/mesh/mesh.h"
 
 namespace afmesh {
@@ -41,8 +50,17 @@ namespace afmesh {
 absl::StatusOr<Mesh> parse_msh(std::string_view bytes, std::string_view source_name,
                                ReadReport* report = nullptr);
 
+// The mesh and the sizes of its first $NodeData view in the MSH file `bytes` (see above).
+absl::StatusOr<SizedGrid> parse_msh_sized_grid(std::string_view bytes,
+                                               std::string_view source_name,
+                                               ReadReport* report = nullptr);
+
 // Writes `mesh` (points N×3, triangles M×3, tets K×4, with tags) as MSH 4.1 ascii to `out` and
 // flushes it.
 absl::Status write_msh(const Mesh& mesh, OutputBuffer& out);
+
+// write_msh, then `sizes` (N, one per point, finite and > 0) as a $NodeData view.
+absl::Status write_msh_sized_grid(const Mesh& mesh, std::span<const double> sizes,
+                                  OutputBuffer& out);
 
 }  // namespace afmesh

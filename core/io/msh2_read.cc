@@ -1,4 +1,5 @@
-// MSH 2.x ascii sections: $Nodes (tag x y z) and $Elements (tag type ntags tags... nodes...).
+// MSH 2.x ascii sections: $Nodes (tag x y z), $Elements (tag type ntags tags... nodes...) and
+// $NodeData (msh_node_data.cc).
 #include <cstdint>
 #include <limits>
 
@@ -33,6 +34,8 @@ class Msh2Reader {
       AFMESH_RETURN_IF_ERROR(read_nodes());
     } else if (name == "Elements") {
       AFMESH_RETURN_IF_ERROR(read_elements());
+    } else if (name == "NodeData") {
+      return read_node_data_section(scanner_, false, builder_);
     } else if (name == "MeshFormat") {
       return scanner_.error("a second $MeshFormat section");
     } else {

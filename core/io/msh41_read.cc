@@ -112,6 +112,7 @@ class Msh41Reader {
       : scanner_(scanner), fields_(scanner), builder_(builder) {}
 
   absl::Status read_sections(bool binary) {
+    binary_ = binary;
     while (!scanner_.at_end()) {
       const std::string_view header = scanner_.next_token();
       if (header.size() < 2 || header[0] != '$') {
@@ -132,6 +133,8 @@ class Msh41Reader {
       AFMESH_RETURN_IF_ERROR(read_nodes());
     } else if (name == "Elements") {
       AFMESH_RETURN_IF_ERROR(read_elements());
+    } else if (name == "NodeData") {
+      return read_node_data_section(scanner_, binary_, builder_);
     } else if (name == "PartitionedEntities") {
       return scanner_.error("partitioned MSH files are not supported (save unpartitioned)");
     } else if (name == "MeshFormat") {
@@ -346,6 +349,7 @@ class Msh41Reader {
   MeshBuilder& builder_;
   EntityPhysicals entities_;
   bool has_entities_ = false;
+  bool binary_ = false;
   std::uint64_t parametric_blocks_ = 0;
 };
 

@@ -71,6 +71,15 @@ class MeshBuilder {
   }
   // Counts `count` elements of a kind that is passed over (points, lines).
   void skip_elements(ElementKind kind, std::uint64_t count);
+
+  // Node sizes (background-grid files): when asked for, the first $NodeData section is read
+  // into node_sizes() (one per point, in point order) by read_node_data_section; later ones are
+  // skipped with a note. Otherwise every $NodeData section is skipped with a note.
+  void want_node_sizes() { wants_node_sizes_ = true; }
+  bool wants_node_sizes() const { return wants_node_sizes_; }
+  bool has_node_sizes() const { return has_node_sizes_; }
+  void set_has_node_sizes() { has_node_sizes_ = true; }
+  std::vector<double>& node_sizes() { return node_sizes_; }
   void add_note(std::string note) { notes_.push_back(std::move(note)); }
 
   // The mesh, elements sorted by element tag (stable), and the notes appended to `report`.
@@ -83,10 +92,21 @@ class MeshBuilder {
   bool has_elements_ = false;
   std::vector<std::uint64_t> triangle_keys_;
   std::vector<std::uint64_t> tet_keys_;
+  bool wants_node_sizes_ = false;
+  bool has_node_sizes_ = false;
+  std::vector<double> node_sizes_;
   std::uint64_t skipped_points_ = 0;
   std::uint64_t skipped_lines_ = 0;
   std::vector<std::string> notes_;
 };
+
+// Reads or skips a $NodeData section whose header was just read, through its $EndNodeData.
+// Read when builder.wants_node_sizes() and it is the first: string, real and integer tags (ascii
+// in every MSH version), then one `node-tag size` entry per node (ascii; binary: int32 tag and
+// double, little-endian, as gmsh writes them). Checks one component, an entry for every node of
+// $Nodes and no other, finite sizes > 0; errors name the line (or byte offset) and what was
+// expected. Skipped, with a note, otherwise.
+absl::Status read_node_data_section(TextScanner& scanner, bool binary, MeshBuilder& builder);
 
 // Moves `scanner` past the marker "$End<name>" of the section `name` whose header was just
 // read, without reading its content; error when the marker is missing.

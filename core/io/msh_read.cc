@@ -61,6 +61,20 @@ absl::Status read_header(TextScanner& scanner, MshHeader& header) {
   return msh::expect_section_end(scanner, "MeshFormat");
 }
 
+// Reads the whole file into `builder`, checking that it holds $Nodes and $Elements.
+absl::Status read_msh(TextScanner& scanner, msh::MeshBuilder& builder) {
+  MshHeader header;
+  AFMESH_RETURN_IF_ERROR(read_header(scanner, header));
+  if (header.version == MshVersion::k41) {
+    AFMESH_RETURN_IF_ERROR(msh::read_msh41_sections(scanner, header.binary, builder));
+  } else {
+    AFMESH_RETURN_IF_ERROR(msh::read_msh2_sections(scanner, builder));
+  }
+  if (!builder.has_nodes()) return scanner.error("the file has no $Nodes section");
+  if (!builder.has_elements()) return scanner.error("the file has no $Elements section");
+  return absl::OkStatus();
+}
+
 }  // namespace
 
 absl::StatusOr<Mesh> parse_msh(std::string_view bytes, std::string_view source_name,
@@ -69,17 +83,31 @@ absl::StatusOr<Mesh> parse_msh(std::string_view bytes, std::string_view source_n
     return absl::InvalidArgumentError(str_cat(source_name, ": the file is empty"));
   }
   TextScanner scanner(bytes, source_name);
-  MshHeader header;
-  AFMESH_RETURN_IF_ERROR(read_header(scanner, header));
   msh::MeshBuilder builder;
-  if (header.version == MshVersion::k41) {
-    AFMESH_RETURN_IF_ERROR(msh::read_msh41_sections(scanner, header.binary, builder));
-  } else {
-    AFMESH_RETURN_IF_ERROR(msh::read_msh2_sections(scanner, builder));
-  }
-  if (!builder.has_nodes()) return scanner.error("the file has no $Nodes section");
-  if (!builder.has_elements()) return scanner.error("the file has no $Elements section");
+  AFMESH_RETURN_IF_ERROR(read_msh(scanner, builder));
   return builder.finish(report);
+}
+
+absl::StatusOr<SizedGrid> parse_msh_sized_grid(std::string_view bytes,
+                                               std::string_view source_name, ReadReport* report) {
+  if (bytes.empty()) {
+    return absl::InvalidArgumentError(str_cat(source_name, ": the file is empty"));
+  }
+  TextScanner scanner(bytes, source_name);
+  msh::MeshBuilder builder;
+  builder.want_node_sizes();
+  AFMESH_RETURN_IF_ERROR(read_msh(scanner, builder));
+  if (!builder.has_node_sizes()) {
+    return absl::InvalidArgumentError(
+        str_cat(source_name,
+                ": no $NodeData section: a background grid needs a size at every node (a "
+                "$NodeData view with one component, as gmsh saves a view with "
+                "PostProcessing.SaveMesh = 1)"));
+  }
+  SizedGrid grid;
+  grid.sizes = std::move(builder.node_sizes());
+  grid.mesh = builder.finish(report);
+  return grid;
 }
 
 }  // namespace afmesh

@@ -1,4 +1,5 @@
-// write_msh: MSH 4.1 ascii with one entity per (dimension, tag).
+// write_msh: MSH 4.1 ascii with one entity per (dimension, tag); write_msh_sized_grid adds a
+// $NodeData view of sizes.
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -162,6 +163,22 @@ absl::Status write_msh(const Mesh& mesh, OutputBuffer& out) {
   write_entities(surfaces, volumes, placeholder, out);
   write_nodes(mesh.points, volumes.tags.empty() ? 2 : 3, out);
   write_elements(mesh, surfaces, volumes, out);
+  return out.flush();
+}
+
+absl::Status write_msh_sized_grid(const Mesh& mesh, std::span<const double> sizes,
+                                  OutputBuffer& out) {
+  AFMESH_RETURN_IF_ERROR(check_sizes_for_writing(sizes, mesh.points.size()));
+  AFMESH_RETURN_IF_ERROR(write_msh(mesh, out));
+  // View "size", time 0; time step 0, one component, one value per node.
+  out.put(str_cat("$NodeData\n1\n\"size\"\n1\n0\n3\n0\n1\n", sizes.size(), "\n"));
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    out.put_int(static_cast<std::int64_t>(i + 1));
+    out.put(' ');
+    out.put_double(sizes[i]);
+    out.put('\n');
+  }
+  out.put("$EndNodeData\n");
   return out.flush();
 }
 

@@ -1,7 +1,8 @@
 // Cross-checks with other readers: every format afmesh writes must be read by meshio as the
 // same mesh (points, elements, and tags where the format carries them), and MSH files by gmsh
-// itself. Runs tests/io/meshio_check.py and tests/io/gmsh_check.py with /usr/bin/python3; a
-// missing python3, meshio or gmsh module is a failure, never a skip.
+// itself (with the $NodeData view of a sized grid). Runs tests/io/meshio_check.py and
+// tests/io/gmsh_check.py with /usr/bin/python3; a missing python3, meshio or gmsh module is a
+// failure, never a skip.
 #include <sys/wait.h>
 
 #include <charconv>
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "core/io/mesh_io.h"
+#include "core/io/sized_grid.h"
 #include "gtest/gtest.h"
 #include "tests/io/io_test_support.h"
 
@@ -50,10 +52,19 @@ std::string json_list(const std::vector<Index>& values) {
   return json + "]";
 }
 
-// The expectation file read by meshio_check.py.
+// The expectation file read by meshio_check.py (and gmsh_check.py, with "sizes" when given).
 std::string expected_json(const Mesh& mesh, const std::string& tag_key,
-                          const std::string& match_points_by) {
-  return "{\"points\": " + json_rows(mesh.points, &json_number) +
+                          const std::string& match_points_by,
+                          const std::vector<double>* sizes = nullptr) {
+  std::string sizes_json;
+  if (sizes != nullptr) {
+    sizes_json = ",\n \"sizes\": [";
+    for (std::size_t i = 0; i < sizes->size(); ++i) {
+      sizes_json += (i ? ", " : "") + json_number((*sizes)[i]);
+    }
+    sizes_json += "]";
+  }
+  return "{\"points\": " + json_rows(mesh.points, &json_number) + sizes_json +
          ",\n \"triangles\": " + json_rows(mesh.triangles, &json_index) +
          ",\n \"triangle_tags\": " + json_list(mesh.triangle_tags) +
          ",\n \"tets\": " + json_rows(mesh.tets, &json_index) +
@@ -81,18 +92,21 @@ CommandResult run(const std::string& command) {
 }
 
 // Writes `written` to `name` in a temp dir and checks with `script` (meshio_check.py or
-// gmsh_check.py) that the other reader finds `expected` in it.
+// gmsh_check.py) that the other reader finds `expected` in it. With `sizes`, writes a sized
+// grid (write_sized_grid) and gmsh_check.py also checks the sizes.
 void expect_reader_finds(const std::string& script, const std::string& name, const Mesh& written,
                          const Mesh& expected, const std::string& tag_key,
-                         const std::string& match_points_by, const WriteOptions& options = {}) {
+                         const std::string& match_points_by, const WriteOptions& options = {},
+                         const std::vector<double>* sizes = nullptr) {
   ASSERT_TRUE(std::filesystem::exists(kPython))
       << kPython << " is missing: install python3, python3-meshio and python3-gmsh";
   TempDir dir;
   const std::string mesh_path = dir.file(name);
-  const absl::Status status = write_mesh(written, mesh_path, options);
+  const absl::Status status = sizes == nullptr ? write_mesh(written, mesh_path, options)
+                                               : write_sized_grid(written, *sizes, mesh_path);
   ASSERT_TRUE(status.ok()) << status;
   const std::string json_path = dir.file(name + ".json");
-  std::ofstream(json_path) << expected_json(expected, tag_key, match_points_by);
+  std::ofstream(json_path) << expected_json(expected, tag_key, match_points_by, sizes);
   const std::string script_path = std::string(AFMESH_SOURCE_DIR) + "/tests/io/" + script;
   const CommandResult result =
       run(std::string(kPython) + " '" + script_path + "' '" + mesh_path + "' '" + json_path + "'");
@@ -147,6 +161,12 @@ TEST(GmshCrossCheck, GmshReadsTagZeroAsNoPhysicalGroup) {
   mesh.triangle_tags = {0, 2, 0, 2, 0, 2, 0, 2, 0, 2, 0, 2};
   mesh.tet_tags = {0, 0, 0, 0, 0, 0};
   expect_reader_finds("gmsh_check.py", "untagged.msh", mesh, mesh, "gmsh:physical", "index");
+}
+
+TEST(GmshCrossCheck, GmshReadsSizedGridNodeDataAsAView) {
+  const std::vector<double> sizes = {0.1, 1.0 / 3.0, 2.5e-3, 7.0, 1e-300, 1e300, 0.3, 5e-324};
+  expect_reader_finds("gmsh_check.py", "grid.msh", tagged_box(), tagged_box(), "gmsh:physical",
+                      "index", {}, &sizes);
 }
 
 }  // namespace

@@ -5,7 +5,9 @@ Usage: gmsh_check.py MSH_FILE EXPECTED_JSON   (the same JSON as meshio_check.py)
 
 Compares node coordinates (node tag i+1 is point i, exactly), triangles and tetrahedra with
 their physical tags (as multisets of (corners, tag); 0 = no physical group), and that gmsh
-reports no other element types. Exit status: 0 same mesh, 1 different, 2 usage, 3 no gmsh.
+reports no other element types. When the JSON has "sizes" (one per point), also checks that gmsh
+finds exactly one post-processing view holding them as NodeData (node tag i+1 -> sizes[i],
+exactly, one component). Exit status: 0 same mesh, 1 different, 2 usage, 3 no gmsh.
 """
 import collections
 import json
@@ -42,6 +44,22 @@ def read_elements(problems):
     return found
 
 
+def check_sizes(sizes, problems):
+    views = gmsh.view.getTags()
+    if len(views) != 1:
+        problems.append(f"gmsh has {len(views)} views, expected 1 with the sizes")
+        return
+    data_type, tags, data, _, components = gmsh.view.getModelData(views[0], 0)
+    if data_type != "NodeData" or components != 1:
+        problems.append(f"the view holds {data_type} with {components} components")
+        return
+    found = {int(tag): [float(v) for v in values] for tag, values in zip(tags, data)}
+    want = {i + 1: [size] for i, size in enumerate(sizes)}
+    if found != want:
+        problems.append(f"view sizes differ: gmsh {sorted(found.items())[:5]}..., "
+                        f"expected {sorted(want.items())[:5]}...")
+
+
 def main():
     if len(sys.argv) != 3:
         print(__doc__)
@@ -62,6 +80,8 @@ def main():
             if tag < 1 or tag > len(points) or actual != points[int(tag) - 1]:
                 problems.append(f"node {tag}: gmsh {actual}")
                 break
+        if "sizes" in expected:
+            check_sizes(expected["sizes"], problems)
         found = read_elements(problems)
         for kind, tag_name in (("triangles", "triangle_tags"), ("tets", "tet_tags")):
             want = collections.Counter(

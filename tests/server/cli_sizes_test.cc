@@ -1,6 +1,7 @@
 // `afmesh sizes` and `afmesh volume --spec` through the real binaries: the paper's dome
 // specification (examples/dome/dome-sizes.json) reproduces its law, errors name the file, line
-// or field, and a box with a point source meshes into a valid volume mesh.
+// or field, a box with a point source meshes into a valid volume mesh, and background grid files
+// (.msh, .mesh + .sol) are read by the client, interpolated exactly and sent to the server.
 #include <stdlib.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,7 +16,9 @@
 #include <vector>
 
 #include "core/io/mesh_io.h"
+#include "core/io/sized_grid.h"
 #include "core/quality/validate.h"
+#include "core/sizing/background_grid.h"
 #include "core/shapes/shapes.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
@@ -168,11 +171,133 @@ TEST_F(CliSizesTest, MalformedJsonExitsBadInputNamingTheFile) {
   EXPECT_THAT(stderr_text(), HasSubstr("cubic"));
 }
 
-TEST_F(CliSizesTest, BackgroundFileIsRefusedClearly) {
-  write_file(dir_ / "bg.json", R"({"maxSize": 1, "background": {"file": "background.msh"}})");
-  EXPECT_EQ(run("sizes --spec " + quoted(dir_ / "bg.json"), "0 0 0\n"), 3);
-  EXPECT_THAT(stderr_text(),
-              HasSubstr("background files are not supported yet; give the grid inline"));
+// A background grid file: the cube [-1, 2]^3 in five tets (BackgroundGrid::box_grid) with sizes
+// scale (1 + 0.2 x + 0.3 y + 0.4 z) at its corners (scale 0.1 to 2.8), written as .msh or .mesh
+// + .sol.
+double linear_size(const Point& x) { return 1.0 + 0.2 * x[0] + 0.3 * x[1] + 0.4 * x[2]; }
+
+void write_linear_grid(const fs::path& path, double scale = 1.0) {
+  const BackgroundGrid cube = BackgroundGrid::box_grid(Box{{-1, -1, -1}, {2, 2, 2}}, 1.0);
+  Mesh grid;
+  grid.points = cube.points();
+  grid.tets = cube.tets();
+  grid.tet_tags.assign(grid.tets.size(), 0);
+  std::vector<double> sizes;
+  for (const Point& p : grid.points) sizes.push_back(scale * linear_size(p));
+  ASSERT_TRUE(write_sized_grid(grid, sizes, path.string()).ok());
+}
+
+// Points inside the grid, in several of its tets.
+const std::vector<Point> kGridProbes = {
+    {0, 0, 0}, {0.5, 0.25, 0.125}, {1.9, -0.9, 0.3}, {-0.7, 1.3, 1.6}, {1, 1, 1}};
+
+void expect_linear_sizes(const std::vector<double>& sizes) {
+  ASSERT_EQ(sizes.size(), kGridProbes.size());
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    const double expected = std::min(10.0, linear_size(kGridProbes[i]));
+    EXPECT_NEAR(sizes[i], expected, 1e-12 * expected) << "probe " << i;
+  }
+}
+
+TEST_F(CliSizesTest, BackgroundMshFileBesideTheSpecIsInterpolatedExactly) {
+  fs::create_directories(dir_ / "specs" / "grids");
+  write_linear_grid(dir_ / "specs" / "grids" / "linear.msh");
+  write_file(dir_ / "specs" / "spec.json",
+             R"({"maxSize": 10, "background": {"file": "grids/linear.msh"}})");
+  ASSERT_EQ(
+      run("sizes --spec " + quoted(dir_ / "specs" / "spec.json"), points_text(kGridProbes)), 0)
+      << stderr_text();
+  expect_linear_sizes(printed_sizes());
+}
+
+TEST_F(CliSizesTest, BackgroundMeditFileWithSolIsInterpolatedExactly) {
+  write_linear_grid(dir_ / "linear.mesh");
+  ASSERT_TRUE(fs::exists(dir_ / "linear.sol"));
+  write_file(dir_ / "spec.json", R"({"maxSize": 10, "background": {"file": "linear.mesh"}})");
+  ASSERT_EQ(run("sizes --spec " + quoted(dir_ / "spec.json"), points_text(kGridProbes)), 0)
+      << stderr_text();
+  expect_linear_sizes(printed_sizes());
+}
+
+TEST_F(CliSizesTest, MalformedBackgroundFileExitsBadInputNamingFileAndLine) {
+  write_linear_grid(dir_ / "linear.msh");
+  std::string text = read_file(dir_ / "linear.msh");
+  const std::size_t data = text.find("$NodeData");
+  ASSERT_NE(data, std::string::npos);
+  // Node 3's size (the 11th line of the section) becomes negative.
+  std::size_t line = data;
+  for (int k = 0; k < 11; ++k) line = text.find('\n', line) + 1;
+  text.replace(line, text.find('\n', line) - line, "3 -0.5");
+  write_file(dir_ / "bad.msh", text);
+  const int bad_line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + line, '\n'));
+  write_file(dir_ / "spec.json", R"({"maxSize": 10, "background": {"file": "bad.msh"}})");
+  EXPECT_EQ(run("sizes --spec " + quoted(dir_ / "spec.json"), "0 0 0\n"), 3);
+  EXPECT_THAT(stderr_text(), HasSubstr("spec.json: background.file (\"bad.msh\"): "));
+  EXPECT_THAT(stderr_text(), HasSubstr("bad.msh:" + std::to_string(bad_line) +
+                                       ": the size of node tag 3 must be finite and > 0"));
+  EXPECT_TRUE(stdout_text().empty());
+}
+
+TEST_F(CliSizesTest, MissingBackgroundFileOrFileWithInlineGridExitsBadInput) {
+  write_file(dir_ / "missing.json", R"({"maxSize": 1, "background": {"file": "nowhere.msh"}})");
+  EXPECT_EQ(run("sizes --spec " + quoted(dir_ / "missing.json"), "0 0 0\n"), 3);
+  EXPECT_THAT(stderr_text(), HasSubstr("nowhere.msh"));
+  write_file(dir_ / "sol.json", R"({"maxSize": 1, "background": {"file": "nosol.mesh"}})");
+  write_linear_grid(dir_ / "nosol.mesh");
+  fs::remove(dir_ / "nosol.sol");
+  EXPECT_EQ(run("sizes --spec " + quoted(dir_ / "sol.json"), "0 0 0\n"), 3);
+  EXPECT_THAT(stderr_text(), HasSubstr("nosol.sol"));
+  write_file(dir_ / "both.json", R"({"maxSize": 1, "background": {"file": "nosol.mesh",
+      "sizes": [1, 1, 1, 1]}})");
+  EXPECT_EQ(run("sizes --spec " + quoted(dir_ / "both.json"), "0 0 0\n"), 3);
+  EXPECT_THAT(stderr_text(), HasSubstr("background gives both a file"));
+}
+
+// The CLI reads the grid file and sends the grid inline: the server meshes with it, finer than
+// the mesh grown up to maxSize without it (the grid asks for 0.25 to 0.7 in the box).
+TEST_F(CliSizesTest, VolumeWithBackgroundFileMeshesValidlyAndFinerThanMaxSize) {
+  const Mesh front = box_surface({0, 0, 0}, {2, 2, 2}, 0.25);
+  ASSERT_TRUE(write_mesh(front, (dir_ / "box.mesh").string()).ok());
+  write_linear_grid(dir_ / "linear.msh", 0.25);
+  write_file(dir_ / "spec.json",
+             R"({"maxSize": 1.0, "growth": 1.5, "background": {"file": "linear.msh"}})");
+  ASSERT_EQ(run("volume " + quoted(dir_ / "box.mesh") + " -o " + quoted(dir_ / "graded.msh") +
+                " --spec " + quoted(dir_ / "spec.json") + " --quiet"),
+            0)
+      << stderr_text();
+  ASSERT_EQ(run("volume " + quoted(dir_ / "box.mesh") + " -o " + quoted(dir_ / "uniform.msh") +
+                " --size 1.0 --growth 1.5 --quiet"),
+            0)
+      << stderr_text();
+  absl::StatusOr<Mesh> graded = read_mesh((dir_ / "graded.msh").string());
+  absl::StatusOr<Mesh> uniform = read_mesh((dir_ / "uniform.msh").string());
+  ASSERT_TRUE(graded.ok()) << graded.status();
+  ASSERT_TRUE(uniform.ok()) << uniform.status();
+  const ValidationReport report = validate_volume_mesh(*graded, &front);
+  EXPECT_TRUE(report.valid()) << report.to_string();
+  EXPECT_GT(graded->tets.size(), uniform->tets.size());
+}
+
+// The grid travels in the call's first message: one over gRPC's 4 MiB is refused by the client,
+// naming the limit, before any server starts.
+TEST_F(CliSizesTest, VolumeWithBackgroundGridOverTheMessageLimitExitsBadInput) {
+  const Mesh front = box_surface({0, 0, 0}, {1, 1, 1}, 0.5);
+  ASSERT_TRUE(write_mesh(front, (dir_ / "box.mesh").string()).ok());
+  Mesh grid;
+  grid.points = {{-1, -1, -1}, {3, -1, -1}, {-1, 3, -1}, {-1, -1, 3}};
+  grid.tets = {{0, 1, 2, 3}};
+  grid.tet_tags = {0};
+  for (int i = 0; i < 160000; ++i) grid.points.push_back({i * 1e-5, 0.5, 0.5});
+  ASSERT_TRUE(write_sized_grid(grid, std::vector<double>(grid.points.size(), 0.5),
+                               (dir_ / "huge.msh").string())
+                  .ok());
+  write_file(dir_ / "spec.json", R"({"maxSize": 0.5, "background": {"file": "huge.msh"}})");
+  EXPECT_EQ(run("volume " + quoted(dir_ / "box.mesh") + " -o " + quoted(dir_ / "box.msh") +
+                " --spec " + quoted(dir_ / "spec.json") + " --quiet"),
+            3);
+  EXPECT_THAT(stderr_text(), HasSubstr("a background grid of 160004 points and 1 tets"));
+  EXPECT_THAT(stderr_text(), HasSubstr("more than the 4 MiB the call's first message can carry"));
+  EXPECT_FALSE(fs::exists(dir_ / "box.msh"));
 }
 
 // A point source at the centre of a box refines the interior: the mesh is valid and has more

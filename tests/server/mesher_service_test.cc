@@ -903,11 +903,13 @@ TEST_F(MesherServiceTest, RejectsSourceWhoseLawIsUnknownToTheServer) {
                   {"options.size.sources[0]", "no decay law"});
 }
 
-TEST_F(MesherServiceTest, RejectsBackgroundFile) {
+// The server is stateless and never opens client paths: the client inlines grid files.
+TEST_F(MesherServiceTest, RejectsBackgroundFileSayingTheClientMustInlineIt) {
   start(counting_job(probe_));
   expect_rejected(requests_with_spec(R"({"maxSize": 0.5, "background": {"file": "bg.msh"}})"),
                   grpc::StatusCode::INVALID_ARGUMENT,
-                  {"options.size.background.file", "not supported yet"});
+                  {"options.size.background.file", "servers never open client paths",
+                   "the client must read the grid file and send the grid inline"});
 }
 
 TEST_F(MesherServiceTest, RejectsInvertedBackgroundTet) {
