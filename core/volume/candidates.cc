@@ -49,8 +49,8 @@ Box cube_around(const Point& x, double r) {
   return Box{{x[0] - r, x[1] - r, x[2] - r}, {x[0] + r, x[1] + r, x[2] + r}};
 }
 
-// True when a new point at x keeps its distance from the front (F7.2: otherwise an existing point
-// is to be used in lieu of it).
+}  // namespace
+
 bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictness& rules) {
   const double spacing = rules.point_spacing * d;
   const double clearance = rules.face_clearance * d;
@@ -69,8 +69,6 @@ bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictne
   }
   return true;
 }
-
-}  // namespace
 
 Strictness strictness_for(int attempts) {
   static constexpr Strictness kRules[] = {
@@ -145,8 +143,9 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
   for (int i = 0; i < 3; ++i) {
     const Point x = add(centroid, scale(sub(ideal, centroid), kHeights[i]));
     if (tet_shape_quality(a, b, c, x) < rules.min_quality) continue;
-    if (!new_point_is_clear(s, x, d * kHeights[i], rules)) continue;
-    s.candidates.push_back({kInvalidIndex, x, kRanks[i]});
+    // Its clearance from the front is checked only if the loop gets to it (most faces take
+    // the first candidate).
+    s.candidates.push_back({kInvalidIndex, x, kRanks[i], d * kHeights[i]});
   }
 
   std::sort(s.candidates.begin(), s.candidates.end(),

@@ -8,16 +8,11 @@
 namespace afmesh::volume {
 namespace {
 
-bool same_vertex_set(const Triangle& t, const Triangle& u) {
-  Triangle x = t, y = u;
-  std::sort(x.begin(), x.end());
-  std::sort(y.begin(), y.end());
-  return x == y;
-}
-
 bool is_corner(const Tet& tet, Index q) {
   return q == tet[0] || q == tet[1] || q == tet[2] || q == tet[3];
 }
+
+bool is_corner(const Triangle& t, Index q) { return q == t[0] || q == t[1] || q == t[2]; }
 
 // Exact separating-plane test: true when, for one face of `tet` (corners `x`), every corner of
 // triangle w is either a corner of that face or strictly outside its plane. Then w meets the
@@ -56,15 +51,18 @@ bool element_crosses_front(MesherState& s, Index face, Index p) {
   for (Index g : s.near_faces) {
     if (g == face) continue;
     const Triangle& w = s.front.face(g).v;
-    if (!boxes_overlap(box, triangle_box(x, w))) continue;
-    bool closes = false;
-    for (int i = 0; i < 3 && !closes; ++i) {
-      if (!same_vertex_set(sides[i], w)) continue;
+    // A front face on p and two corners of `face` is the face one side of the element closes
+    // (the front holds no other face on the same three points).
+    const bool has_p = w[0] == p || w[1] == p || w[2] == p;
+    const int on_face = is_corner(v, w[0]) + is_corner(v, w[1]) + is_corner(v, w[2]);
+    if (has_p && on_face == 2) {
+      int i = 0;  // the side on w's corners leaves out the corner of `face` that w lacks
+      while (is_corner(w, opposite[i])) ++i;
       // The front face this side closes must look at the element (F10).
       if (orient3d(x[w[0]], x[w[1]], x[w[2]], x[opposite[i]]) <= 0) return true;
-      closes = true;
+      continue;
     }
-    if (closes || separated_by_a_face_plane(x, tet, w)) continue;
+    if (separated_by_a_face_plane(x, tet, w)) continue;
     for (const Triangle& side : sides)
       if (triangles_intersect_improperly(x, side, w)) return true;
   }

@@ -34,6 +34,7 @@ Index Front::add(const Triangle& v, double size, Index env) {
   } else {
     f = static_cast<Index>(faces_.size());
     faces_.emplace_back();
+    boxes_.emplace_back();
   }
   FrontFace& face = faces_[f];
   face.v = v;
@@ -44,7 +45,8 @@ Index Front::add(const Triangle& v, double size, Index env) {
   ++live_;
   lookup_[key_of(v[0], v[1], v[2])] = f;
   queue_.push({0, size, f, face.stamp});
-  bins_.insert_face(f, box_of_face(v));
+  boxes_[f] = box_of_face(v);
+  bins_.insert_face(f, boxes_[f]);
   for (Index p : v) point_joins(p);
   return f;
 }
@@ -54,7 +56,7 @@ void Front::remove(Index f) {
   face.alive = false;
   --live_;
   lookup_.erase(key_of(face.v[0], face.v[1], face.v[2]));
-  bins_.erase_face(f, box_of_face(face.v));
+  bins_.erase_face(f, boxes_[f]);
   for (Index p : face.v) point_leaves(p);
   free_.push_back(f);
 }

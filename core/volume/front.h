@@ -55,6 +55,8 @@ class Front {
   std::optional<Index> pop();
 
   const FrontFace& face(Index f) const { return faces_[f]; }
+  // The bounding box of live face f (kept so the crossing check need not recompute it).
+  const Box& box(Index f) const { return boxes_[f]; }
   std::int64_t size() const { return live_; }
   bool on_front(Index p) const { return p < static_cast<Index>(point_faces_.size()) && point_faces_[p] > 0; }
   const FrontBins& bins() const { return bins_; }
@@ -79,6 +81,7 @@ class Front {
 
   const std::vector<Point>& points_;
   std::vector<FrontFace> faces_;
+  std::vector<Box> boxes_;  // per face slot
   std::vector<Index> free_;
   std::int64_t live_ = 0;
   absl::flat_hash_map<absl::uint128, Index> lookup_;

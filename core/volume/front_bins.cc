@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace afmesh {
 
@@ -62,12 +63,41 @@ void FrontBins::erase_point(Index p, const Point& x) {
              p);
 }
 
+namespace {
+
+// x rounded to a float no larger (down) or no smaller (up) than x.
+float float_down(double x) {
+  const float f = static_cast<float>(x);
+  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity())
+                                    : f;
+}
+float float_up(double x) {
+  const float f = static_cast<float>(x);
+  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity())
+                                    : f;
+}
+
+}  // namespace
+
 void FrontBins::insert_face(Index f, const Box& box) {
-  for_each_cell(cells_of(box), [&](std::int64_t c) { face_cells_[c].push_back(f); });
+  FaceEntry e;
+  for (int a = 0; a < 3; ++a) {
+    e.lo[a] = float_down(box.lo[a]);
+    e.hi[a] = float_up(box.hi[a]);
+  }
+  e.face = f;
+  for_each_cell(cells_of(box), [&](std::int64_t c) { face_cells_[c].push_back(e); });
 }
 
 void FrontBins::erase_face(Index f, const Box& box) {
-  for_each_cell(cells_of(box), [&](std::int64_t c) { erase_from(face_cells_[c], f); });
+  for_each_cell(cells_of(box), [&](std::int64_t c) {
+    std::vector<FaceEntry>& cell = face_cells_[c];
+    auto it = std::find_if(cell.begin(), cell.end(), [f](const FaceEntry& e) { return e.face == f; });
+    if (it != cell.end()) {
+      *it = cell.back();
+      cell.pop_back();
+    }
+  });
 }
 
 void FrontBins::points_near(const Box& box, std::vector<Index>& out) const {
@@ -82,7 +112,11 @@ void FrontBins::faces_near(const Box& box, std::vector<Index>& out) const {
     epoch_ = 1;
   }
   for_each_cell(cells_of(box), [&](std::int64_t c) {
-    for (Index f : face_cells_[c]) {
+    for (const FaceEntry& e : face_cells_[c]) {
+      if (e.lo[0] > box.hi[0] || e.hi[0] < box.lo[0] || e.lo[1] > box.hi[1] ||
+          e.hi[1] < box.lo[1] || e.lo[2] > box.hi[2] || e.hi[2] < box.lo[2])
+        continue;
+      const Index f = e.face;
       if (mark_.size() <= static_cast<std::size_t>(f)) mark_.resize(f + 1, 0);
       if (mark_[f] == epoch_) continue;
       mark_[f] = epoch_;

@@ -4,7 +4,9 @@
 // the front, so a query visits O(1) cells holding O(1) items each and the front loop stays
 // O(N log N) overall. The bins are a dense uniform grid over the front's bounding box; a point
 // sits in the one cell containing it, a face in every cell its bounding box overlaps, so a box
-// query finds every face whose bounding box meets the query box (never a false negative).
+// query finds every face whose bounding box meets the query box (never a false negative). Each cell
+// keeps its faces' boxes beside their ids (in float, rounded outward), so a face query filters by
+// box overlap while it walks the cell's memory in order and returns few faces that miss the box.
 #pragma once
 
 #include <array>
@@ -39,8 +41,8 @@ class FrontBins {
   // `box`; callers test exact containment), each once, in an order fixed by the history of
   // insertions and removals (deterministic, not sorted).
   void points_near(const Box& box, std::vector<Index>& out) const;
-  // Appends to `out` every face registered in a cell overlapping `box`, each once, in a
-  // deterministic order (not sorted).
+  // Appends to `out` every face whose bounding box (rounded outward to float) overlaps `box`,
+  // each once, in a deterministic order (not sorted).
   void faces_near(const Box& box, std::vector<Index>& out) const;
 
   double cell_size() const { return cell_; }
@@ -60,7 +62,12 @@ class FrontBins {
   double cell_ = 1.0;
   std::array<std::int64_t, 3> dims_{1, 1, 1};
   std::vector<std::vector<Index>> point_cells_;
-  std::vector<std::vector<Index>> face_cells_;
+  // A face's entry in a cell: its id and its bounding box, rounded outward to float.
+  struct FaceEntry {
+    std::array<float, 3> lo, hi;
+    Index face;
+  };
+  std::vector<std::vector<FaceEntry>> face_cells_;
   // Query scratch for faces_near: face f was listed in this query when mark_[f] == epoch_.
   mutable std::vector<std::uint32_t> mark_;
   mutable std::uint32_t epoch_ = 0;

@@ -29,11 +29,16 @@ double element_size_for_face(const MesherState& s, const Triangle& v);
 Point ideal_point(const MesherState& s, const Triangle& v, double d);
 
 // F7.2: the candidates for the face, best first: front points near the ideal point that form a
-// positive element of acceptable shape, and the new point itself unless a front point or face is
-// too close to it (then the existing point is used in lieu of it), followed by new points closer
-// to the face. Fills s.candidates.
+// positive element of acceptable shape, and the new point itself, followed by new points closer
+// to the face. Fills s.candidates. A new point's clearance (new_point_is_clear) is left to the
+// caller, to be checked only when the candidate is reached.
 void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
                        const Strictness& rules);
+
+// F7.2: true when a new point at x keeps its distance from the front for element size d:
+// rules.point_spacing·d from front points and rules.face_clearance·d from front faces (else an
+// existing point is to be used in lieu of it).
+bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictness& rules);
 
 // F7.3: true when tet (v[0], v[1], v[2], p) would cross the front: it intersects a front face
 // other than those it shares properly, or contains a front point. `p` is an index into

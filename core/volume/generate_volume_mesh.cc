@@ -105,6 +105,7 @@ bool delete_face(MesherState& s, Index face) {
   for (const volume::Candidate& c : s.candidates) {
     Index p = c.point;
     if (p == kInvalidIndex) {  // a new point: eq. 15 sets its size
+      if (!volume::new_point_is_clear(s, c.position, c.clearance_size, rules)) continue;
       p = static_cast<Index>(s.points.size());
       s.points.push_back(c.position);
       s.point_size.push_back(

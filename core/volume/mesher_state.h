@@ -20,6 +20,7 @@ struct Candidate {
   Index point = kInvalidIndex;
   Point position{};
   double rank = 0;  // lower is tried first
+  double clearance_size = 0;  // a new point: the element size its clearance is checked with
 };
 
 // Tets around each point, as singly linked lists threaded through the tets (for cavity repair).
