@@ -51,17 +51,20 @@ Box cube_around(const Point& x, double r) {
 
 }  // namespace
 
-bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictness& rules) {
+bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictness& rules,
+                        Index env) {
   const double spacing = rules.point_spacing * d;
   const double clearance = rules.face_clearance * d;
   const double reach = std::max(spacing, clearance);
   s.near_points.clear();
   s.front.bins().points_near(cube_around(x, reach), s.near_points);
   for (Index q : s.near_points)
-    if (squared_norm(sub(s.points[q], x)) < spacing * spacing) return false;
+    if (point_visible(s, env, q) && squared_norm(sub(s.points[q], x)) < spacing * spacing)
+      return false;
   s.near_faces.clear();
   s.front.bins().faces_near(cube_around(x, clearance), s.near_faces);
   for (Index g : s.near_faces) {
+    if (!face_visible(s, env, g)) continue;
     const Triangle& w = s.front.face(g).v;
     if (squared_distance_to_triangle(x, s.points[w[0]], s.points[w[1]], s.points[w[2]]) <
         clearance * clearance)
@@ -117,6 +120,7 @@ Point ideal_point(const MesherState& s, const Triangle& v, double d) {
 void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
                        const Strictness& rules) {
   const Triangle v = s.front.face(face).v;
+  const Index env = s.front.face(face).env;
   const Point& a = s.points[v[0]];
   const Point& b = s.points[v[1]];
   const Point& c = s.points[v[2]];
@@ -127,7 +131,7 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
   s.near_points.clear();
   s.front.bins().points_near(cube_around(ideal, reach), s.near_points);
   for (Index q : s.near_points) {
-    if (q == v[0] || q == v[1] || q == v[2]) continue;
+    if (q == v[0] || q == v[1] || q == v[2] || !point_visible(s, env, q)) continue;
     const Point& x = s.points[q];
     const double dist = norm(sub(x, ideal));
     if (dist > reach || orient3d(a, b, c, x) <= 0) continue;

@@ -39,6 +39,7 @@ bool separated_by_a_face_plane(const std::vector<Point>& x, const Tet& tet, cons
 
 bool element_crosses_front(MesherState& s, Index face, Index p) {
   const Triangle v = s.front.face(face).v;
+  const Index env = s.front.face(face).env;
   const std::vector<Point>& x = s.points;
   const Tet tet{v[0], v[1], v[2], p};
   const Box box = tet_box(x, tet);
@@ -49,7 +50,7 @@ bool element_crosses_front(MesherState& s, Index face, Index p) {
   s.near_faces.clear();
   s.front.bins().faces_near(box, s.near_faces);
   for (Index g : s.near_faces) {
-    if (g == face) continue;
+    if (g == face || !face_visible(s, env, g)) continue;
     const Triangle& w = s.front.face(g).v;
     // A front face on p and two corners of `face` is the face one side of the element closes
     // (the front holds no other face on the same three points).
@@ -70,7 +71,7 @@ bool element_crosses_front(MesherState& s, Index face, Index p) {
   s.near_points.clear();
   s.front.bins().points_near(box, s.near_points);
   for (Index q : s.near_points) {
-    if (is_corner(tet, q)) continue;
+    if (is_corner(tet, q) || !point_visible(s, env, q)) continue;
     if (point_in_tet(x[q], x[v[0]], x[v[1]], x[v[2]], x[p]) >= 0) return true;
   }
   return false;

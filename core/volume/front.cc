@@ -44,7 +44,7 @@ Index Front::add(const Triangle& v, double size, Index env) {
   ++face.stamp;
   ++live_;
   lookup_[key_of(v[0], v[1], v[2])] = f;
-  queue_.push({0, size, f, face.stamp});
+  queue_.push({0, env == 0, size, f, face.stamp});
   boxes_[f] = box_of_face(v);
   bins_.insert_face(f, boxes_[f]);
   for (Index p : v) point_joins(p);
@@ -64,14 +64,14 @@ void Front::remove(Index f) {
 void Front::defer(Index f, double size) {
   FrontFace& face = faces_[f];
   if (face.attempts < 255) ++face.attempts;
-  queue_.push({face.attempts, size, f, face.stamp});
+  queue_.push({face.attempts, face.env == 0, size, f, face.stamp});
 }
 
 void Front::requeue(Index f, double size) {
   FrontFace& face = faces_[f];
   face.attempts = 0;
   ++face.stamp;
-  queue_.push({0, size, f, face.stamp});
+  queue_.push({0, face.env == 0, size, f, face.stamp});
 }
 
 std::optional<Index> Front::find(Index a, Index b, Index c) const {

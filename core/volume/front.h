@@ -50,7 +50,8 @@ class Front {
   // The live face with vertex set {a, b, c} in any order, if any.
   std::optional<Index> find(Index a, Index b, Index c) const;
 
-  // F6: pops the face to delete next (lowest class, then smallest size, then lowest id);
+  // F6: pops the face to delete next (lowest class, then faces of a crossing environment, then
+  // smallest size, then lowest id);
   // nullopt when the front is empty.
   std::optional<Index> pop();
 
@@ -64,12 +65,14 @@ class Front {
  private:
   struct QueueEntry {
     std::uint32_t cls;
+    bool unmarked;  // faces of a crossing environment go first (paper §2)
     double size;
     Index face;
     std::uint32_t stamp;
     // std::priority_queue is a max-heap: "greater" means popped later.
     bool operator<(const QueueEntry& o) const {
       if (cls != o.cls) return cls > o.cls;
+      if (unmarked != o.unmarked) return unmarked;
       if (size != o.size) return size > o.size;
       return face > o.face;
     }

@@ -2,12 +2,38 @@
 // generate_volume_mesh.cc calls them in the order of the paper.
 #pragma once
 
+#include <algorithm>
+#include <cstdint>
+
 #include "core/volume/mesher_state.h"
 
 namespace afmesh::volume {
 
 // Relaxation of the acceptance rules for a face that has failed `attempts` times: later
 // attempts accept worse elements and points closer to the front.
+// Crossing environments (paper §2). LPOCR of point q: its environment when it is an input point
+// of one, -1 on several, 0 otherwise (new points are always 0).
+inline std::int32_t point_environment(const MesherState& s, Index q) {
+  return static_cast<std::size_t>(q) < s.point_env.size() ? s.point_env[q] : 0;
+}
+// §2 (a): a face of environment `env` ignores the points of any other positive environment.
+inline bool point_visible(const MesherState& s, Index env, Index q) {
+  if (env <= 0) return true;
+  const std::int32_t e = point_environment(s, q);
+  return e <= 0 || e == env;
+}
+// §2 (b): only faces of the face's own environment or of none enter its checks.
+inline bool face_visible(const MesherState& s, Index env, Index g) {
+  if (env <= 0) return true;
+  const Index e = s.front.face(g).env;
+  return e == 0 || e == env;
+}
+// §2: a new face takes LFACR = max(0, LPOCR of its three points).
+inline Index face_environment(const MesherState& s, const Triangle& v) {
+  return std::max({0, point_environment(s, v[0]), point_environment(s, v[1]),
+                   point_environment(s, v[2])});
+}
+
 struct Strictness {
   double min_quality;     // smallest accepted tet quality (tet_shape_quality)
   double point_spacing;   // a new point keeps this fraction of d from front points
@@ -38,7 +64,9 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
 // F7.2: true when a new point at x keeps its distance from the front for element size d:
 // rules.point_spacing·d from front points and rules.face_clearance·d from front faces (else an
 // existing point is to be used in lieu of it).
-bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictness& rules);
+// Only points and faces visible from environment `env` count (paper §2).
+bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictness& rules,
+                        Index env);
 
 // F7.3: true when tet (v[0], v[1], v[2], p) would cross the front: it intersects a front face
 // other than those it shares properly, or contains a front point. `p` is an index into

@@ -85,13 +85,47 @@ double enclosed_volume(const Mesh& front) {
   return six_v / 6.0;
 }
 
-// F1/F4: the input triangles, flipped to look into the domain, form the initial front.
-void load_initial_front(MesherState& s, const Mesh& input) {
-  s.point_size = boundary_point_sizes(input);
-  for (const Triangle& t : input.triangles) {
-    const Triangle inward{t[0], t[2], t[1]};
-    s.front.add(inward, volume::element_size_for_face(s, inward));
+// Paper §2: LPOCR from LFACR. A point takes the positive environment of its faces; a point on
+// faces of two different positive environments (a ridge between them) gets -1; 0 otherwise.
+std::vector<std::int32_t> point_environments(const Mesh& input,
+                                             const std::vector<std::int32_t>& face_env) {
+  std::vector<std::int32_t> env(input.points.size(), 0);
+  for (std::size_t t = 0; t < input.triangles.size(); ++t) {
+    const std::int32_t e = face_env[t];
+    if (e <= 0) continue;
+    for (Index p : input.triangles[t]) {
+      if (env[p] == 0) env[p] = e;
+      else if (env[p] != e) env[p] = -1;
+    }
   }
+  return env;
+}
+
+// F1/F4: the input triangles, flipped to look into the domain, form the initial front, each with
+// its crossing environment (paper §2).
+void load_initial_front(MesherState& s, const Mesh& input,
+                        const std::vector<std::int32_t>& face_env) {
+  s.point_size = boundary_point_sizes(input);
+  if (!face_env.empty()) s.point_env = point_environments(input, face_env);
+  for (std::size_t t = 0; t < input.triangles.size(); ++t) {
+    const Triangle& u = input.triangles[t];
+    const Triangle inward{u[0], u[2], u[1]};
+    s.front.add(inward, volume::element_size_for_face(s, inward),
+                face_env.empty() ? 0 : face_env[t]);
+  }
+}
+
+absl::Status check_face_environments(const Mesh& front, const std::vector<std::int32_t>& env) {
+  if (env.empty()) return absl::OkStatus();
+  if (env.size() != front.triangles.size())
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "face_environments has %d entries for %d triangles", env.size(), front.triangles.size()));
+  for (std::size_t t = 0; t < env.size(); ++t)
+    if (env[t] < 0)
+      return absl::InvalidArgumentError(absl::StrFormat(
+          "triangle %d has crossing environment %d; environments are >= 0 (0 = none)", t,
+          env[t]));
+  return absl::OkStatus();
 }
 
 // F7: tries the candidates of the face in order; adds the first element that does not cross the
@@ -105,7 +139,9 @@ bool delete_face(MesherState& s, Index face) {
   for (const volume::Candidate& c : s.candidates) {
     Index p = c.point;
     if (p == kInvalidIndex) {  // a new point: eq. 15 sets its size
-      if (!volume::new_point_is_clear(s, c.position, c.clearance_size, rules)) continue;
+      if (!volume::new_point_is_clear(s, c.position, c.clearance_size, rules,
+                                      s.front.face(face).env))
+        continue;
       p = static_cast<Index>(s.points.size());
       s.points.push_back(c.position);
       s.point_size.push_back(
@@ -232,6 +268,8 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
       return absl::InvalidArgumentError(
           absl::StrFormat("growth must be >= 1, got %g", params.growth));
   }
+  if (absl::Status st = check_face_environments(front, params.face_environments); !st.ok())
+    return st;
   if (absl::Status st = validate_front(front); !st.ok()) return st;
   absl::StatusOr<std::unique_ptr<SizeField>> size_field = make_size_field(params, front);
   if (!size_field.ok()) return size_field.status();
@@ -246,7 +284,7 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
       std::max(1.0, enclosed_volume(front) / (h * h * h / (6.0 * std::sqrt(2.0))));
   s.tets.reserve(static_cast<std::size_t>(expected_tets * 1.3));
   s.points.reserve(front.points.size() + static_cast<std::size_t>(expected_tets / 4));
-  load_initial_front(s, front);
+  load_initial_front(s, front, params.face_environments);
 
   RepairCounts repairs;
   std::int64_t steps = 0;

@@ -46,6 +46,9 @@ struct MesherState {
   Index input_points = 0;
   std::vector<Point> points;
   std::vector<double> point_size;  // delta of each point (eq. 15)
+  // Crossing environments (paper §2): LPOCR per point (0 none, -1 on several, new points 0);
+  // empty when the input has none. The environment of a front face is FrontFace::env (LFACR).
+  std::vector<std::int32_t> point_env;
   std::vector<Tet> tets;           // a deleted tet has tet[0] == kInvalidIndex
   std::int64_t live_tets = 0;
   TetIncidence incidence;

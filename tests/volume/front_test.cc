@@ -35,8 +35,11 @@ TEST(FrontBins, PointQueriesFindEveryPointInTheBox) {
       bool inside = true;
       for (int a = 0; a < 3; ++a) inside &= pts[i][a] >= box.lo[a] && pts[i][a] <= box.hi[a];
       const bool listed = std::binary_search(found.begin(), found.end(), i);
-      if (i < 500) EXPECT_FALSE(listed) << "erased point " << i;
-      else if (inside) EXPECT_TRUE(listed) << "point " << i;
+      if (i < 500) {
+        EXPECT_FALSE(listed) << "erased point " << i;
+      } else if (inside) {
+        EXPECT_TRUE(listed) << "point " << i;
+      }
     }
   }
 }
@@ -58,9 +61,15 @@ TEST(FrontBins, FaceQueriesFindEveryOverlappingFace) {
     bins.faces_near(box, found);
     std::sort(found.begin(), found.end());
     EXPECT_EQ(std::adjacent_find(found.begin(), found.end()), found.end());
-    for (Index i = 0; i < 1000; ++i)
-      if (boxes_overlap(box, boxes[i]))
+    for (Index i = 0; i < 1000; ++i) {
+      if (boxes_overlap(box, boxes[i])) {
         EXPECT_TRUE(std::binary_search(found.begin(), found.end(), i)) << "face " << i;
+      }
+    }
+    // ... and only faces whose box meets the query box (up to float rounding of the boxes).
+    Box grown = box;
+    for (int a = 0; a < 3; ++a) grown.lo[a] -= 1e-5, grown.hi[a] += 1e-5;
+    for (Index f : found) EXPECT_TRUE(boxes_overlap(grown, boxes[f])) << "face " << f;
   }
 }
 
@@ -108,6 +117,36 @@ TEST(Front, PointsLeaveTheBinsWithTheirLastFace) {
   near.clear();
   front.bins().points_near(Box{{-1, -1, -1}, {2, 2, 2}}, near);
   EXPECT_TRUE(near.empty());
+}
+
+// Crossing environments (paper §2): two crossing sheets, A (environment 1) and B (environment
+// 2). For a face of A, B's faces and points do not exist: the element above A that B crosses is
+// accepted, and B's points are no candidates. Without environments the same element crosses.
+TEST(CrossingEnvironments, FacesAndPointsOfAnotherEnvironmentAreIgnored) {
+  Mesh input;
+  input.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0},            // A, in z = 0
+                  {-1, -1, 0.3}, {2, -1, 0.3}, {-1, 2, 0.3},  // B, above A, crossing its element
+                  {0.3, 0.3, 0.4}};                           // a point of B above A
+  const UniformSize size(1.0);
+  for (bool with_envs : {true, false}) {
+    SCOPED_TRACE(with_envs);
+    volume::MesherState s(input, 1.0, size, Box{{-2, -2, -2}, {3, 3, 3}}, 0.5);
+    s.point_size.assign(input.points.size(), 1.0);
+    if (with_envs) s.point_env = {1, 1, 1, 2, 2, 2, 2};
+    const Index a = s.front.add({0, 1, 2}, 1.0, with_envs ? 1 : 0);  // looks up (+z)
+    s.front.add({3, 4, 5}, 1.0, with_envs ? 2 : 0);
+    s.front.add({6, 4, 5}, 1.0, with_envs ? 2 : 0);  // puts point 6 on the front
+    s.points.push_back({0.3, 0.3, 0.8});  // a new point above A, beyond B
+    const Index p = static_cast<Index>(s.points.size() - 1);
+    EXPECT_EQ(volume::element_crosses_front(s, a, p), !with_envs);
+
+    const Triangle v = s.front.face(a).v;
+    const double d = volume::element_size_for_face(s, v);
+    volume::gather_candidates(s, a, volume::ideal_point(s, v, d), d, volume::strictness_for(5));
+    bool offers_b_point = false;
+    for (const volume::Candidate& c : s.candidates) offers_b_point |= c.point >= 3;
+    EXPECT_EQ(offers_b_point, !with_envs);
+  }
 }
 
 // The end game (F11): a pocket whose corners admit no element (Schönhardt's twisted prism, all
