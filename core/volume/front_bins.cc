@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace afmesh {
 
@@ -41,7 +40,22 @@ template <typename Fn>
 void FrontBins::for_each_cell(const CellRange& r, Fn&& fn) const {
   for (std::int64_t k = r[2][0]; k <= r[2][1]; ++k)
     for (std::int64_t j = r[1][0]; j <= r[1][1]; ++j)
-      for (std::int64_t i = r[0][0]; i <= r[0][1]; ++i) fn(cell_index(i, j, k));
+      for (std::int64_t i = r[0][0]; i <= r[0][1]; ++i) fn(cell_index(i, j, k), i, j, k);
+}
+
+FrontBins::CellBox FrontBins::cell_box(const Box& box, std::int64_t i, std::int64_t j,
+                                       std::int64_t k) const {
+  const std::int64_t ijk[3] = {i, j, k};
+  CellBox out;
+  for (int a = 0; a < 3; ++a) {
+    const double low = origin_[a] + static_cast<double>(ijk[a]) * cell_;
+    // Half a unit of slack each way covers the rounding of this arithmetic.
+    const double lo = std::floor((box.lo[a] - low) / cell_ * 255.0 - 0.5);
+    const double hi = std::ceil((box.hi[a] - low) / cell_ * 255.0 + 0.5);
+    out[a][0] = static_cast<std::uint8_t>(std::clamp(lo, 0.0, 255.0));  // NaN-free: boxes
+    out[a][1] = static_cast<std::uint8_t>(std::clamp(hi, 0.0, 255.0));  // hold finite points
+  }
+  return out;
 }
 
 void FrontBins::erase_from(std::vector<Index>& cell, Index item) {
@@ -63,34 +77,15 @@ void FrontBins::erase_point(Index p, const Point& x) {
              p);
 }
 
-namespace {
-
-// x rounded to a float no larger (down) or no smaller (up) than x.
-float float_down(double x) {
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity())
-                                    : f;
-}
-float float_up(double x) {
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity())
-                                    : f;
-}
-
-}  // namespace
-
 void FrontBins::insert_face(Index f, const Box& box) {
-  FaceEntry e;
-  for (int a = 0; a < 3; ++a) {
-    e.lo[a] = float_down(box.lo[a]);
-    e.hi[a] = float_up(box.hi[a]);
-  }
-  e.face = f;
-  for_each_cell(cells_of(box), [&](std::int64_t c) { face_cells_[c].push_back(e); });
+  for_each_cell(cells_of(box), [&](std::int64_t c, std::int64_t i, std::int64_t j, std::int64_t k) {
+    const CellBox q = cell_box(box, i, j, k);
+    face_cells_[c].push_back({f, {q[0][0], q[1][0], q[2][0]}, {q[0][1], q[1][1], q[2][1]}});
+  });
 }
 
 void FrontBins::erase_face(Index f, const Box& box) {
-  for_each_cell(cells_of(box), [&](std::int64_t c) {
+  for_each_cell(cells_of(box), [&](std::int64_t c, std::int64_t, std::int64_t, std::int64_t) {
     std::vector<FaceEntry>& cell = face_cells_[c];
     auto it = std::find_if(cell.begin(), cell.end(), [f](const FaceEntry& e) { return e.face == f; });
     if (it != cell.end()) {
@@ -101,7 +96,7 @@ void FrontBins::erase_face(Index f, const Box& box) {
 }
 
 void FrontBins::points_near(const Box& box, std::vector<Index>& out) const {
-  for_each_cell(cells_of(box), [&](std::int64_t c) {
+  for_each_cell(cells_of(box), [&](std::int64_t c, std::int64_t, std::int64_t, std::int64_t) {
     out.insert(out.end(), point_cells_[c].begin(), point_cells_[c].end());
   });
 }
@@ -111,10 +106,13 @@ void FrontBins::faces_near(const Box& box, std::vector<Index>& out) const {
     std::fill(mark_.begin(), mark_.end(), 0);
     epoch_ = 1;
   }
-  for_each_cell(cells_of(box), [&](std::int64_t c) {
-    for (const FaceEntry& e : face_cells_[c]) {
-      if (e.lo[0] > box.hi[0] || e.hi[0] < box.lo[0] || e.lo[1] > box.hi[1] ||
-          e.hi[1] < box.lo[1] || e.lo[2] > box.hi[2] || e.hi[2] < box.lo[2])
+  for_each_cell(cells_of(box), [&](std::int64_t c, std::int64_t i, std::int64_t j, std::int64_t k) {
+    const std::vector<FaceEntry>& cell = face_cells_[c];
+    if (cell.empty()) return;
+    const CellBox q = cell_box(box, i, j, k);
+    for (const FaceEntry& e : cell) {
+      if (e.lo[0] > q[0][1] || e.hi[0] < q[0][0] || e.lo[1] > q[1][1] || e.hi[1] < q[1][0] ||
+          e.lo[2] > q[2][1] || e.hi[2] < q[2][0])
         continue;
       const Index f = e.face;
       if (mark_.size() <= static_cast<std::size_t>(f)) mark_.resize(f + 1, 0);

@@ -5,8 +5,9 @@
 // O(N log N) overall. The bins are a dense uniform grid over the front's bounding box; a point
 // sits in the one cell containing it, a face in every cell its bounding box overlaps, so a box
 // query finds every face whose bounding box meets the query box (never a false negative). Each cell
-// keeps its faces' boxes beside their ids (in float, rounded outward), so a face query filters by
-// box overlap while it walks the cell's memory in order and returns few faces that miss the box.
+// keeps, beside each face id, the part of the face's box inside the cell in 1/255ths of the cell
+// (rounded outward, 6 bytes), so a face query filters by box overlap while it walks the cell's
+// memory in order and returns few faces that miss the box.
 #pragma once
 
 #include <array>
@@ -41,8 +42,8 @@ class FrontBins {
   // `box`; callers test exact containment), each once, in an order fixed by the history of
   // insertions and removals (deterministic, not sorted).
   void points_near(const Box& box, std::vector<Index>& out) const;
-  // Appends to `out` every face whose bounding box (rounded outward to float) overlaps `box`,
-  // each once, in a deterministic order (not sorted).
+  // Appends to `out` every face whose bounding box overlaps `box` (and a few whose box misses it
+  // by less than 1/255 of a cell), each once, in a deterministic order (not sorted).
   void faces_near(const Box& box, std::vector<Index>& out) const;
 
   double cell_size() const { return cell_; }
@@ -54,6 +55,7 @@ class FrontBins {
   std::int64_t cell_index(std::int64_t i, std::int64_t j, std::int64_t k) const {
     return (k * dims_[1] + j) * dims_[0] + i;
   }
+  // Calls fn(cell index, i, j, k) for each cell of the range.
   template <typename Fn>
   void for_each_cell(const CellRange& r, Fn&& fn) const;
   static void erase_from(std::vector<Index>& cell, Index item);
@@ -62,11 +64,14 @@ class FrontBins {
   double cell_ = 1.0;
   std::array<std::int64_t, 3> dims_{1, 1, 1};
   std::vector<std::vector<Index>> point_cells_;
-  // A face's entry in a cell: its id and its bounding box, rounded outward to float.
+  // A face's entry in a cell: its id and the part of its bounding box inside the cell, in units
+  // of 1/255 of the cell from the cell's low corner, rounded outward.
   struct FaceEntry {
-    std::array<float, 3> lo, hi;
     Index face;
+    std::array<std::uint8_t, 3> lo, hi;
   };
+  using CellBox = std::array<std::array<std::uint8_t, 2>, 3>;  // [axis][lo, hi]
+  CellBox cell_box(const Box& box, std::int64_t i, std::int64_t j, std::int64_t k) const;
   std::vector<std::vector<FaceEntry>> face_cells_;
   // Query scratch for faces_near: face f was listed in this query when mark_[f] == epoch_.
   mutable std::vector<std::uint32_t> mark_;

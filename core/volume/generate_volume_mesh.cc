@@ -255,28 +255,12 @@ Mesh compact_result(const MesherState& s, const Mesh& input) {
   return out;
 }
 
-}  // namespace
-
-absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const VolumeParams& params,
-                                                  Progress& progress) {
-  VolumeResult result;
-  StageClock clock(result.timings);
-  if (!params.spec) {
-    if (!(params.size > 0) || !std::isfinite(params.size))
-      return absl::InvalidArgumentError(absl::StrFormat("size must be > 0, got %g", params.size));
-    if (!(params.growth >= 1.0) || !std::isfinite(params.growth))
-      return absl::InvalidArgumentError(
-          absl::StrFormat("growth must be >= 1, got %g", params.growth));
-  }
-  if (absl::Status st = check_face_environments(front, params.face_environments); !st.ok())
-    return st;
-  if (absl::Status st = validate_front(front); !st.ok()) return st;
-  absl::StatusOr<std::unique_ptr<SizeField>> size_field = make_size_field(params, front);
-  if (!size_field.ok()) return size_field.status();
-  const double growth = params.spec ? params.spec->growth : params.growth;
-  clock.lap("validate");
-
-  MesherState s(front, growth, **size_field, padded_bounds(front.points),
+// F1–F11: the front loop itself. Returns the compacted mesh; the mesher's state (front, bins,
+// incidence lists) is freed on return, before the optimiser builds its own structures.
+absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params,
+                                   const SizeField& size_field, double growth, StageClock& clock,
+                                   Progress& progress) {
+  MesherState s(front, growth, size_field, padded_bounds(front.points),
                 mean_boundary_edge(front));
   const double max_size = params.spec ? params.spec->max_size : params.size;
   const double h = std::min(max_size, mean_boundary_edge(front));
@@ -310,8 +294,35 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
         "the front queue ran empty with %d faces left on the front", s.front.size()));
   clock.lap("front");
 
-  result.mesh = compact_result(s, front);
+  Mesh mesh = compact_result(s, front);
   clock.lap("compact");
+  return mesh;
+}
+
+}  // namespace
+
+absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const VolumeParams& params,
+                                                  Progress& progress) {
+  VolumeResult result;
+  StageClock clock(result.timings);
+  if (!params.spec) {
+    if (!(params.size > 0) || !std::isfinite(params.size))
+      return absl::InvalidArgumentError(absl::StrFormat("size must be > 0, got %g", params.size));
+    if (!(params.growth >= 1.0) || !std::isfinite(params.growth))
+      return absl::InvalidArgumentError(
+          absl::StrFormat("growth must be >= 1, got %g", params.growth));
+  }
+  if (absl::Status st = check_face_environments(front, params.face_environments); !st.ok())
+    return st;
+  if (absl::Status st = validate_front(front); !st.ok()) return st;
+  absl::StatusOr<std::unique_ptr<SizeField>> size_field = make_size_field(params, front);
+  if (!size_field.ok()) return size_field.status();
+  const double growth = params.spec ? params.spec->growth : params.growth;
+  clock.lap("validate");
+
+  absl::StatusOr<Mesh> mesh = advance_front(front, params, **size_field, growth, clock, progress);
+  if (!mesh.ok()) return mesh.status();
+  result.mesh = *std::move(mesh);
   progress.report("front", 1.0);
   if (params.optimise) {
     absl::StatusOr<OptimiseStats> stats =
