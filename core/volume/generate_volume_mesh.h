@@ -25,6 +25,7 @@ struct VolumeParams {
   // Improve the worst elements after the front closes (flips and smoothing of interior points,
   // core/quality/optimise.h). The boundary is never changed.
   bool optimise = true;
+  std::vector<std::int32_t> face_environments;  // LFACR per input triangle (paper §2); empty = none
 };
 
 struct StageTiming {
