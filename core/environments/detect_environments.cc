@@ -224,14 +224,11 @@ std::vector<Index> group_sides(const Mesh& front, const FaceFrames& frames,
   return side;
 }
 
-// Step 3: grows the sides by up to `rings` rings of faces across non-fold edges. In each ring,
-// an unmarked face joins a side when its marked edge neighbours that do not fold against it all
-// belong to that one side (faces between two sides stay unmarked). Rings are computed from the
-// previous ring's state only, so the order of faces does not matter.
-void grow_sides(const Mesh& front, const FaceFrames& frames, int rings, double fold_angle_deg,
-                std::vector<Index>& side) {
-  const double fold_cosine = std::cos(fold_angle_deg * std::numbers::pi / 180.0);
-  // Edge neighbours: the faces of each edge, grouped by sorting (edge key, face).
+// Pairs (f, g), both orders, of faces sharing an edge whose normals do not fold (the angle
+// between them is at most the fold angle), sorted.
+std::vector<std::pair<Index, Index>> non_fold_edge_neighbours(const Mesh& front,
+                                                              const FaceFrames& frames,
+                                                              double fold_cosine) {
   struct EdgeUse {
     Index a, b, face;
     bool operator<(const EdgeUse& o) const {
@@ -248,7 +245,7 @@ void grow_sides(const Mesh& front, const FaceFrames& frames, int rings, double f
     }
   }
   std::sort(uses.begin(), uses.end());
-  std::vector<std::pair<Index, Index>> neighbours;  // (f, g) for faces sharing an edge, no fold
+  std::vector<std::pair<Index, Index>> neighbours;
   for (std::size_t first = 0; first < uses.size();) {
     std::size_t last = first + 1;
     while (last < uses.size() && uses[last].a == uses[first].a && uses[last].b == uses[first].b) {
@@ -265,31 +262,50 @@ void grow_sides(const Mesh& front, const FaceFrames& frames, int rings, double f
     first = last;
   }
   std::sort(neighbours.begin(), neighbours.end());
-  for (int ring = 0; ring < rings; ++ring) {
-    std::vector<Index> next = side;
-    bool grew = false;
-    for (std::size_t first = 0; first < neighbours.size();) {
-      const Index f = neighbours[first].first;
-      std::size_t last = first;
-      Index joined = kInvalidIndex;
-      bool ambiguous = false;
-      for (; last < neighbours.size() && neighbours[last].first == f; ++last) {
-        const Index s = side[neighbours[last].second];
-        if (s == kInvalidIndex) continue;
-        if (joined == kInvalidIndex) {
-          joined = s;
-        } else if (joined != s) {
-          ambiguous = true;
-        }
+  return neighbours;
+}
+
+// One ring of growth: the sides after unmarked faces whose marked neighbours all lie on one
+// side joined it. Returns false when no face joined.
+bool grow_one_ring(const std::vector<std::pair<Index, Index>>& neighbours,
+                   std::vector<Index>& side) {
+  std::vector<Index> next = side;
+  bool grew = false;
+  for (std::size_t first = 0; first < neighbours.size();) {
+    const Index f = neighbours[first].first;
+    Index joined = kInvalidIndex;
+    bool ambiguous = false;
+    std::size_t last = first;
+    for (; last < neighbours.size() && neighbours[last].first == f; ++last) {
+      const Index s = side[neighbours[last].second];
+      if (s == kInvalidIndex) continue;
+      if (joined == kInvalidIndex) {
+        joined = s;
+      } else if (joined != s) {
+        ambiguous = true;
       }
-      if (side[f] == kInvalidIndex && joined != kInvalidIndex && !ambiguous) {
-        next[f] = joined;
-        grew = true;
-      }
-      first = last;
     }
-    side = std::move(next);
-    if (!grew) break;
+    if (side[f] == kInvalidIndex && joined != kInvalidIndex && !ambiguous) {
+      next[f] = joined;
+      grew = true;
+    }
+    first = last;
+  }
+  side = std::move(next);
+  return grew;
+}
+
+// Step 3: grows the sides by up to `rings` rings of faces across non-fold edges. In each ring,
+// an unmarked face joins a side when its marked edge neighbours that do not fold against it all
+// belong to that one side (faces between two sides stay unmarked). Rings are computed from the
+// previous ring's state only, so the order of faces does not matter.
+void grow_sides(const Mesh& front, const FaceFrames& frames, int rings, double fold_angle_deg,
+                std::vector<Index>& side) {
+  if (rings == 0) return;
+  const std::vector<std::pair<Index, Index>> neighbours = non_fold_edge_neighbours(
+      front, frames, std::cos(fold_angle_deg * std::numbers::pi / 180.0));
+  for (int ring = 0; ring < rings; ++ring) {
+    if (!grow_one_ring(neighbours, side)) break;
   }
 }
 

@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -177,6 +178,44 @@ TEST(ThinExamples, CrossingPlatesAreAValidFrontWithEnvironmentsAndAutoFindsThem)
   EXPECT_TRUE(report.valid()) << report.to_string();
   EXPECT_FALSE(validate_surface(plates).valid());  // the plates cross each other
   expect_auto_matches_tags(plates, "crossing plates");
+}
+
+TEST(ThinExamples, AutoPartitionDoesNotDependOnTriangleOrder) {
+  // Reversed triangle order: the same faces group together; only the numbering follows the new
+  // smallest indices (the main's side B now comes first).
+  const Mesh sails = sails_surface();
+  Mesh reversed = sails;
+  std::reverse(reversed.triangles.begin(), reversed.triangles.end());
+  std::reverse(reversed.triangle_tags.begin(), reversed.triangle_tags.end());
+  absl::StatusOr<DetectedEnvironments> forward = detect_environments(sails, {}, no_progress());
+  absl::StatusOr<DetectedEnvironments> backward = detect_environments(reversed, {}, no_progress());
+  ASSERT_TRUE(forward.ok() && backward.ok());
+  const std::size_t m = sails.triangles.size();
+  std::map<std::int32_t, std::int32_t> renumber;
+  for (std::size_t t = 0; t < m; ++t) {
+    const std::int32_t a = forward->environments.face[t];
+    const std::int32_t b = backward->environments.face[m - 1 - t];
+    ASSERT_EQ(a == 0, b == 0) << "triangle " << t;
+    if (a == 0) continue;
+    const auto [it, inserted] = renumber.try_emplace(a, b);
+    ASSERT_EQ(it->second, b) << "triangle " << t;
+  }
+  EXPECT_EQ(renumber.size(), 4u);
+  EXPECT_EQ(renumber.at(kMainSideB), 1);  // the first environment of the reversed order
+}
+
+TEST(ThinExamples, GrowthMarksTheSailRimFaces) {
+  // Faces on a sail's rim row have no thin partner of their own (their close faces on the other
+  // side share their rim points); growth (step 3) adds them to their side.
+  const Mesh sails = sails_surface();
+  AutoEnvironmentParams no_growth;
+  no_growth.grow_rings = 0;
+  absl::StatusOr<DetectedEnvironments> seeds = detect_environments(sails, no_growth, no_progress());
+  absl::StatusOr<DetectedEnvironments> grown = detect_environments(sails, {}, no_progress());
+  ASSERT_TRUE(seeds.ok() && grown.ok());
+  EXPECT_LT(seeds->stats.marked_faces, 864);
+  EXPECT_EQ(grown->stats.marked_faces, 864);  // every sail face, no box face
+  EXPECT_EQ(seeds->stats.crossing_pairs, grown->stats.crossing_pairs);
 }
 
 TEST(ThinExamples, DomeComponentsShareNoPoint) {
