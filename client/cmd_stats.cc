@@ -1,11 +1,24 @@
-// afmesh stats MESH [--json]: counts, validity and quality of a mesh file.
+// afmesh stats MESH [--json] [--envs tags|none]: counts, validity and quality of a mesh file.
+//
+// Crossing environments (paper §2): triangle tags are read as environment ids (0 = none).
+//  default      when some triangle tag is positive, a volume mesh also gets the environment_gap
+//               check (no tet joins two environments across a thin gap), as a warning: the tags
+//               may be patch ids rather than environments.
+//  --envs tags  the tags are environments: environment_gap failures make the mesh invalid, and
+//               a surface is checked with the relaxed self-intersection rule (faces of two
+//               different positive environments may cross). Negative tags are bad input.
+//  --envs none  no environment checks.
+#include <cstdint>
 #include <iostream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "client/commands.h"
 #include "client/json_writer.h"
+#include "core/environments/environments.h"
 #include "core/io/mesh_io.h"
 #include "core/quality/measures.h"
 #include "core/quality/validate.h"
@@ -16,6 +29,7 @@ namespace {
 struct StatsOptions {
   std::string path;
   bool json = false;
+  std::string envs;  // "", "tags" or "none"
 };
 
 const char* outcome_name(CheckOutcome o) {
@@ -152,6 +166,40 @@ void print_json(const StatsOptions& o, const Mesh& m, const QualitySummary& q,
   std::cout << "\n";
 }
 
+// The validation of `mesh` with the environment checks `o.envs` asks for. `env` holds the
+// arrays the params point to. Returns false (with a message on stderr) when --envs tags cannot
+// read the tags.
+bool validate(const StatsOptions& o, const Mesh& mesh, ValidationReport& report,
+              std::vector<std::int32_t>& env, ReadReport& notes) {
+  ValidationParams params;
+  const bool strict_tags = o.envs == "tags";
+  if (strict_tags || (o.envs.empty() && has_positive_tags(mesh))) {
+    absl::StatusOr<FrontEnvironments> read = environments_from_tags(mesh);
+    if (read.ok()) {
+      if (mesh.tets.empty()) {
+        if (strict_tags) {
+          env = std::move(read->face);
+          params.face_environments = env;
+        }
+      } else {
+        env = std::move(read->point);
+        params.point_environments = env;
+        params.environment_gap_warns_only = !strict_tags;
+      }
+    } else if (strict_tags) {
+      std::cerr << "afmesh stats: " << o.path << ": --envs tags: " << read.status().message()
+                << "\n";
+      return false;
+    } else {
+      notes.notes.push_back(absl::StrCat("triangle tags not read as environments: ",
+                                         read.status().message()));
+    }
+  }
+  // A mesh with tets is checked as a volume mesh, one without as a closed surface.
+  report = mesh.tets.empty() ? validate_surface(mesh, params) : validate_volume_mesh(mesh, nullptr, params);
+  return true;
+}
+
 int run_stats(const StatsOptions& o) {
   ReadReport notes;
   absl::StatusOr<Mesh> mesh = read_mesh(o.path, &notes);
@@ -159,9 +207,9 @@ int run_stats(const StatsOptions& o) {
     std::cerr << "afmesh stats: " << mesh.status().message() << "\n";
     return kExitBadInput;
   }
-  // A mesh with tets is checked as a volume mesh, one without as a closed surface.
-  const ValidationReport report =
-      mesh->tets.empty() ? validate_surface(*mesh) : validate_volume_mesh(*mesh);
+  ValidationReport report;
+  std::vector<std::int32_t> env;
+  if (!validate(o, *mesh, report, env, notes)) return kExitBadInput;
   absl::StatusOr<QualitySummary> quality = summarize_quality(*mesh);
   if (!quality.ok()) {  // indices out of range: the validation says which
     quality = QualitySummary{};
@@ -181,6 +229,11 @@ void add_stats_command(CLI::App& app, Action& action) {
       "stats", "Counts, validity and quality histograms of a mesh (exit 4 when invalid)");
   cmd->add_option("mesh", opts->path, "Mesh file (.msh .mesh .stl .obj)")->required();
   cmd->add_flag("--json", opts->json, "Print JSON for scripts");
+  cmd->add_option("--envs", opts->envs,
+                  "triangle tags as crossing environments: tags (relaxed self-intersection "
+                  "rule, tets across a gap fail) or none (default: tets across a gap warn when "
+                  "tags are present)")
+      ->check(CLI::IsMember({"tags", "none"}));
   cmd->callback([opts, &action] { action = [opts] { return run_stats(*opts); }; });
 }
 

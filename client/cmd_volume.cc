@@ -1,8 +1,11 @@
-// afmesh volume IN -o OUT [--size H] [--growth C] [--spec SPEC.json] [--server ADDR] [--json]
-//                         [--quiet] [--timeout SEC]
+// afmesh volume IN -o OUT [--size H] [--growth C] [--spec SPEC.json] [--envs auto|tags|none]
+//                         [--server ADDR] [--json] [--quiet] [--timeout SEC]
 // Fills the closed front in IN with tetrahedra through the MeshVolume call and writes OUT.
 // --spec sends a whole size specification (sources, background grid; design.md, "Size
 // specification"); --size and --growth, when given, override its maxSize and growth.
+// --envs marks crossing environments (paper §2) so that the two sides of thin structures may
+// nearly touch or cross: `tags` reads them from the triangle tags (Medit references, Gmsh
+// physical tags; 0 = none), `auto` lets the server find them; default none.
 // Without --server a private afmesh-server runs for the command on a local socket: the same
 // code path as a remote server. Formats follow the file extensions (core/io/mesh_io.h).
 #include <cmath>
@@ -15,6 +18,7 @@
 
 #include "absl/strings/str_format.h"
 #include "client/commands.h"
+#include "core/environments/environments.h"
 #include "client/interrupt_watcher.h"
 #include "client/progress_display.h"
 #include "client/server_launcher.h"
@@ -35,6 +39,7 @@ struct VolumeCommandOptions {
   bool size_given = false;    // --size was on the command line
   bool growth_given = false;  // --growth was on the command line
   std::string spec_path;      // empty: a uniform size, no sources
+  std::string envs = "none";  // auto, tags or none
   std::string server;  // empty: start a private server
   bool json = false;
   bool quiet = false;
@@ -212,6 +217,16 @@ int run_volume(const VolumeCommandOptions& options) {
     return kExitBadInput;
   }
 
+  if (options.envs == "tags" && !has_positive_tags(*front)) {
+    progress.finish();
+    print_error(absl::InvalidArgumentError(absl::StrFormat(
+        "--envs tags: none of the %d triangles of %s carries a positive tag (Medit triangle "
+        "reference or Gmsh physical tag), so there are no crossing environments to read; tag "
+        "each side of a thin region with an id > 0, or use --envs auto",
+        front->triangles.size(), options.input)));
+    return kExitBadInput;
+  }
+
   std::optional<SizeSpec> spec;
   if (!options.spec_path.empty()) {
     absl::StatusOr<SizeSpec> read = spec_for(options, *front);
@@ -242,6 +257,9 @@ int run_volume(const VolumeCommandOptions& options) {
       .size = options.size > 0 ? options.size : mean_edge_length(*front),
       .growth = options.growth,
       .spec = std::move(spec),
+      .environments = options.envs == "tags"   ? EnvironmentSource::kTags
+                      : options.envs == "auto" ? EnvironmentSource::kAuto
+                                               : EnvironmentSource::kNone,
       .timeout_seconds = options.timeout_seconds,
       .canceller = canceller.get()};
   absl::StatusOr<VolumeCallResult> result = call_mesh_volume(
@@ -307,6 +325,12 @@ void add_volume_command(CLI::App& app, Action& action) {
   command->add_option("--spec", options->spec_path,
                       "size specification (JSON, design.md); --size and --growth override its "
                       "maxSize and growth");
+  command
+      ->add_option("--envs", options->envs,
+                   "crossing environments for thin or crossing surfaces (paper §2): tags "
+                   "(environment id = triangle tag), auto (found by the server) or none")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "tags", "none"}));
   command->add_option("--server", options->server,
                       "server address (host:port or unix:PATH); default: a private server");
   command->add_flag("--json", options->json, "print the summary as JSON on stdout");

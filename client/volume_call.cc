@@ -30,6 +30,17 @@ Request header_request(const Mesh& front, const VolumeCallOptions& options) {
     header.mutable_options()->mutable_size()->set_max_size(options.size);
     header.mutable_options()->mutable_size()->set_growth(options.growth);
   }
+  switch (options.environments) {
+    case EnvironmentSource::kNone:
+      header.mutable_options()->set_environments(v1::ENVIRONMENT_MODE_NONE);
+      break;
+    case EnvironmentSource::kTags:
+      header.mutable_options()->set_environments(v1::ENVIRONMENT_MODE_TAGS);
+      break;
+    case EnvironmentSource::kAuto:
+      header.mutable_options()->set_environments(v1::ENVIRONMENT_MODE_AUTO);
+      break;
+  }
   header.set_point_count(front.points.size());
   header.set_triangle_count(front.triangles.size());
   return request;

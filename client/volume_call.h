@@ -40,12 +40,17 @@ class CallCanceller {
   bool cancelled_ ABSL_GUARDED_BY(mu_) = false;
 };
 
+// Where the front's crossing environments come from (VolumeOptions.environments, paper §2).
+enum class EnvironmentSource { kNone, kTags, kAuto };
+
 struct VolumeCallOptions {
   double size = 0.0;    // SizeSpec.max_size (> 0)
   double growth = 1.0;  // SizeSpec.growth (>= 1)
   // When set, the whole size specification is sent (its max_size and growth replace `size` and
   // `growth`).
   std::optional<SizeSpec> spec;
+  // Crossing environments: none, the triangle tags, or found by the server.
+  EnvironmentSource environments = EnvironmentSource::kNone;
   // Deadline of the whole call in seconds; 0 means none.
   double timeout_seconds = 0.0;
   // When set, cancels the call on request.

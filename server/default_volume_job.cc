@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "core/environments/environments.h"
 #include "core/quality/validate.h"
 #include "core/volume/generate_volume_mesh.h"
 
@@ -25,9 +26,18 @@ absl::Status stop_if_cancelled(const Progress& progress) {
 }
 
 // The validator's verdict: INTERNAL with the full report when a check failed, else the
-// summaries of the checks that warned.
-absl::StatusOr<VolumeValidation> validate_result(const Mesh& mesh, const Mesh& front) {
-  const ValidationReport report = validate_volume_mesh(mesh, &front);
+// summaries of the checks that warned. With crossing environments, the environment_gap check
+// too: no tet may join two environments across a thin gap (paper §2).
+absl::StatusOr<VolumeValidation> validate_result(const Mesh& mesh, const Mesh& front,
+                                                 const VolumeParams& params) {
+  ValidationParams validation_params;
+  std::vector<std::int32_t> point_environments;
+  if (!params.face_environments.empty()) {
+    point_environments =
+        afmesh::point_environments(front.points.size(), front.triangles, params.face_environments);
+    validation_params.point_environments = point_environments;
+  }
+  const ValidationReport report = validate_volume_mesh(mesh, &front, validation_params);
   if (!report.valid()) {
     return absl::InternalError(
         absl::StrCat("the volume mesh failed validation:\n", report.to_string()));
@@ -73,7 +83,7 @@ absl::StatusOr<VolumeJobOutput> run_volume_job(const Mesh& front, const VolumePa
   if (absl::Status status = stop_if_cancelled(progress); !status.ok()) return status;
   progress.report("validation", -1.0);
   start = Clock::now();
-  absl::StatusOr<VolumeValidation> validation = validate_result(output.volume.mesh, front);
+  absl::StatusOr<VolumeValidation> validation = validate_result(output.volume.mesh, front, params);
   if (!validation.ok()) return validation.status();
   output.validation = *std::move(validation);
   add_timing(timings, "validation", start);

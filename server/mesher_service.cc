@@ -18,6 +18,7 @@
 #include "absl/strings/str_format.h"
 #include "afmesh/v1/mesher.grpc.pb.h"
 #include "grpcpp/grpcpp.h"
+#include "server/volume_environments.h"
 #include "server/volume_output.h"
 
 namespace afmesh::server {
@@ -215,23 +216,49 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
     WorkerPool::Slot slot = std::move(*slot_);
     slot_.reset();
     pool_.run(std::move(slot), [this, front = input_.take_front(), params = input_.params(),
-                                queued_at = Clock::now()]() {
-      run_job(front, params, queued_at);
+                                mode = input_.environment_mode(),
+                                queued_at = Clock::now()]() mutable {
+      run_job(front, params, mode, queued_at);
       release();
     });
   }
 
-  // On a worker thread.
-  void run_job(const Mesh& front, const VolumeParams& params, Clock::time_point queued_at) {
+  // On a worker thread: the crossing environments when asked for (paper §2), then the job.
+  void run_job(const Mesh& front, VolumeParams& params, v1::EnvironmentMode mode,
+               Clock::time_point queued_at) {
     std::vector<StageTiming> timings = {{"receive", receive_seconds_},
                                         {"queue", seconds_since(queued_at)}};
-    absl::StatusOr<VolumeJobOutput> output =
-        stop_requested() ? absl::StatusOr<VolumeJobOutput>(stop_status_absl())
-                         : run_guarded(job_, front, params, progress_);
+    std::vector<std::string> notes;
+    absl::StatusOr<VolumeJobOutput> output = stop_status_absl();
+    if (!stop_requested()) {
+      const Clock::time_point start = Clock::now();
+      const absl::Status status = run_environments_guarded(mode, front, params, notes);
+      if (mode != v1::ENVIRONMENT_MODE_NONE) {
+        timings.push_back({"environments", seconds_since(start)});
+      }
+      output = !status.ok()       ? absl::StatusOr<VolumeJobOutput>(status)
+               : stop_requested() ? absl::StatusOr<VolumeJobOutput>(stop_status_absl())
+                                  : run_guarded(job_, front, params, progress_);
+    }
     if (output.ok()) {
       if (absl::Status status = check_job_output(*output); !status.ok()) output = status;
     }
+    if (output.ok()) {
+      output->warnings.insert(output->warnings.begin(), notes.begin(), notes.end());
+    }
     complete_job(std::move(output), std::move(timings));
+  }
+
+  // assign_environments, turning exceptions into statuses like run_guarded.
+  absl::Status run_environments_guarded(v1::EnvironmentMode mode, const Mesh& front,
+                                        VolumeParams& params, std::vector<std::string>& notes) {
+    try {
+      return assign_environments(mode, front, params, progress_, notes);
+    } catch (const std::bad_alloc&) {
+      return absl::ResourceExhaustedError("the server ran out of memory marking environments");
+    } catch (const std::exception& e) {
+      return absl::InternalError(absl::StrCat("marking environments failed: ", e.what()));
+    }
   }
 
   // Records the job's outcome: its mesh streams unless the call was stopped meanwhile.

@@ -85,6 +85,14 @@ absl::Status VolumeInput::add_header(const v1::MeshVolumeHeader& header) {
                         "--max-triangles");
     }
   }
+  const v1::EnvironmentMode mode = header.options().environments();
+  if (!v1::EnvironmentMode_IsValid(mode)) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "options.environments has the unknown value %d (known: ENVIRONMENT_MODE_NONE, "
+        "ENVIRONMENT_MODE_TAGS, ENVIRONMENT_MODE_AUTO)",
+        static_cast<int>(mode)));
+  }
+  environment_mode_ = mode;
   return params_from_options(header.options(), params_);
 }
 
@@ -183,7 +191,34 @@ absl::Status VolumeInput::finish() const {
         absl::StrFormat("the header declared %d triangles but %d were sent", *declared_triangles_,
                         front_.triangles.size()));
   }
-  return check_indices();
+  if (absl::Status status = check_indices(); !status.ok()) return status;
+  return check_environment_tags();
+}
+
+// With environments from tags, the tags must be environment ids: none negative, some positive.
+// Cheap, so checked here rather than on a worker.
+absl::Status VolumeInput::check_environment_tags() const {
+  if (environment_mode_ != v1::ENVIRONMENT_MODE_TAGS) return absl::OkStatus();
+  bool any_positive = false;
+  for (std::size_t t = 0; t < front_.triangle_tags.size(); ++t) {
+    const Index tag = front_.triangle_tags[t];
+    if (tag < 0) {
+      return absl::InvalidArgumentError(absl::StrFormat(
+          "triangle %d has tag %d, but with options.environments = ENVIRONMENT_MODE_TAGS tags "
+          "are crossing-environment ids and must be >= 0 (0 = none)",
+          t, tag));
+    }
+    any_positive = any_positive || tag > 0;
+  }
+  if (!any_positive) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "options.environments is ENVIRONMENT_MODE_TAGS (--envs tags), but none of the %d "
+        "triangles carries a positive tag: there are no environments to read; tag the "
+        "triangles on each side of a thin region with an environment id > 0, or use "
+        "ENVIRONMENT_MODE_AUTO (--envs auto)",
+        front_.triangles.size()));
+  }
+  return absl::OkStatus();
 }
 
 // Indices are checked at the end since points and triangles may arrive interleaved.

@@ -31,10 +31,13 @@ class VolumeInput {
   absl::Status add(const v1::MeshVolumeRequest& request);
 
   // Checks the whole input at half-close: a header was sent, points and triangles are present,
-  // counts match the header's, every index is in range.
+  // counts match the header's, every index is in range; with ENVIRONMENT_MODE_TAGS, no tag is
+  // negative and some tag is positive.
   absl::Status finish() const;
 
   const VolumeParams& params() const { return params_; }
+  // options.environments of the header (crossing environments, paper §2).
+  v1::EnvironmentMode environment_mode() const { return environment_mode_; }
   // The assembled front (N×3 points, M×3 triangles, M tags); leaves this input empty.
   Mesh take_front() { return std::move(front_); }
 
@@ -43,6 +46,7 @@ class VolumeInput {
   absl::Status add_points(const v1::PointSlice& slice);
   absl::Status add_triangles(const v1::TriangleSlice& slice);
   absl::Status check_indices() const;
+  absl::Status check_environment_tags() const;
 
   InputLimits limits_;
   std::int64_t message_count_ = 0;  // messages taken so far, for error messages
@@ -50,6 +54,7 @@ class VolumeInput {
   std::optional<std::uint64_t> declared_points_;
   std::optional<std::uint64_t> declared_triangles_;
   VolumeParams params_;
+  v1::EnvironmentMode environment_mode_ = v1::ENVIRONMENT_MODE_NONE;
   Mesh front_;
 };
 

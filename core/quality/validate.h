@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -73,6 +74,23 @@ struct ValidationParams {
   // Volume balance: |sum of tet volumes - enclosed volume| must be at most this times the sum
   // of the magnitudes of the terms of both sums.
   double volume_relative_tolerance = 1e-9;
+
+  // Crossing environments (paper §2; core/environments). The spans must outlive the call.
+  //
+  // validate_surface: LFACR, one environment id per triangle (>= 0, 0 = none); empty = none.
+  // When given, the `environments` check validates the array and no_self_intersections
+  // allows intersections between triangles of two DIFFERENT positive environments (the two
+  // sides of a thin structure may cross); intersections within one environment or involving
+  // a triangle of environment 0 are still failures.
+  std::span<const std::int32_t> face_environments{};
+  // validate_volume_mesh: LPOCR, one environment id per point of the mesh (>= -1; -1 = ridge
+  // point shared by environments, 0 = none). It may be shorter than the point array: points
+  // beyond it (the interior points a mesher added after the front's) count as 0. When given,
+  // the `environment_gap` check runs.
+  std::span<const std::int32_t> point_environments{};
+  // Report tets across a gap as warnings instead of failures (for `afmesh stats`, where the
+  // triangle tags read as environments may be patch ids).
+  bool environment_gap_warns_only = false;
 };
 
 // Check names, in report order.
@@ -87,12 +105,14 @@ inline constexpr std::string_view kFaceSharing = "face_sharing";
 inline constexpr std::string_view kBoundarySurface = "boundary_surface";
 inline constexpr std::string_view kBoundaryMatch = "boundary_match";
 inline constexpr std::string_view kVolumeBalance = "volume_balance";
+inline constexpr std::string_view kEnvironmentGap = "environment_gap";  // with point_environments
 // Surfaces.
 inline constexpr std::string_view kNonDegenerate = "non_degenerate";
 inline constexpr std::string_view kClosed = "closed";
 inline constexpr std::string_view kManifoldEdges = "manifold_edges";
 inline constexpr std::string_view kManifoldVertices = "manifold_vertices";
 inline constexpr std::string_view kConsistentOrientation = "consistent_orientation";
+inline constexpr std::string_view kEnvironments = "environments";  // with face_environments
 inline constexpr std::string_view kNoSelfIntersections = "no_self_intersections";
 inline constexpr std::string_view kPositiveEnclosedVolume = "positive_enclosed_volume";
 }  // namespace check
@@ -117,6 +137,13 @@ inline constexpr std::string_view kPositiveEnclosedVolume = "positive_enclosed_v
 //  volume_balance      sum of signed tet volumes equals the volume enclosed by the boundary
 //                      mesh (or, without one, by the tets' boundary faces), computed by the
 //                      divergence theorem with compensated sums, within the relative tolerance.
+//  environment_gap     (only with params.point_environments) no tet joins two different positive
+//                      environments through the gap of a thin structure: among a tet's four
+//                      points, those of positive environment all carry the same id. Ridge points
+//                      (-1) and points of no environment (0) may join any. Findings name the
+//                      tet, its points and the two environments; entries < -1 or an array longer
+//                      than the point array are findings too. Paper §2; design.md, "no tet joins
+//                      the two sides of a thin structure".
 //  unused_points       points that no tet uses: a warning, since such points are harmless to a
 //                      solver but usually a sign of an incomplete mesh.
 // Tets with repeated indices are reported by positive_volumes and left out of the face checks.
@@ -133,8 +160,12 @@ ValidationReport validate_volume_mesh(const Mesh& mesh, const Mesh* boundary = n
 //  manifold_edges            no edge is used by more than two triangles.
 //  manifold_vertices         the triangles around each vertex form a single fan.
 //  consistent_orientation    the two triangles at an edge traverse it in opposite directions.
+//  environments              (only with params.face_environments) one id per triangle, each
+//                            >= 0; the summary counts the environments.
 //  no_self_intersections     no two triangles intersect beyond their shared vertices or edge
-//                            (exact, over the pairs of overlapping boxes of an AABB tree).
+//                            (exact, over the pairs of overlapping boxes of an AABB tree). With
+//                            valid face_environments, pairs of two different positive
+//                            environments are allowed (counted in the summary).
 //  positive_enclosed_volume  when closed, manifold along edges and consistently oriented: the
 //                            enclosed volume is positive, i.e. the normals point outward.
 //  unused_points             points that no triangle uses: a warning.

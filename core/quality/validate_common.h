@@ -70,6 +70,10 @@ bool all_indices_in_range(const std::vector<Triangle>& triangles, std::size_t po
 bool indices_and_coordinates_ok(const std::vector<Point>& points,
                                 const std::vector<Triangle>& triangles);
 
+// environment_gap over mesh.tets with params.point_environments (validate.h). Indices must be in
+// range.
+Check check_environment_gap(const Mesh& mesh, const ValidationParams& params);
+
 // Volume enclosed by oriented triangles (M×3) over `points` (N×3), by the divergence theorem:
 // sum over triangles of (a-o)·((b-o)×(c-o)) / 6, with o the centre of the triangles' bounding
 // box (to keep terms small), summed with compensation. `magnitude` receives the sum of the

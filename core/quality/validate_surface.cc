@@ -1,6 +1,8 @@
 // validate_surface: the checks of a closed triangle surface, in the order validate.h lists them.
 #include <algorithm>
 #include <cstdint>
+#include <span>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -142,8 +144,53 @@ Check check_consistent_orientation(const TriangleTopology& topology, const Prope
                       plural(builder.count(), "its", "their")));
 }
 
-// no_self_intersections: exact test of every pair of triangles whose boxes overlap.
+// environments: one environment id per triangle, none negative. Returns the check; `usable`
+// tells whether no_self_intersections may use the ids.
+Check check_environments(const Mesh& surface, const ValidationParams& params, bool& usable) {
+  const std::span<const std::int32_t> env = params.face_environments;
+  CheckBuilder builder(check::kEnvironments, params);
+  if (env.size() != surface.triangles.size()) {
+    builder.add([&] {
+      return Finding{absl::StrFormat("%d face environments given for %d triangles", env.size(),
+                                     surface.triangles.size())};
+    });
+  } else {
+    for (Index t = 0; t < static_cast<Index>(env.size()); ++t) {
+      if (env[t] >= 0) continue;
+      builder.add([&] {
+        return Finding{absl::StrFormat("triangle %d has environment %d: ids must be >= 0 "
+                                       "(0 = none)",
+                                       t, env[t]),
+                       {}, {t}, {}};
+      });
+    }
+  }
+  usable = builder.count() == 0;
+  std::vector<std::int32_t> ids;
+  if (usable) {
+    for (const std::int32_t e : env) {
+      if (e > 0) ids.push_back(e);
+    }
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  }
+  return builder.finish(
+      absl::StrFormat("%d crossing %s over the %d triangles", ids.size(),
+                      plural(ids.size(), "environment", "environments"), env.size()),
+      absl::StrFormat("%d invalid face environment %s", builder.count(),
+                      plural(builder.count(), "entry", "entries")));
+}
+
+// True when an intersection of triangles t and u (surface ids) is allowed: both lie in positive
+// environments and these differ (paper §2: the two sides of a thin structure may cross).
+bool crossing_allowed(std::span<const std::int32_t> env, Index t, Index u) {
+  return !env.empty() && env[t] > 0 && env[u] > 0 && env[t] != env[u];
+}
+
+// no_self_intersections: exact test of every pair of triangles whose boxes overlap. `env` is
+// empty, or valid face environments whose cross-environment intersections are allowed.
 Check check_self_intersections(const Mesh& surface, const ProperTriangles& proper,
+                               std::span<const std::int32_t> env,
                                const ValidationParams& params) {
   std::vector<Box> boxes = triangle_boxes(surface.points, proper.triangles);
   std::int64_t tested = 0;
@@ -156,22 +203,42 @@ Check check_self_intersections(const Mesh& surface, const ProperTriangles& prope
   }
   const AabbTree tree(std::move(boxes));
   std::vector<std::pair<Index, Index>> hits;
+  std::int64_t allowed = 0;
   tree.for_each_overlapping_pair([&](Index i, Index j) {
     if (triangles_intersect_improperly(surface.points, proper.triangles[i], proper.triangles[j])) {
-      hits.emplace_back(proper.ids[i], proper.ids[j]);
+      if (crossing_allowed(env, proper.ids[i], proper.ids[j])) {
+        ++allowed;
+      } else {
+        hits.emplace_back(std::min(proper.ids[i], proper.ids[j]),
+                          std::max(proper.ids[i], proper.ids[j]));
+      }
     }
   });
   std::sort(hits.begin(), hits.end());
   CheckBuilder builder(check::kNoSelfIntersections, params);
   for (const auto& [t, u] : hits) {
     builder.add([&] {
-      return Finding{absl::StrFormat("triangles %d and %d intersect", t, u), {}, {t, u}, {}};
+      if (env.empty()) {
+        return Finding{absl::StrFormat("triangles %d and %d intersect", t, u), {}, {t, u}, {}};
+      }
+      return Finding{absl::StrFormat("triangles %d and %d intersect (environments %d and %d: "
+                                     "only two different positive environments may cross)",
+                                     t, u, env[t], env[u]),
+                     {}, {t, u}, {}};
     });
   }
-  return builder.finish(
-      absl::StrFormat("no two of the %d non-degenerate triangles intersect", tested),
-      absl::StrFormat("%d intersecting triangle %s", builder.count(),
-                      plural(builder.count(), "pair", "pairs")));
+  const std::string allowed_note =
+      env.empty() ? std::string()
+                  : absl::StrFormat("; %d crossing %s of two different environments allowed",
+                                    allowed, plural(allowed, "pair", "pairs"));
+  const std::string clean =
+      env.empty() ? absl::StrFormat("no two of the %d non-degenerate triangles intersect", tested)
+                  : absl::StrFormat("no forbidden intersection among the %d non-degenerate "
+                                    "triangles%s",
+                                    tested, allowed_note);
+  return builder.finish(clean, absl::StrFormat("%d intersecting triangle %s%s", builder.count(),
+                                               plural(builder.count(), "pair", "pairs"),
+                                               allowed_note));
 }
 
 // positive_enclosed_volume: the volume enclosed by the (closed, oriented) surface is positive.
@@ -202,7 +269,13 @@ void add_topology_checks(const Mesh& surface, bool finite, const ProperTriangles
                                topology.nonmanifold_edges.empty() &&
                                topology.misoriented_edges.empty();
   constexpr std::string_view kNeedsFinite = "some point coordinates are not finite";
-  report.checks.push_back(finite ? check_self_intersections(surface, proper, params)
+  std::span<const std::int32_t> env;
+  if (!params.face_environments.empty()) {
+    bool usable = false;
+    report.checks.push_back(check_environments(surface, params, usable));
+    if (usable) env = params.face_environments;
+  }
+  report.checks.push_back(finite ? check_self_intersections(surface, proper, env, params)
                                  : not_run(check::kNoSelfIntersections, kNeedsFinite));
   if (!finite) {
     report.checks.push_back(not_run(check::kPositiveEnclosedVolume, kNeedsFinite));
@@ -225,7 +298,9 @@ ValidationReport validate_surface(const Mesh& surface, const ValidationParams& p
     for (std::string_view name :
          {check::kFiniteCoordinates, check::kNonDegenerate, check::kClosed,
           check::kManifoldEdges, check::kManifoldVertices, check::kConsistentOrientation,
-          check::kNoSelfIntersections, check::kPositiveEnclosedVolume, check::kUnusedPoints}) {
+          check::kEnvironments, check::kNoSelfIntersections, check::kPositiveEnclosedVolume,
+          check::kUnusedPoints}) {
+      if (name == check::kEnvironments && params.face_environments.empty()) continue;
       report.checks.push_back(not_run(name, "the triangles' indices are invalid"));
     }
     return report;

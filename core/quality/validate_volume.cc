@@ -192,7 +192,8 @@ ValidationReport validate_volume_mesh(const Mesh& mesh, const Mesh* boundary,
     for (std::string_view name :
          {check::kFiniteCoordinates, check::kPositiveVolumes, check::kFaceSharing,
           check::kBoundarySurface, check::kBoundaryMatch, check::kVolumeBalance,
-          check::kUnusedPoints}) {
+          check::kEnvironmentGap, check::kUnusedPoints}) {
+      if (name == check::kEnvironmentGap && params.point_environments.empty()) continue;
       report.checks.push_back(not_run(name, "the tets' indices are invalid"));
     }
     return report;
@@ -213,6 +214,9 @@ ValidationReport validate_volume_mesh(const Mesh& mesh, const Mesh* boundary,
                               : not_run(check::kBoundaryMatch, "no boundary mesh given"));
   report.checks.push_back(finite ? check_volume_balance(mesh, boundary_faces, boundary, params)
                                  : not_run(check::kVolumeBalance, kNeedsFinite));
+  if (!params.point_environments.empty()) {
+    report.checks.push_back(check_environment_gap(mesh, params));
+  }
   report.checks.push_back(check_unused_points(mesh.points.size(), mesh.tets, params));
   return report;
 }

@@ -106,5 +106,68 @@ TEST_F(CliFiles, ConvertRefusesToDropTetsIntoStl) {
   EXPECT_FALSE(fs::exists(dir_ / "out.stl"));
 }
 
+// One positive tet (0, 1, 2, 3) with its boundary: face (0, 2, 1) (opposite point 3) tagged
+// 1, face (1, 2, 3) (opposite point 0) tagged 2, the others 0. Point 0 is then on environment 1
+// only, point 3 on environment 2 only, points 1 and 2 on both (-1): the tet joins environments
+// 1 and 2 across the gap.
+Mesh tet_across_a_gap() {
+  Mesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.triangles = {{0, 2, 1}, {1, 2, 3}, {0, 1, 3}, {0, 3, 2}};
+  m.triangle_tags = {1, 2, 0, 0};
+  m.tets = {{0, 1, 2, 3}};
+  m.tet_tags = {0};
+  return m;
+}
+
+TEST_F(CliFiles, StatsReportsTetsAcrossAGapAsAWarningWhenTagsArePresent) {
+  ASSERT_TRUE(write_mesh(tet_across_a_gap(), (dir_ / "gap.mesh").string()).ok());
+  EXPECT_EQ(run("stats " + (dir_ / "gap.mesh").string(), dir_ / "out"), 0);
+  const std::string out = slurp(dir_ / "out");
+  EXPECT_NE(out.find("environment_gap            warning"), std::string::npos) << out;
+  EXPECT_NE(out.find("tet 0 (0,1,2,3) joins environment 1 (point 0) and environment 2 (point 3)"),
+            std::string::npos)
+      << out;
+}
+
+TEST_F(CliFiles, StatsWithEnvsTagsFailsOnTetsAcrossAGap) {
+  ASSERT_TRUE(write_mesh(tet_across_a_gap(), (dir_ / "gap.mesh").string()).ok());
+  EXPECT_EQ(run("stats --envs tags " + (dir_ / "gap.mesh").string(), dir_ / "out"), 4);
+  EXPECT_NE(slurp(dir_ / "out").find("environment_gap            FAILED"), std::string::npos)
+      << slurp(dir_ / "out");
+  EXPECT_EQ(run("stats --envs none " + (dir_ / "gap.mesh").string(), dir_ / "out"), 0);
+  EXPECT_EQ(slurp(dir_ / "out").find("environment_gap"), std::string::npos) << slurp(dir_ / "out");
+}
+
+TEST_F(CliFiles, StatsWithoutTagsHasNoGapCheck) {
+  Mesh m = tet_across_a_gap();
+  m.triangle_tags.assign(4, 0);
+  ASSERT_TRUE(write_mesh(m, (dir_ / "untagged.mesh").string()).ok());
+  EXPECT_EQ(run("stats " + (dir_ / "untagged.mesh").string(), dir_ / "out"), 0);
+  EXPECT_EQ(slurp(dir_ / "out").find("environment_gap"), std::string::npos) << slurp(dir_ / "out");
+}
+
+TEST_F(CliFiles, StatsChecksThinExamplesWithTheRelaxedRuleUnderEnvsTags) {
+  for (const char* example : {"/examples/dome/dome.mesh", "/examples/sails/sails.mesh"}) {
+    EXPECT_EQ(run("stats --envs tags " + source_ + example, dir_ / "out"), 0)
+        << slurp(dir_ / "out");
+    EXPECT_NE(slurp(dir_ / "out").find("environments               passed"), std::string::npos)
+        << slurp(dir_ / "out");
+    // Without environments their crossing sides are self-intersections.
+    EXPECT_EQ(run("stats " + source_ + example, dir_ / "out"), 4);
+    EXPECT_NE(slurp(dir_ / "out").find("no_self_intersections      FAILED"), std::string::npos);
+  }
+}
+
+TEST_F(CliFiles, StatsEnvsTagsWithNegativeTagsIsBadInputAndBadValueIsUsage) {
+  Mesh m = tet_across_a_gap();
+  m.triangle_tags[3] = -4;
+  ASSERT_TRUE(write_mesh(m, (dir_ / "negative.mesh").string()).ok());
+  EXPECT_EQ(run("stats --envs tags " + (dir_ / "negative.mesh").string(), dir_ / "out"), 3);
+  EXPECT_NE(slurp(dir_ / "out").find("triangle 3 has tag -4"), std::string::npos)
+      << slurp(dir_ / "out");
+  EXPECT_EQ(run("stats --envs auto " + (dir_ / "negative.mesh").string(), dir_ / "out"), 2);
+}
+
 }  // namespace
 }  // namespace afmesh

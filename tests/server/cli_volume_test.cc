@@ -174,5 +174,46 @@ TEST_F(CliVolumeTest, SharedServerServesCliAndExitsZeroOnSigterm) {
   EXPECT_EQ(WEXITSTATUS(status), 0);
 }
 
+// ----- --envs (crossing environments, paper §2) ----------------------------------------------
+
+TEST_F(CliVolumeTest, BadEnvsValueIsAUsageError) {
+  EXPECT_EQ(run_volume(quoted(dir_ / "front.mesh") + " -o " + quoted(dir_ / "v.msh") +
+                       " --envs sometimes"),
+            2);
+  EXPECT_THAT(stderr_text(), HasSubstr("--envs"));
+  EXPECT_FALSE(fs::exists(dir_ / "v.msh"));
+}
+
+TEST_F(CliVolumeTest, EnvsTagsWithoutTagsIsBadInput) {
+  std::string untagged = kTetrahedronFront;
+  for (std::size_t at = untagged.find(" 7\n"); at != std::string::npos;
+       at = untagged.find(" 7\n", at)) {
+    untagged.replace(at, 3, " 0\n");
+  }
+  write_file(dir_ / "untagged.mesh", untagged.c_str());
+  EXPECT_EQ(run_volume(quoted(dir_ / "untagged.mesh") + " -o " + quoted(dir_ / "v.msh") +
+                       " --envs tags"),
+            3);
+  EXPECT_THAT(stderr_text(), HasSubstr("--envs tags: none of the 4 triangles"));
+  EXPECT_FALSE(fs::exists(dir_ / "v.msh"));
+}
+
+TEST_F(CliVolumeTest, EnvsTagsAndAutoReachTheServer) {
+  // The tetrahedron's faces all carry tag 7: one environment, nothing crosses, so it meshes
+  // with or without the front filtering; the server says what it marked.
+  const fs::path out = dir_ / "tags.msh";
+  ASSERT_EQ(run_volume(quoted(dir_ / "front.mesh") + " -o " + quoted(out) +
+                       " --size 1 --envs tags"),
+            0)
+      << stderr_text();
+  EXPECT_THAT(stderr_text(), HasSubstr("crossing environments from tags: 1 environment on 4 of 4"));
+  EXPECT_THAT(stdout_text(), HasSubstr("environments"));  // the stage's timing
+  ASSERT_EQ(run_volume(quoted(dir_ / "front.mesh") + " -o " + quoted(dir_ / "auto.msh") +
+                       " --size 1 --envs auto"),
+            0)
+      << stderr_text();
+  EXPECT_THAT(stderr_text(), HasSubstr("crossing environments found: 0 environments"));
+}
+
 }  // namespace
 }  // namespace afmesh

@@ -26,6 +26,9 @@
 #include "grpcpp/generic/generic_stub.h"
 #include "grpcpp/grpcpp.h"
 #include "gtest/gtest.h"
+#include "core/environments/detect_environments.h"
+#include "core/environments/environments.h"
+#include "core/io/mesh_io.h"
 #include "proto/size_spec_convert.h"
 #include "server/server.h"
 #include "server/volume_output.h"
@@ -919,6 +922,105 @@ TEST_F(MesherServiceTest, RejectsInvertedBackgroundTet) {
           "points": [{}, {"x": 1}, {"y": 1}, {"z": 1}], "tets": [0, 2, 1, 3],
           "sizes": [1, 1, 1, 1]}})"),
       grpc::StatusCode::INVALID_ARGUMENT, {"options.size.background.tets[0]"});
+}
+
+// ---------------------------------------------------------------------------------------------
+// Crossing environments (VolumeOptions.environments, paper §2): computed on the worker before
+// the job, which receives them as params.face_environments.
+
+Mesh dome_front() {
+  absl::StatusOr<Mesh> dome = read_mesh(std::string(AFMESH_SOURCE_DIR) + "/examples/dome/dome.mesh");
+  EXPECT_TRUE(dome.ok()) << dome.status();
+  return dome.ok() ? *std::move(dome) : Mesh{};
+}
+
+std::vector<Request> requests_with_environments(const Mesh& front, v1::EnvironmentMode mode) {
+  std::vector<Request> requests = requests_for(front);
+  requests[0].mutable_header()->mutable_options()->set_environments(mode);
+  return requests;
+}
+
+std::vector<std::string> warnings_of(const CallOutcome& outcome) {
+  std::vector<std::string> warnings;
+  for (const Response& response : outcome.responses) {
+    if (response.has_warning()) warnings.push_back(response.warning().message());
+  }
+  return warnings;
+}
+
+std::vector<std::string> stages_of(const CallOutcome& outcome) {
+  std::vector<std::string> stages;
+  for (const Response& response : outcome.responses) {
+    if (!response.has_summary()) continue;
+    for (const v1::StageTiming& timing : response.summary().timings()) {
+      stages.push_back(timing.stage());
+    }
+  }
+  return stages;
+}
+
+TEST_F(MesherServiceTest, WithoutEnvironmentsTheJobGetsNone) {
+  start(counting_job(probe_));
+  const CallOutcome outcome = call(requests_for(dome_front()));  // crossing, but not checked here
+  ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+  EXPECT_TRUE(probe_->params.face_environments.empty());
+  EXPECT_THAT(stages_of(outcome), ::testing::Not(::testing::Contains("environments")));
+}
+
+TEST_F(MesherServiceTest, TagEnvironmentsReachTheJob) {
+  start(counting_job(probe_));
+  const Mesh dome = dome_front();
+  const CallOutcome outcome = call(requests_with_environments(dome, v1::ENVIRONMENT_MODE_TAGS));
+  ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+  EXPECT_EQ(probe_->params.face_environments, dome.triangle_tags);
+  EXPECT_THAT(warnings_of(outcome),
+              ::testing::Contains(HasSubstr("from tags: 2 environments on 1048 of 1264")));
+  EXPECT_THAT(stages_of(outcome), ::testing::Contains("environments"));
+}
+
+TEST_F(MesherServiceTest, AutoEnvironmentsReachTheJob) {
+  start(counting_job(probe_));
+  const Mesh dome = dome_front();
+  const CallOutcome outcome = call(requests_with_environments(dome, v1::ENVIRONMENT_MODE_AUTO));
+  ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+  absl::StatusOr<DetectedEnvironments> expected = detect_environments(dome, {}, no_progress());
+  ASSERT_TRUE(expected.ok()) << expected.status();
+  EXPECT_EQ(probe_->params.face_environments, expected->environments.face);
+  EXPECT_EQ(count_environments(probe_->params.face_environments), 2);
+  EXPECT_THAT(warnings_of(outcome), ::testing::Contains(HasSubstr("found: 2 environments")));
+}
+
+TEST_F(MesherServiceTest, RejectsTagEnvironmentsWithoutTags) {
+  start(counting_job(probe_));
+  Mesh front = tetrahedron_front();
+  front.triangle_tags.assign(4, 0);
+  expect_rejected(requests_with_environments(front, v1::ENVIRONMENT_MODE_TAGS),
+                  grpc::StatusCode::INVALID_ARGUMENT,
+                  {"ENVIRONMENT_MODE_TAGS", "none of the 4 triangles carries a positive tag"});
+}
+
+TEST_F(MesherServiceTest, RejectsNegativeTagAsEnvironment) {
+  start(counting_job(probe_));
+  Mesh front = tetrahedron_front();
+  front.triangle_tags[2] = -5;
+  expect_rejected(requests_with_environments(front, v1::ENVIRONMENT_MODE_TAGS),
+                  grpc::StatusCode::INVALID_ARGUMENT, {"triangle 2 has tag -5"});
+}
+
+TEST_F(MesherServiceTest, RejectsCrossingWithinOneEnvironment) {
+  start(counting_job(probe_));
+  Mesh dome = dome_front();
+  for (Index& tag : dome.triangle_tags) tag = tag > 0 ? 1 : 0;  // both sides in environment 1
+  expect_rejected(requests_with_environments(dome, v1::ENVIRONMENT_MODE_TAGS),
+                  grpc::StatusCode::INVALID_ARGUMENT,
+                  {"invalid front: no_self_intersections", "environments 1 and 1"});
+}
+
+TEST_F(MesherServiceTest, RejectsUnknownEnvironmentMode) {
+  start(counting_job(probe_));
+  expect_rejected(requests_with_environments(tetrahedron_front(),
+                                             static_cast<v1::EnvironmentMode>(7)),
+                  grpc::StatusCode::INVALID_ARGUMENT, {"options.environments", "unknown value 7"});
 }
 
 }  // namespace

@@ -1,0 +1,368 @@
+#include "core/shapes/thin_shapes.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <vector>
+
+#include "core/geometry/vec.h"
+
+namespace afmesh {
+namespace {
+
+constexpr double kHalfPi = std::numbers::pi / 2.0;
+
+// Builds a surface patch by patch: points are merged by exact coordinates (patches compute
+// their shared points with the same arithmetic, so these are bit-identical), and each triangle
+// is oriented so that its normal points along a wanted direction.
+class SurfaceBuilder {
+ public:
+  Index point(const Point& p) {
+    auto [it, inserted] = index_.try_emplace(p, static_cast<Index>(mesh_.points.size()));
+    if (inserted) mesh_.points.push_back(p);
+    return it->second;
+  }
+
+  // Adds triangle (a, b, c), flipped if needed so that (b-a)x(c-a) · wanted > 0.
+  void triangle(Index a, Index b, Index c, const Point& wanted, std::int32_t tag) {
+    const Point& pa = mesh_.points[a];
+    const Point n = cross(sub(mesh_.points[b], pa), sub(mesh_.points[c], pa));
+    if (dot(n, wanted) < 0.0) std::swap(b, c);
+    mesh_.triangles.push_back({a, b, c});
+    mesh_.triangle_tags.push_back(tag);
+  }
+
+  Mesh take() { return std::move(mesh_); }
+
+ private:
+  Mesh mesh_;
+  std::map<Point, Index> index_;  // ordered: no dependence on hashing
+};
+
+// Splits the quad (a, b, c, d) (in cyclic order) along a-c or b-d.
+void add_quad(SurfaceBuilder& builder, Index a, Index b, Index c, Index d, bool along_ac,
+              const Point& wanted, std::int32_t tag) {
+  if (along_ac) {
+    builder.triangle(a, b, c, wanted, tag);
+    builder.triangle(a, c, d, wanted, tag);
+  } else {
+    builder.triangle(a, b, d, wanted, tag);
+    builder.triangle(b, c, d, wanted, tag);
+  }
+}
+
+// ----- quarter dome ---------------------------------------------------------------------------
+
+// The point (u, v) of plane a through the origin (normal along axis a), whose in-plane axes
+// are u = axis (a+1) % 3 and v = axis (a+2) % 3.
+Point on_plane(int a, double u, double v) {
+  Point p{0.0, 0.0, 0.0};
+  p[(a + 1) % 3] = u;
+  p[(a + 2) % 3] = v;
+  return p;
+}
+
+// (cos, sin) of the angle (pi/2) j / n, exactly (1, 0) and (0, 1) at the ends.
+std::array<double, 2> quarter_turn(int j, int n) {
+  if (j == 0) return {1.0, 0.0};
+  if (j == n) return {0.0, 1.0};
+  const double angle = kHalfPi * j / n;
+  return {std::cos(angle), std::sin(angle)};
+}
+
+// Point j of n + 1 on the quarter circle of radius r in plane a, from the u axis to the v axis.
+Point arc_point(int a, int j, int n, double r) {
+  const auto [c, s] = quarter_turn(j, n);
+  return on_plane(a, r * c, r * s);
+}
+
+// Octant of the sphere of radius r: the spherical triangle between the axes, grid point with
+// integer weights (w[0], w[1], w[2]) summing to n, mapped by normalize(sin(pi/2 w_k / n)); on
+// the planes (a weight 0) this is the equal-angle arc point of arc_point.
+Point sphere_point(const std::array<int, 3>& w, int n, double r) {
+  for (int a = 0; a < 3; ++a) {
+    if (w[a] == 0) return arc_point(a, w[(a + 2) % 3], n, r);
+  }
+  Point p{std::sin(kHalfPi * w[0] / n), std::sin(kHalfPi * w[1] / n),
+          std::sin(kHalfPi * w[2] / n)};
+  return scale(p, r / norm(p));
+}
+
+// The sphere octant: n^2 triangles whose normals point along `side` × radial (+1 outward).
+void add_sphere_octant(SurfaceBuilder& b, int n, double r, double side, std::int32_t tag) {
+  const auto at = [&](int i, int j) { return b.point(sphere_point({n - i - j, i, j}, n, r)); };
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; i + j < n; ++j) {
+      const std::array<std::array<int, 2>, 3> up = {{{i, j}, {i + 1, j}, {i, j + 1}}};
+      std::vector<std::array<std::array<int, 2>, 3>> cells = {up};
+      if (i + j + 2 <= n) cells.push_back({{{i + 1, j}, {i + 1, j + 1}, {i, j + 1}}});
+      for (const auto& cell : cells) {
+        Point centre{0.0, 0.0, 0.0};
+        std::array<Index, 3> ids{};
+        for (int k = 0; k < 3; ++k) {
+          ids[k] = at(cell[k][0], cell[k][1]);
+          centre = add(centre, sphere_point({n - cell[k][0] - cell[k][1], cell[k][0], cell[k][1]},
+                                            n, r));
+        }
+        b.triangle(ids[0], ids[1], ids[2], scale(centre, side), tag);
+      }
+    }
+  }
+}
+
+// Point j of row k of the sector grid of the quarter disk of radius r in plane a (row k has
+// k + 1 points at radius r k / n; row n is the arc).
+Point sector_point(int a, int k, int j, int n, double r) {
+  if (k == n) return arc_point(a, j, n, r);
+  if (k == 0) return {0.0, 0.0, 0.0};
+  const double radius = r * k / n;
+  const auto [c, s] = quarter_turn(j, k);
+  return on_plane(a, radius * c, radius * s);
+}
+
+// The quarter disk r <= radius of plane a (n^2 triangles), normal -axis a.
+void add_quarter_disk(SurfaceBuilder& b, int a, int n, double r, std::int32_t tag) {
+  Point wanted{0.0, 0.0, 0.0};
+  wanted[a] = -1.0;
+  const auto at = [&](int k, int j) { return b.point(sector_point(a, k, j, n, r)); };
+  for (int k = 0; k < n; ++k) {
+    for (int j = 0; j <= k; ++j) {
+      b.triangle(at(k + 1, j), at(k + 1, j + 1), at(k, j), wanted, tag);
+      if (j < k) b.triangle(at(k, j), at(k + 1, j + 1), at(k, j + 1), wanted, tag);
+    }
+  }
+}
+
+// Coordinate p of d equal steps along a box edge of length L.
+double edge_coordinate(int p, int d, double length) {
+  return p == d ? length : length * p / d;
+}
+
+// The outer plane a: the square [0, L]^2 minus the disk r < r_o, a grid from the outer arc
+// (n segments, n even) to the square's two far edges (n / 2 segments each) with `layers` rings;
+// ring i lies at fraction s_i = (g^i - 1) / (g^layers - 1) of the way (g = growth; i / layers
+// for g = 1). Normal -axis a.
+void add_outer_plane(SurfaceBuilder& b, int a, int n, double r, double length, int layers,
+                     double growth, std::int32_t tag) {
+  Point wanted{0.0, 0.0, 0.0};
+  wanted[a] = -1.0;
+  const int d = n / 2;
+  const auto fraction = [&](int i) {
+    if (i == layers) return 1.0;
+    if (growth == 1.0) return static_cast<double>(i) / layers;
+    return (std::pow(growth, i) - 1.0) / (std::pow(growth, layers) - 1.0);
+  };
+  const auto far_edge = [&](int j) -> std::array<double, 2> {  // on the square's far edges
+    if (j <= d) return {length, edge_coordinate(j, d, length)};
+    return {edge_coordinate(n - j, d, length), length};
+  };
+  const auto at = [&](int i, int j) {
+    if (i == 0) return b.point(arc_point(a, j, n, r));
+    const std::array<double, 2> outer = far_edge(j);
+    if (i == layers) return b.point(on_plane(a, outer[0], outer[1]));
+    const auto [c, s] = quarter_turn(j, n);
+    const std::array<double, 2> inner = {r * c, r * s};
+    const double f = fraction(i);
+    return b.point(on_plane(a, inner[0] + f * (outer[0] - inner[0]),
+                            inner[1] + f * (outer[1] - inner[1])));
+  };
+  for (int i = 0; i < layers; ++i) {
+    for (int j = 0; j < n; ++j) {
+      add_quad(b, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), (i + j) % 2 == 0,
+               wanted, tag);
+    }
+  }
+}
+
+// The box face x_a = L: a uniform grid of d × d squares, normal +axis a.
+void add_box_face(SurfaceBuilder& b, int a, int d, double length, std::int32_t tag) {
+  Point wanted{0.0, 0.0, 0.0};
+  wanted[a] = 1.0;
+  const auto at = [&](int p, int q) {
+    Point x = on_plane(a, edge_coordinate(p, d, length), edge_coordinate(q, d, length));
+    x[a] = length;
+    return b.point(x);
+  };
+  for (int p = 0; p < d; ++p) {
+    for (int q = 0; q < d; ++q) {
+      add_quad(b, at(p, q), at(p + 1, q), at(p + 1, q + 1), at(p, q + 1), (p + q) % 2 == 0,
+               wanted, tag);
+    }
+  }
+}
+
+// ----- sails ----------------------------------------------------------------------------------
+
+// One sail's mid-surface before heeling: leading edge from `tack` to `head`, chord lengths
+// `foot_chord` at v = 0 and `head_chord` at v = 1 along `chord` (unit, horizontal), camber
+// depth `camber` × chord along `side` (unit, horizontal, perpendicular to `chord`).
+struct SailShape {
+  Point tack;
+  Point head;
+  double foot_chord;
+  double head_chord;
+  Point chord;
+  Point side;
+  double camber;
+  int chord_divisions;
+  int height_divisions;
+  std::int32_t tag_a;
+  std::int32_t tag_b;
+};
+
+Point heeled(const Point& p, double heel_rad) {
+  const double c = std::cos(heel_rad), s = std::sin(heel_rad);
+  return {p[0], c * p[1] - s * p[2], s * p[1] + c * p[2]};
+}
+
+Point mid_surface(const SailShape& sail, double u, double v) {
+  const double chord = sail.foot_chord + v * (sail.head_chord - sail.foot_chord);
+  const Point luff = lerp(sail.tack, sail.head, v);
+  return add(add(luff, scale(sail.chord, u * chord)),
+             scale(sail.side, sail.camber * chord * 4.0 * u * (1.0 - u)));
+}
+
+// Unit normal of the mid-surface, d/du × d/dv by central differences of step 1e-6.
+Point mid_normal(const SailShape& sail, double u, double v) {
+  constexpr double kStep = 1e-6;
+  const Point du = sub(mid_surface(sail, u + kStep, v), mid_surface(sail, u - kStep, v));
+  const Point dv = sub(mid_surface(sail, u, v + kStep), mid_surface(sail, u, v - kStep));
+  const Point n = cross(du, dv);
+  return scale(n, 1.0 / norm(n));
+}
+
+double thickness_profile(double u, double v) {
+  return (1.0 - std::pow(2.0 * u - 1.0, 8)) * (1.0 - std::pow(2.0 * v - 1.0, 8));
+}
+
+// One side of a sail (sign +1: side A at +t/2 N, grid as is, normals -N into the sail; -1: side
+// B at -t/2 N, interior grid points moved, other diagonal, normals +N). Rim points (grid
+// boundary) are the mid-surface points, shared by both sides.
+void add_sail_side(SurfaceBuilder& b, const SailShape& sail, double sign, double thickness,
+                   double heel_rad) {
+  const int nu = sail.chord_divisions, nv = sail.height_divisions;
+  const auto uv = [&](int i, int j) -> std::array<double, 2> {
+    double u = static_cast<double>(i) / nu, v = static_cast<double>(j) / nv;
+    const bool rim = i == 0 || i == nu || j == 0 || j == nv;
+    if (sign < 0.0 && !rim) {  // side B: an independent grid, rim unchanged
+      const double u0 = u, v0 = v;
+      u += 0.35 / nu * std::sin(2.0 * std::numbers::pi * v0) * std::sin(std::numbers::pi * u0);
+      v += 0.35 / nv * std::sin(3.0 * std::numbers::pi * u0) * std::sin(std::numbers::pi * v0);
+    }
+    return {u, v};
+  };
+  const auto at = [&](int i, int j) {
+    const auto [u, v] = uv(i, j);
+    const bool rim = i == 0 || i == nu || j == 0 || j == nv;
+    Point p = mid_surface(sail, u, v);
+    if (!rim) {
+      p = add(p, scale(mid_normal(sail, u, v), sign * 0.5 * thickness * thickness_profile(u, v)));
+    }
+    return b.point(heeled(p, heel_rad));
+  };
+  const std::int32_t tag = sign > 0.0 ? sail.tag_a : sail.tag_b;
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      const Point wanted =
+          scale(heeled(mid_normal(sail, (i + 0.5) / nu, (j + 0.5) / nv), heel_rad), -sign);
+      add_quad(b, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), sign > 0.0, wanted,
+               tag);
+    }
+  }
+}
+
+// The box [lo, hi] with grid steps of about h, normals outward, tag 0.
+void add_box(SurfaceBuilder& b, const Point& lo, const Point& hi, double h) {
+  std::array<int, 3> n{};
+  for (int k = 0; k < 3; ++k) n[k] = std::max(1, static_cast<int>(std::lround((hi[k] - lo[k]) / h)));
+  const auto coordinate = [&](int k, int i) {
+    if (i == n[k]) return hi[k];
+    return lo[k] + (hi[k] - lo[k]) * i / n[k];
+  };
+  for (int a = 0; a < 3; ++a) {
+    const int u = (a + 1) % 3, v = (a + 2) % 3;
+    for (int side = 0; side < 2; ++side) {
+      Point wanted{0.0, 0.0, 0.0};
+      wanted[a] = side == 0 ? -1.0 : 1.0;
+      const auto at = [&](int i, int j) {
+        Point p{0.0, 0.0, 0.0};
+        p[a] = side == 0 ? lo[a] : hi[a];
+        p[u] = coordinate(u, i);
+        p[v] = coordinate(v, j);
+        return b.point(p);
+      };
+      for (int i = 0; i < n[u]; ++i) {
+        for (int j = 0; j < n[v]; ++j) {
+          add_quad(b, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), (i + j) % 2 == 0,
+                   wanted, 0);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+Mesh quarter_dome_surface(const QuarterDomeParams& params) {
+  SurfaceBuilder b;
+  const double ri = params.inner_radius;
+  const double ro = params.inner_radius + params.thickness;
+  // Inside: the octant of the ball r < r_i.
+  add_sphere_octant(b, params.inner_divisions, ri, +1.0, kDomeInsideEnvironment);
+  for (int a = 0; a < 3; ++a) {
+    add_quarter_disk(b, a, params.inner_divisions, ri, kDomeInsideEnvironment);
+  }
+  // Outside: the box [0, L]^3 minus the ball r < r_o.
+  add_sphere_octant(b, params.outer_divisions, ro, -1.0, kDomeOutsideEnvironment);
+  for (int a = 0; a < 3; ++a) {
+    add_outer_plane(b, a, params.outer_divisions, ro, params.box_side, params.radial_layers,
+                    params.radial_growth, kDomeOutsideEnvironment);
+  }
+  for (int a = 0; a < 3; ++a) {
+    add_box_face(b, a, params.outer_divisions / 2, params.box_side, 0);  // no environment
+  }
+  return b.take();
+}
+
+Mesh sails_surface(const SailsParams& params) {
+  const double heel = params.heel_deg * std::numbers::pi / 180.0;
+  const double jib_angle = 10.0 * std::numbers::pi / 180.0;  // the jib's chord, turned to leeward
+  const std::array<SailShape, 2> sails = {{
+      // Jib: forestay from (-9, 0, 2) to (-2.5, 0, 26); its leech ends about 1 m to leeward of
+      // the mainsail's luff region: the slot.
+      {{-9.0, 0.0, 2.0}, {-2.5, 0.0, 26.0}, 9.5, 2.5,
+       {std::cos(jib_angle), std::sin(jib_angle), 0.0},
+       {-std::sin(jib_angle), std::cos(jib_angle), 0.0}, 0.08, 6, 16, kJibSideA, kJibSideB},
+      // Mainsail: mast from (0, 0, 2) to (1.5, 0, 32).
+      {{0.0, 0.0, 2.0}, {1.5, 0.0, 32.0}, 10.0, 4.0, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 0.08, 6,
+       20, kMainSideA, kMainSideB},
+  }};
+  SurfaceBuilder b;
+  for (const SailShape& sail : sails) {
+    add_sail_side(b, sail, +1.0, params.thickness, heel);
+    add_sail_side(b, sail, -1.0, params.thickness, heel);
+  }
+  add_box(b, {-30.0, -35.0, -15.0}, {40.0, 25.0, 50.0}, params.box_size);
+  return b.take();
+}
+
+Mesh crossing_plates_surface(const CrossingPlatesParams& params) {
+  const int n = params.divisions;
+  const std::array<SailShape, 2> plates = {{
+      {{-1.0, 0.0, -1.0}, {-1.0, 0.0, 1.0}, 2.0, 2.0, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 0.0, n, n,
+       1, 2},
+      {{0.0, -1.0, -0.75}, {0.0, -1.0, 0.75}, 2.0, 2.0, {0.0, 1.0, 0.0}, {1.0, 0.0, 0.0}, 0.0, n,
+       n, 3, 4},
+  }};
+  SurfaceBuilder b;
+  for (const SailShape& plate : plates) {
+    add_sail_side(b, plate, +1.0, params.thickness, 0.0);
+    add_sail_side(b, plate, -1.0, params.thickness, 0.0);
+  }
+  add_box(b, {-3.0, -3.0, -3.0}, {3.0, 3.0, 3.0}, params.box_size);
+  return b.take();
+}
+
+}  // namespace afmesh

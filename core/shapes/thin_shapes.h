@@ -1,0 +1,102 @@
+// Fronts with thin and crossing surfaces (paper §2 and §5 (a), (b)): the shipped examples
+// examples/dome/dome.mesh and examples/sails/sails.mesh are these surfaces with the default
+// parameters (written by the make-thin-examples tool in tests/environments/). Deterministic:
+// the same parameters give the same points, triangles and tags, in the same order.
+//
+// Both are fronts of an air domain: closed, manifold, consistently oriented with normals
+// pointing out of the air (into the solids and out of the outer box). The two sides of each
+// thin structure are triangulated independently, so their triangles cross; the triangle tags are
+// crossing-environment ids (environments.h), one per side, 0 elsewhere.
+#pragma once
+
+#include <cstdint>
+
+#include "core/mesh/mesh.h"
+
+namespace afmesh {
+
+// ---------------------------------------------------------------------------------------------
+// The paper's quarter dome (§5 (a), Figure 12): a hemispherical shell of inner radius r_i and
+// outer radius r_o = r_i + thickness on the ground plane z = 0, in the octant x, y, z >= 0 of a
+// box [0, L]^3. The domain is the air inside the shell (the octant of the ball r < r_i) and
+// outside it (the box minus the ball r < r_o): two closed components. The symmetry planes x = 0,
+// y = 0 and the ground z = 0 bound both; the shell's own cross-section (r_i < r < r_o) on them
+// is not part of the domain.
+//
+// Triangulation: each sphere octant is the spherical triangle between the axes, subdivided into
+// n^2 triangles with equal-angle arcs on the planes (inner n = inner_divisions, outer
+// n = outer_divisions; different on purpose: the two sides are independent and, at a chord
+// sag of about h^2 / (8 r) = 0.002-0.003 > r_o - r_i, they cross). The quarter disks r <= r_i
+// on the planes are sector grids sharing the inner arcs; the outer planes (the square [0, L]^2
+// minus the disk r < r_o) are grids from the outer arc to the square's edges with
+// `radial_layers` rings growing geometrically, sharing the outer arcs; the box faces x, y, z = L
+// are uniform grids of outer_divisions / 2 squares per edge.
+//
+// Tags (environment ids): the inner component (inner sphere and its three quarter disks) is
+// kDomeInsideEnvironment, the outer sphere and the three outer planes are
+// kDomeOutsideEnvironment, the box faces x, y, z = L are 0. The planes must carry the
+// environments too: on each symmetry plane the inner disk's and the outer plane's polygons
+// overlap along the shell's cut (both arcs are chords of circles 1/1000 apart), so these
+// faces cross as well, and only faces of two different positive environments may cross.
+// ---------------------------------------------------------------------------------------------
+inline constexpr std::int32_t kDomeInsideEnvironment = 1;
+inline constexpr std::int32_t kDomeOutsideEnvironment = 2;
+
+struct QuarterDomeParams {
+  double box_side = 3.0;        // L
+  double inner_radius = 1.0;    // r_i
+  double thickness = 0.001;     // r_o - r_i (1/1000 of the radius, as in the paper)
+  int inner_divisions = 10;     // arc segments of a quarter circle of the inner sphere (>= 2)
+  int outer_divisions = 12;     // likewise for the outer sphere; even (the box corners), >= 2
+  int radial_layers = 7;        // rings of the outer planes between r_o and the box (>= 1)
+  double radial_growth = 1.3;   // ratio of successive ring widths (>= 1)
+};
+
+Mesh quarter_dome_surface(const QuarterDomeParams& params = {});
+
+// ---------------------------------------------------------------------------------------------
+// Two inclined sails (§5 (b), Figure 13): a jib and a mainsail, each a thin closed body about
+// 30 m high whose two sides are `thickness` (1 mm) apart over the sail and meet at its rim,
+// with a narrow slot (about 1 m) between the jib's trailing edge and the mainsail, heeled by
+// `heel_deg` about the x axis, inside a box far larger than the sails.
+//
+// Each sail's mid-surface is a cambered trapezoid S(u, v), u along the chord (0 = luff, 1 =
+// leech), v along the height; the sides are S ± (t(u, v) / 2) N with N the mid-surface normal
+// and t = thickness (1 - (2u-1)^8)(1 - (2v-1)^8), which is the full thickness over most of the
+// sail and 0 on the rim, where both sides share their points. Side A is the regular (u, v) grid
+// cut along one diagonal; side B moves the interior grid points by a fraction of a cell and cuts
+// along the other diagonal: independent triangulations, which cross since the chord sag of the
+// cambered sail (centimetres) exceeds the thickness.
+//
+// Tags: jib side A 1, jib side B 2, main side A 3, main side B 4 (kSail... below), box 0.
+// ---------------------------------------------------------------------------------------------
+inline constexpr std::int32_t kJibSideA = 1;
+inline constexpr std::int32_t kJibSideB = 2;
+inline constexpr std::int32_t kMainSideA = 3;
+inline constexpr std::int32_t kMainSideB = 4;
+
+struct SailsParams {
+  double thickness = 0.001;  // m
+  double heel_deg = 10.0;    // inclination about the x axis
+  double box_size = 10.0;    // edge length of the box's grid, m
+};
+
+Mesh sails_surface(const SailsParams& params = {});
+
+// ---------------------------------------------------------------------------------------------
+// A crossing X of two thin plates (paper §2, Figure 3: crossing surfaces that are not the same):
+// plate A in the plane y = 0 over x, z in [-1, 1] and plate B in the plane x = 0 over y in
+// [-1, 1], z in [-0.75, 0.75] (so that the rims do not meet), each a flat thin body built like
+// a sail without camber (thickness `thickness`, sides meeting at the rim,
+// side B's interior grid moved), crossing each other along the z axis, in the box [-3, 3]^3.
+// Tags: plate A sides 1 and 2, plate B sides 3 and 4, box 0.
+// ---------------------------------------------------------------------------------------------
+struct CrossingPlatesParams {
+  double thickness = 0.001;
+  int divisions = 8;  // grid cells along each side of a plate
+  double box_size = 1.0;  // edge length of the box's grid
+};
+
+Mesh crossing_plates_surface(const CrossingPlatesParams& params = {});
+
+}  // namespace afmesh

@@ -1,0 +1,108 @@
+// LPOCR from LFACR and LFACR from triangle tags (core/environments/environments.h, paper §2).
+#include "core/environments/environments.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace afmesh {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+
+// A flat "pillow": the square's rim points 0-3, a top apex 4 and a bottom apex 5; the four top
+// faces (tags `top`) and the four bottom faces (tags `bottom`) share the rim.
+Mesh pillow(Index top, Index bottom) {
+  Mesh m;
+  m.points = {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, 0.01}, {0, 0, -0.01}};
+  for (Index i = 0; i < 4; ++i) {
+    const Index j = (i + 1) % 4;
+    m.triangles.push_back({i, 4, j});  // normal -z: into the thin body
+    m.triangle_tags.push_back(top);
+  }
+  for (Index i = 0; i < 4; ++i) {
+    const Index j = (i + 1) % 4;
+    m.triangles.push_back({i, j, 5});
+    m.triangle_tags.push_back(bottom);
+  }
+  return m;
+}
+
+TEST(PointEnvironments, RidgePointsOfTwoEnvironmentsGetMinusOne) {
+  const Mesh m = pillow(1, 2);
+  const std::vector<std::int32_t> lpocr =
+      point_environments(m.points.size(), m.triangles, m.triangle_tags);
+  EXPECT_THAT(lpocr, ElementsAre(-1, -1, -1, -1, 1, 2));
+}
+
+TEST(PointEnvironments, EnvironmentZeroFacesDoNotUnmarkAPoint) {
+  // Top faces in environment 3, bottom faces in none: the rim belongs to environment 3.
+  const Mesh m = pillow(3, 0);
+  EXPECT_THAT(point_environments(m.points.size(), m.triangles, m.triangle_tags),
+              ElementsAre(3, 3, 3, 3, 3, 0));
+}
+
+TEST(PointEnvironments, SameEnvironmentOnBothSidesIsNotARidge) {
+  const Mesh m = pillow(5, 5);
+  EXPECT_THAT(point_environments(m.points.size(), m.triangles, m.triangle_tags),
+              ElementsAre(5, 5, 5, 5, 5, 5));
+}
+
+TEST(PointEnvironments, UnusedPointsAndUnmarkedFrontsAreZero) {
+  Mesh m = pillow(0, 0);
+  m.points.push_back({9, 9, 9});
+  EXPECT_THAT(point_environments(m.points.size(), m.triangles, m.triangle_tags),
+              ElementsAre(0, 0, 0, 0, 0, 0, 0));
+}
+
+TEST(PointEnvironments, ThreeEnvironmentsAtOnePointGiveMinusOne) {
+  Mesh m = pillow(1, 2);
+  m.triangle_tags[0] = 7;  // face (0, 4, 1): points 0 and 1 now see 7, 1 and 2
+  const std::vector<std::int32_t> lpocr =
+      point_environments(m.points.size(), m.triangles, m.triangle_tags);
+  EXPECT_EQ(lpocr[0], -1);
+  EXPECT_EQ(lpocr[4], -1);  // the top apex sees 7 and 1
+  EXPECT_EQ(lpocr[5], 2);
+}
+
+TEST(EnvironmentsFromTags, FaceEnvironmentIsTheTag) {
+  const Mesh m = pillow(4, 9);
+  absl::StatusOr<FrontEnvironments> env = environments_from_tags(m);
+  ASSERT_TRUE(env.ok()) << env.status();
+  EXPECT_THAT(env->face, ElementsAre(4, 4, 4, 4, 9, 9, 9, 9));
+  EXPECT_THAT(env->point, ElementsAre(-1, -1, -1, -1, 4, 9));
+  EXPECT_EQ(count_environments(env->face), 2);
+}
+
+TEST(EnvironmentsFromTags, NegativeTagIsAnErrorNamingTheTriangle) {
+  Mesh m = pillow(1, 2);
+  m.triangle_tags[6] = -3;
+  absl::StatusOr<FrontEnvironments> env = environments_from_tags(m);
+  ASSERT_FALSE(env.ok());
+  EXPECT_EQ(env.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(env.status().message(), HasSubstr("triangle 6 has tag -3"));
+}
+
+TEST(EnvironmentsFromTags, NoPositiveTagIsAnError) {
+  const Mesh m = pillow(0, 0);
+  absl::StatusOr<FrontEnvironments> env = environments_from_tags(m);
+  ASSERT_FALSE(env.ok());
+  EXPECT_EQ(env.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(env.status().message(), HasSubstr("positive tag"));
+  EXPECT_FALSE(has_positive_tags(m));
+  EXPECT_TRUE(has_positive_tags(pillow(0, 1)));
+}
+
+TEST(EnvironmentsFromTags, TagCountAndIndicesAreChecked) {
+  Mesh m = pillow(1, 2);
+  m.triangle_tags.pop_back();
+  EXPECT_THAT(environments_from_tags(m).status().message(), HasSubstr("7 triangle tags for 8"));
+  m = pillow(1, 2);
+  m.triangles[2][1] = 6;
+  EXPECT_THAT(environments_from_tags(m).status().message(), HasSubstr("triangle 2 refers to"));
+}
+
+}  // namespace
+}  // namespace afmesh
