@@ -9,26 +9,10 @@
 #include "core/environments/detect_environments.h"
 #include "core/environments/environments.h"
 #include "core/quality/validate.h"
+#include "core/volume/generate_volume_mesh.h"
 
 namespace afmesh::server {
 namespace {
-
-// The front checked as validate_front does, but with the relaxed self-intersection rule: the
-// first failing check, with up to three findings, as INVALID_ARGUMENT.
-absl::Status validate_front_with_environments(const Mesh& front,
-                                              const std::vector<std::int32_t>& environments) {
-  ValidationParams params;
-  params.max_findings_per_check = 3;
-  params.face_environments = environments;
-  const ValidationReport report = validate_surface(front, params);
-  for (const Check& c : report.checks) {
-    if (c.passed() || c.outcome == CheckOutcome::kNotRun) continue;
-    std::string message = absl::StrCat("invalid front: ", c.name, ": ", c.summary);
-    for (const Finding& f : c.findings) absl::StrAppend(&message, "; ", f.message);
-    return absl::InvalidArgumentError(message);
-  }
-  return absl::OkStatus();
-}
 
 std::string environments_phrase(int count) {
   return absl::StrCat(count, count == 1 ? " environment" : " environments");
@@ -70,7 +54,8 @@ absl::Status assign_environments(v1::EnvironmentMode mode, const Mesh& front,
         s.close_pairs));
   }
   if (progress.cancelled()) return absl::CancelledError("cancelled before validating the front");
-  return validate_front_with_environments(front, params.face_environments);
+  // The front checked with the relaxed self-intersection rule of §2 before the job is queued.
+  return validate_front(front, params.face_environments);
 }
 
 }  // namespace afmesh::server

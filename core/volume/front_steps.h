@@ -17,8 +17,11 @@ inline std::int32_t point_environment(const MesherState& s, Index q) {
   return static_cast<std::size_t>(q) < s.point_env.size() ? s.point_env[q] : 0;
 }
 // §2 (a): a face of environment `env` ignores the points of any other positive environment.
+// A face of no environment (its three points new) ignores them too: a point of environment k is
+// reached only from the faces of k's side, which are the faces touching k's surface. Without
+// this, a face off a thin shell connects to the other side's points where the two surfaces
+// cross, its new faces take that side's environment and, blind to this side's faces, cross them.
 inline bool point_visible(const MesherState& s, Index env, Index q) {
-  if (env <= 0) return true;
   const std::int32_t e = point_environment(s, q);
   return e <= 0 || e == env;
 }

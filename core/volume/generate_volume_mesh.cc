@@ -9,6 +9,7 @@
 #include "absl/container/flat_hash_map.h"
 
 #include "absl/strings/str_format.h"
+#include "core/environments/environments.h"
 #include "core/geometry/vec.h"
 #include "core/quality/optimise.h"
 #include "core/sizing/spec_size_field.h"
@@ -85,28 +86,13 @@ double enclosed_volume(const Mesh& front) {
   return six_v / 6.0;
 }
 
-// Paper §2: LPOCR from LFACR. A point takes the positive environment of its faces; a point on
-// faces of two different positive environments (a ridge between them) gets -1; 0 otherwise.
-std::vector<std::int32_t> point_environments(const Mesh& input,
-                                             const std::vector<std::int32_t>& face_env) {
-  std::vector<std::int32_t> env(input.points.size(), 0);
-  for (std::size_t t = 0; t < input.triangles.size(); ++t) {
-    const std::int32_t e = face_env[t];
-    if (e <= 0) continue;
-    for (Index p : input.triangles[t]) {
-      if (env[p] == 0) env[p] = e;
-      else if (env[p] != e) env[p] = -1;
-    }
-  }
-  return env;
-}
-
 // F1/F4: the input triangles, flipped to look into the domain, form the initial front, each with
 // its crossing environment (paper §2).
 void load_initial_front(MesherState& s, const Mesh& input,
                         const std::vector<std::int32_t>& face_env) {
   s.point_size = boundary_point_sizes(input);
-  if (!face_env.empty()) s.point_env = point_environments(input, face_env);
+  if (!face_env.empty())
+    s.point_env = point_environments(input.points.size(), input.triangles, face_env);
   for (std::size_t t = 0; t < input.triangles.size(); ++t) {
     const Triangle& u = input.triangles[t];
     const Triangle inward{u[0], u[2], u[1]};
@@ -207,6 +193,16 @@ absl::Status back_off(MesherState& s, Index face, RepairCounts& repairs) {
   return absl::OkStatus();
 }
 
+absl::Status overlap_report(const MesherState& s, Index face, double domain_volume) {
+  const Triangle v = s.front.face(face).v;
+  const Point& x = s.points[v[0]];
+  return absl::FailedPreconditionError(absl::StrFormat(
+      "the elements overlap: their volume %g exceeds the enclosed volume %g after %d tets; the "
+      "fronts passed through each other near (%g, %g, %g), face environment %d. With crossing "
+      "environments, give the faces on each side of a thin region one environment (paper §2)",
+      s.meshed_volume, domain_volume, s.live_tets, x[0], x[1], x[2], s.front.face(face).env));
+}
+
 absl::Status stuck_report(const MesherState& s, Index face, std::int64_t steps) {
   const Triangle v = s.front.face(face).v;
   const Point& x = s.points[v[0]];
@@ -270,6 +266,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
   s.points.reserve(front.points.size() + static_cast<std::size_t>(expected_tets / 4));
   load_initial_front(s, front, params.face_environments);
 
+  const double domain_volume = enclosed_volume(front);
   RepairCounts repairs;
   std::int64_t steps = 0;
   // A face is taken from the queue a little more than once per element it builds; a front that
@@ -279,6 +276,11 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
     if (++steps > 6 * s.live_tets + slack) return stuck_report(s, *face, steps);
     if (steps % kCancelCheckInterval == 0) {
       if (progress.cancelled()) return absl::CancelledError("volume meshing cancelled");
+      // Elements that do not overlap cannot hold more than the enclosed volume. With crossing
+      // environments whose faces hide each other where they should not (paper §2), fronts
+      // could pass through each other and mesh space twice: stop then, with a report.
+      if (s.meshed_volume > domain_volume * (1.0 + 1e-6))
+        return overlap_report(s, *face, domain_volume);
       progress.report("front", std::min(0.99, static_cast<double>(s.live_tets) / expected_tets));
     }
     if (delete_face(s, *face)) continue;
@@ -314,7 +316,7 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
   }
   if (absl::Status st = check_face_environments(front, params.face_environments); !st.ok())
     return st;
-  if (absl::Status st = validate_front(front); !st.ok()) return st;
+  if (absl::Status st = validate_front(front, params.face_environments); !st.ok()) return st;
   absl::StatusOr<std::unique_ptr<SizeField>> size_field = make_size_field(params, front);
   if (!size_field.ok()) return size_field.status();
   const double growth = params.spec ? params.spec->growth : params.growth;

@@ -2,7 +2,9 @@
 // steps F1–F11).
 #pragma once
 
+#include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -41,9 +43,11 @@ struct VolumeResult {
 };
 
 // Checks that `front` is a valid input front: finite coordinates, indices in range, no degenerate
-// triangle, closed, manifold and consistently oriented with outward normals. INVALID_ARGUMENT
-// names the first offending element(s).
-absl::Status validate_front(const Mesh& front);
+// triangle, closed, manifold and consistently oriented with outward normals, no self-intersection
+// (except, with crossing environments, between faces of two different positive environments,
+// paper §2). INVALID_ARGUMENT names the first offending element(s).
+absl::Status validate_front(const Mesh& front,
+                            std::span<const std::int32_t> face_environments = {});
 
 // Fills the volume enclosed by `front` (outward-oriented closed triangles) with tetrahedra whose
 // boundary faces are exactly the front's triangles.

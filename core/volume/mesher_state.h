@@ -51,6 +51,8 @@ struct MesherState {
   std::vector<std::int32_t> point_env;
   std::vector<Tet> tets;           // a deleted tet has tet[0] == kInvalidIndex
   std::int64_t live_tets = 0;
+  // Sum of the live tets' volumes (a measure, for the guard against overlapping elements).
+  double meshed_volume = 0;
   TetIncidence incidence;
   Front front;
 

@@ -1,10 +1,15 @@
 // F8–F10 of the volume front, and the local back-off that re-opens a cavity.
 #include <algorithm>
 
+#include "core/geometry/predicates.h"
 #include "core/volume/front_steps.h"
 
 namespace afmesh::volume {
 namespace {
+
+double tet_volume(const MesherState& s, const Tet& k) {
+  return orient3d_fast(s.points[k[0]], s.points[k[1]], s.points[k[2]], s.points[k[3]]) / 6.0;
+}
 
 // Deletes live tet t and updates the front around the hole it leaves: each of its faces that
 // was on the front leaves it (both sides are now unmeshed); each other face (shared with a live
@@ -23,6 +28,7 @@ void delete_tet(MesherState& s, Index t) {
     }
   }
   s.incidence.remove(s.tets, t);
+  s.meshed_volume -= tet_volume(s, k);
   s.tets[t][0] = kInvalidIndex;
   --s.live_tets;
 }
@@ -34,6 +40,7 @@ void add_element(MesherState& s, Index face, Index p) {
   const Index t = static_cast<Index>(s.tets.size());
   s.tets.push_back({v[0], v[1], v[2], p});  // F8
   s.incidence.add(s.tets, t);
+  s.meshed_volume += tet_volume(s, s.tets[t]);
   ++s.live_tets;
   s.front.remove(face);  // F10
   const Triangle sides[3] = {{v[0], v[1], p}, {v[1], v[2], p}, {v[2], v[0], p}};

@@ -7,7 +7,7 @@
 
 namespace afmesh {
 
-absl::Status validate_front(const Mesh& front) {
+absl::Status validate_front(const Mesh& front, std::span<const std::int32_t> face_environments) {
   if (front.points.empty() || front.triangles.empty())
     return absl::InvalidArgumentError(absl::StrCat("the front is empty: ", front.points.size(),
                                                    " points, ", front.triangles.size(),
@@ -17,6 +17,7 @@ absl::Status validate_front(const Mesh& front) {
         "the front must be a surface, but it has ", front.tets.size(), " tetrahedra"));
   ValidationParams params;
   params.max_findings_per_check = 3;
+  params.face_environments = face_environments;
   const ValidationReport report = validate_surface(front, params);
   for (const Check& c : report.checks) {
     if (c.passed()) continue;

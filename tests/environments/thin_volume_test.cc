@@ -1,8 +1,7 @@
 // End to end: thin and crossing fronts meshed with crossing environments (paper §2, §5 (a),
-// (b)). These need the front to filter by environment (core/volume: candidate points of other
-// positive environments ignored, crossing checks against own and environment-0 faces only, new
-// faces max(0, LPOCR), marked faces first). Until that lands they are DISABLED_ and carry the
-// CTest label needs-front-envs; enable them by removing the prefix.
+// (b)), through the core mesher and through the CLI and server. The front filters by
+// environment (core/volume/front_steps.h). The crossing X of two plates is DISABLED_ (see its
+// test): it needs environments per quadrant.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -76,13 +75,13 @@ void expect_meshes_valid(const char* name, const Mesh& front, const std::optiona
               result->mesh.tets.size(), seconds);
 }
 
-TEST(ThinVolume, DISABLED_DomeWithTagEnvironmentsMeshesValid) {
+TEST(ThinVolume, DomeWithTagEnvironmentsMeshesValid) {
   const Mesh dome = read_front("examples/dome/dome.mesh");
   expect_meshes_valid("dome (tags)", dome, read_spec("examples/dome/dome-sizes.json"), 0.8,
                       dome.triangle_tags);
 }
 
-TEST(ThinVolume, DISABLED_DomeWithAutoEnvironmentsMeshesValid) {
+TEST(ThinVolume, DomeWithAutoEnvironmentsMeshesValid) {
   const Mesh dome = read_front("examples/dome/dome.mesh");
   absl::StatusOr<DetectedEnvironments> found = detect_environments(dome, {}, no_progress());
   ASSERT_TRUE(found.ok()) << found.status();
@@ -90,12 +89,17 @@ TEST(ThinVolume, DISABLED_DomeWithAutoEnvironmentsMeshesValid) {
                       found->environments.face);
 }
 
-TEST(ThinVolume, DISABLED_SailsWithTagEnvironmentsMeshValid) {
+TEST(ThinVolume, SailsWithTagEnvironmentsMeshValid) {
   const Mesh sails = read_front("examples/sails/sails.mesh");
   expect_meshes_valid("sails (tags)", sails, read_spec("examples/sails/sails-sizes.json"), 10.0,
                       sails.triangle_tags);
 }
 
+// Not yet: with one environment per sheet side, a side that crosses the other plate ignores that
+// plate's faces on both of its halves, and the fronts of the four quadrants pass through the
+// other plate into each other (the overlap guard stops it). The X needs environments per
+// quadrant (the paper's "all the surfaces lying on one side of a troublesome region"), with the
+// sheets split along the crossing line; see the issue note.
 TEST(ThinVolume, DISABLED_CrossingPlatesMeshValid) {
   const Mesh plates = crossing_plates_surface();
   expect_meshes_valid("crossing plates (tags)", plates, std::nullopt, 0.5, plates.triangle_tags);
@@ -153,19 +157,19 @@ class ThinVolumeCli : public ::testing::Test {
   fs::path dir_;
 };
 
-TEST_F(ThinVolumeCli, DISABLED_DomeWithEnvsAuto) {
+TEST_F(ThinVolumeCli, DomeWithEnvsAuto) {
   mesh_and_check("examples/dome/dome.mesh", "examples/dome/dome-sizes.json", "auto");
 }
 
-TEST_F(ThinVolumeCli, DISABLED_DomeWithEnvsTags) {
+TEST_F(ThinVolumeCli, DomeWithEnvsTags) {
   mesh_and_check("examples/dome/dome.mesh", "examples/dome/dome-sizes.json", "tags");
 }
 
-TEST_F(ThinVolumeCli, DISABLED_SailsWithEnvsTags) {
+TEST_F(ThinVolumeCli, SailsWithEnvsTags) {
   mesh_and_check("examples/sails/sails.mesh", "examples/sails/sails-sizes.json", "tags");
 }
 
-TEST_F(ThinVolumeCli, DISABLED_SailsWithEnvsAuto) {
+TEST_F(ThinVolumeCli, SailsWithEnvsAuto) {
   mesh_and_check("examples/sails/sails.mesh", "examples/sails/sails-sizes.json", "auto");
 }
 
