@@ -13,17 +13,27 @@
 namespace afmesh {
 
 double tet_min_sine(const Point& a, const Point& b, const Point& c, const Point& d) {
-  // n[i]: twice the area of the face opposite corner i. The sine of the dihedral angle at edge
-  // (i, j), between the faces opposite k and l, is det · |e_ij| / (n[k] n[l]).
-  const double n[4] = {norm(cross(sub(c, b), sub(d, b))), norm(cross(sub(c, a), sub(d, a))),
-                       norm(cross(sub(b, a), sub(d, a))), norm(cross(sub(b, a), sub(c, a)))};
-  const double det = dot(cross(sub(b, a), sub(c, a)), sub(d, a));
-  if (!(n[0] > 0 && n[1] > 0 && n[2] > 0 && n[3] > 0)) return 0.0;
-  const double r[6] = {distance(a, b) / (n[2] * n[3]), distance(a, c) / (n[1] * n[3]),
-                       distance(a, d) / (n[1] * n[2]), distance(b, c) / (n[0] * n[3]),
-                       distance(b, d) / (n[0] * n[2]), distance(c, d) / (n[0] * n[1])};
-  const auto [lo, hi] = std::minmax_element(r, r + 6);
-  return det >= 0 ? det * *lo : det * *hi;
+  // The value is scale-free: edges are scaled by 1 / |b - a| so that the squares below neither
+  // overflow nor underflow for any sensible coordinates.
+  const double ab = norm(sub(b, a));
+  if (!(ab > 0)) return 0.0;
+  const double s = 1.0 / ab;
+  const Point u = scale(sub(b, a), s), v = scale(sub(c, a), s), w = scale(sub(d, a), s);
+  // N[i]: squared twice-area of the face opposite corner i. The sine of the dihedral angle at
+  // edge (i, j), between the faces opposite k and l, is det · |e_ij| / sqrt(N[k] N[l]).
+  const Point vu = sub(v, u), wu = sub(w, u);
+  const double area2[4] = {squared_norm(cross(vu, wu)), squared_norm(cross(v, w)),
+                           squared_norm(cross(u, w)), squared_norm(cross(u, v))};
+  if (!(area2[0] > 0 && area2[1] > 0 && area2[2] > 0 && area2[3] > 0)) return 0.0;
+  const double det = dot(cross(u, v), w);
+  const double r2[6] = {1.0 / (area2[2] * area2[3]),  // |u|^2 = 1
+                        squared_norm(v) / (area2[1] * area2[3]),
+                        squared_norm(w) / (area2[1] * area2[2]),
+                        squared_norm(vu) / (area2[0] * area2[3]),
+                        squared_norm(wu) / (area2[0] * area2[2]),
+                        squared_norm(sub(w, v)) / (area2[0] * area2[1])};
+  const auto [lo, hi] = std::minmax_element(r2, r2 + 6);
+  return det >= 0 ? det * std::sqrt(*lo) : det * std::sqrt(*hi);
 }
 
 namespace {
@@ -31,21 +41,28 @@ namespace {
 constexpr int kCancelCheckInterval = 256;
 constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
 
-// A tet to work on, ordered worst first, then by slot.
+// A tet to work on, ordered worst first, then by slot. `failed_at` is the change count when
+// every step last failed on it (-1: not tried yet); it is tried again only once something
+// around it has changed since.
 struct BadTet {
   double quality;
   Index tet;
+  std::int64_t failed_at = -1;
   bool operator<(const BadTet& o) const {
     return quality < o.quality || (quality == o.quality && tet < o.tet);
   }
-  bool operator==(const BadTet& o) const { return quality == o.quality && tet == o.tet; }
 };
+
+void consider(const TopologyChange& candidate, TopologyChange& best) {
+  if (candidate.quality > best.quality) best = candidate;
+}
 
 class Optimiser {
  public:
   Optimiser(TetComplex& c, Index fixed_points, const OptimiseParams& params)
       : c_(c), fixed_(fixed_points), params_(params),
-        threshold_(std::sin(params.target_min_dihedral_deg * std::numbers::pi / 180.0)) {}
+        threshold_(std::sin(params.target_min_dihedral_deg * std::numbers::pi / 180.0)),
+        touched_(c.points().size(), -1) {}
 
   double quality(Index t) const { return tet_min_sine(c_.points(), c_.tet(t)); }
   bool bad(double quality) const { return quality < threshold_; }
@@ -54,8 +71,8 @@ class Optimiser {
   absl::Status smoothing_sweep(Progress& progress);
   // The tets under the target, worst first.
   std::vector<BadTet> bad_tets() const;
-  // One round over `work`; the tets to look at in the next round are appended to `next`.
-  // Returns CANCELLED when asked to stop.
+  // One round over `work` (sorted); the tets to look at in the next round are appended to
+  // `next`. Returns CANCELLED when asked to stop.
   absl::Status round(const std::vector<BadTet>& work, std::vector<BadTet>& next, bool& changed,
                      Progress& progress);
 
@@ -69,14 +86,21 @@ class Optimiser {
   bool smooth_corners(Index t, std::vector<BadTet>& next);
   // Splits the interior edge of tet t whose split gives the best worst tet; its tets in created_.
   bool split_an_edge(Index t);
-  void consider(const TopologyChange& candidate, TopologyChange& best) const {
-    if (candidate.quality > best.quality) best = candidate;
+  // Records a change to `tets` (their points are touched) and queues those under the target.
+  void changed(const std::vector<Index>& tets, std::vector<BadTet>& next);
+  // True when a tet at one of t's points changed after `since`.
+  bool touched_since(Index t, std::int64_t since) const {
+    for (Index p : c_.tet(t))
+      if (touched_[p] > since) return true;
+    return false;
   }
 
   TetComplex& c_;
   Index fixed_;
   const OptimiseParams& params_;
   double threshold_;
+  std::vector<std::int64_t> touched_;  // per point: the change count of the last change at it
+  std::int64_t changes_ = 0;
   EdgeRing ring_;
   TopologyChange candidate_, best_;
   EdgeSplit split_, best_split_;
@@ -102,6 +126,15 @@ std::vector<BadTet> Optimiser::bad_tets() const {
   }
   std::sort(bad.begin(), bad.end());
   return bad;
+}
+
+void Optimiser::changed(const std::vector<Index>& tets, std::vector<BadTet>& next) {
+  ++changes_;
+  touched_.resize(c_.points().size(), -1);  // an edge split adds a point
+  for (Index t : tets) {
+    for (Index p : c_.tet(t)) touched_[p] = changes_;
+    if (const double q = quality(t); bad(q)) next.push_back({q, t});
+  }
 }
 
 bool Optimiser::change_topology(Index t) {
@@ -134,8 +167,7 @@ bool Optimiser::smooth_corners(Index t, std::vector<BadTet>& next) {
     if (!smooth_point(c_, v, fixed_, /*climb=*/true, smoothing_)) continue;
     moved = true;
     ++stats.points_moved;
-    for (Index s : smoothing_.ball)
-      if (const double q = quality(s); q < threshold_) next.push_back({q, s});
+    changed(smoothing_.ball, next);
   }
   return moved;
 }
@@ -155,29 +187,27 @@ bool Optimiser::split_an_edge(Index t) {
 }
 
 absl::Status Optimiser::round(const std::vector<BadTet>& work, std::vector<BadTet>& next,
-                              bool& changed, Progress& progress) {
+                              bool& any_change, Progress& progress) {
   std::int64_t visited = 0;
   for (const BadTet& w : work) {
     if (++visited % kCancelCheckInterval == 0 && progress.cancelled())
       return absl::CancelledError("mesh optimisation cancelled");
-    if (!c_.alive(w.tet) || quality(w.tet) >= threshold_) continue;
+    if (!c_.alive(w.tet) || !bad(quality(w.tet))) continue;
+    if (w.failed_at >= 0 && !touched_since(w.tet, w.failed_at)) {
+      next.push_back(w);  // nothing new around it: not worth another try yet
+      continue;
+    }
+    const std::int64_t before = changes_;
     if (change_topology(w.tet)) {
-      changed = true;
-      for (Index s : created_)
-        if (const double q = quality(s); q < threshold_) next.push_back({q, s});
-      continue;
+      changed(created_, next);
+    } else if (params_.smoothing && smooth_corners(w.tet, next) && !bad(quality(w.tet))) {
+      // smoothed enough
+    } else if (params_.edge_split && bad(quality(w.tet)) && split_an_edge(w.tet)) {
+      changed(created_, next);
+    } else if (c_.alive(w.tet) && bad(quality(w.tet))) {
+      next.push_back({quality(w.tet), w.tet, changes_});
     }
-    if (params_.smoothing && smooth_corners(w.tet, next)) {
-      changed = true;
-      if (!bad(quality(w.tet))) continue;
-    }
-    if (params_.edge_split && bad(quality(w.tet)) && split_an_edge(w.tet)) {
-      changed = true;
-      for (Index s : created_)
-        if (const double q = quality(s); q < threshold_) next.push_back({q, s});
-      continue;
-    }
-    next.push_back({quality(w.tet), w.tet});
+    any_change = any_change || changes_ > before;
   }
   return absl::OkStatus();
 }
@@ -199,13 +229,20 @@ absl::StatusOr<OptimiseStats> optimise_tets(Mesh& mesh, Index fixed_points,
     next.clear();
     status = opt.round(work, next, changed, progress);
     if (!changed) break;
-    // Slots are reused: keep each live tet once, with its current quality.
+    // Slots are reused: keep each live tet once, with its current quality (and the latest
+    // failure mark among its entries, so that a tet just made is tried).
     work.clear();
     for (const BadTet& b : next)
       if (complex->alive(b.tet) && opt.bad(opt.quality(b.tet)))
-        work.push_back({opt.quality(b.tet), b.tet});
+        work.push_back({opt.quality(b.tet), b.tet, b.failed_at});
+    std::sort(work.begin(), work.end(), [](const BadTet& x, const BadTet& y) {
+      return x.tet < y.tet || (x.tet == y.tet && x.failed_at < y.failed_at);
+    });
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < work.size(); ++i)  // of one slot's entries, the earliest mark
+      if (kept == 0 || work[kept - 1].tet != work[i].tet) work[kept++] = work[i];
+    work.resize(kept);
     std::sort(work.begin(), work.end());
-    work.erase(std::unique(work.begin(), work.end()), work.end());
   }
   complex->compact();
   if (!status.ok()) return status;

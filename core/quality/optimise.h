@@ -36,17 +36,17 @@ namespace afmesh {
 
 struct OptimiseParams {
   // Tets with quality under sin(target_min_dihedral_deg) are worked on (degrees).
-  double target_min_dihedral_deg = 30.0;
+  double target_min_dihedral_deg = 25.0;
   // Rounds over the bad tets: round 0 takes every tet under the target, each later round the
   // tets that changes made and that are still under it, and those that could not be improved.
   int passes = 4;
   // Sweeps of Laplacian smoothing (kept only where better) over every movable point before the
   // rounds (0 = none).
-  int smoothing_sweeps = 0;
+  int smoothing_sweeps = 1;
   // The steps tried on a bad tet; edge removal considers rings of up to max_edge_ring tets.
   bool edge_removal = true;
   int max_edge_ring = 7;
-  bool face_removal = true;
+  bool face_removal = false;
   bool smoothing = true;
   // Last resort for a tet still under the target: split one of its interior edges by a new
   // interior point.

@@ -42,6 +42,7 @@ bool propose_face_removal(const TetComplex& c, Index t, int corner, TopologyChan
 struct SmoothingScratch {
   std::vector<Index> ball;           // the tets around the point
   std::vector<double> quality;       // their qualities
+  std::vector<double> trial;         // their qualities at a trial position
   std::vector<std::size_t> order;    // positions in `ball`, worst quality first
 };
 

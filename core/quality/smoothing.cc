@@ -12,6 +12,11 @@ namespace {
 // Hill-climbing iterations per call, and halvings of the step in each line search.
 constexpr int kClimbIterations = 8;
 constexpr int kLineSearchHalvings = 8;
+// The first step of a line search, in mean edge lengths around the point; a later search starts
+// at four times the previous step.
+constexpr double kFirstStep = 0.25;
+// Climbing stops after a step that raises the smallest quality by less than this.
+constexpr double kMinGain = 1e-3;
 // Tets within this of the worst quality count as active (their gradients steer the step).
 constexpr double kActiveBand = 1e-3;
 
@@ -32,12 +37,15 @@ double ball_quality(const TetComplex& c, SmoothingScratch& scratch) {
 }
 
 // True when every tet of the ball has quality above `floor` and is positive by exact orient3d
-// (the exact test only once the qualities pass). Looks at the tets in scratch.order first: the
-// worst ones, which are the likeliest to fail.
-bool ball_above(const TetComplex& c, double floor, const SmoothingScratch& scratch) {
+// (the exact test only once the qualities pass); the qualities are left in scratch.trial. Looks
+// at the tets in scratch.order first: the worst ones, which are the likeliest to fail.
+bool ball_above(const TetComplex& c, double floor, SmoothingScratch& scratch) {
   const std::vector<Point>& points = c.points();
-  for (std::size_t i : scratch.order)
-    if (!(tet_min_sine(points, c.tet(scratch.ball[i])) > floor)) return false;
+  scratch.trial.resize(scratch.ball.size());
+  for (std::size_t i : scratch.order) {
+    scratch.trial[i] = tet_min_sine(points, c.tet(scratch.ball[i]));
+    if (!(scratch.trial[i] > floor)) return false;
+  }
   for (Index t : scratch.ball) {
     const Tet& k = c.tet(t);
     if (orient3d(points[k[0]], points[k[1]], points[k[2]], points[k[3]]) <= 0) return false;
@@ -55,20 +63,16 @@ void sort_worst_first(SmoothingScratch& scratch) {
   });
 }
 
-// Gradient of the quality of tet k with respect to the position of point v (central
-// differences with step h).
-Point quality_gradient(TetComplex& c, const Tet& k, Index v, double h) {
+// Gradient of the quality of tet k (quality q at the current place) with respect to the
+// position of point v, by forward differences with step h.
+Point quality_gradient(TetComplex& c, const Tet& k, double q, Index v, double h) {
   Point g{0, 0, 0};
   const Point x = c.point(v);
   for (int axis = 0; axis < 3; ++axis) {
     Point y = x;
     y[axis] = x[axis] + h;
     c.move_point(v, y);
-    const double up = tet_min_sine(c.points(), k);
-    y[axis] = x[axis] - h;
-    c.move_point(v, y);
-    const double down = tet_min_sine(c.points(), k);
-    g[axis] = (up - down) / (2 * h);
+    g[axis] = (tet_min_sine(c.points(), k) - q) / h;
   }
   c.move_point(v, x);
   return g;
@@ -84,7 +88,8 @@ bool try_position(TetComplex& c, Index v, const Point& to, double& current,
     c.move_point(v, from);
     return false;
   }
-  current = ball_quality(c, scratch);
+  std::swap(scratch.quality, scratch.trial);
+  current = *std::min_element(scratch.quality.begin(), scratch.quality.end());
   sort_worst_first(scratch);
   return true;
 }
@@ -151,23 +156,28 @@ bool smooth_point(TetComplex& c, Index v, Index fixed_points, bool climb,
 
   // Hill climbing on the smallest quality.
   std::vector<Point> gradients;
+  double last_step = kFirstStep * length;
   for (int iteration = 0; iteration < kClimbIterations; ++iteration) {
     gradients.clear();
     for (std::size_t i : scratch.order) {
       if (!gradients.empty() && scratch.quality[i] > current + kActiveBand) break;
-      gradients.push_back(quality_gradient(c, c.tet(scratch.ball[i]), v, 1e-6 * length));
+      gradients.push_back(
+          quality_gradient(c, c.tet(scratch.ball[i]), scratch.quality[i], v, 1e-7 * length));
     }
     const Point d = ascent_direction(gradients);
     const double dn = norm(d);
     if (!(dn > 0)) break;
     const Point unit = scale(d, 1.0 / dn);
     const Point from = c.point(v);
+    const double before = current;
     bool stepped = false;
-    double step = 0.25 * length;
+    double step = std::min(kFirstStep * length, 4 * last_step);
     for (int h = 0; h < kLineSearchHalvings && !stepped; ++h, step *= 0.5)
       stepped = try_position(c, v, add(from, scale(unit, step)), current, scratch);
     if (!stepped) break;
     moved = true;
+    last_step = 2 * step;  // the step taken (halved once more by the loop)
+    if (current - before < kMinGain) break;
   }
   return moved;
 }

@@ -9,9 +9,6 @@
 namespace afmesh {
 namespace {
 
-// Not yet looked at, while building (boundary faces end as kInvalidIndex).
-constexpr Index kUnset = -2;
-
 bool contains(const Tet& t, Index p) { return t[0] == p || t[1] == p || t[2] == p || t[3] == p; }
 
 // +1 when (t[i0], t[i1], t[i2], t[i3]) is an even permutation of t, -1 when odd.
@@ -64,32 +61,51 @@ absl::StatusOr<TetComplex> TetComplex::build(Mesh& mesh) {
   }
   mesh.tet_tags.resize(mesh.tets.size(), 0);
   TetComplex c(mesh);
-  c.adjacent_.assign(mesh.tets.size(), {kUnset, kUnset, kUnset, kUnset});
+  c.adjacent_.assign(mesh.tets.size(), {kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex});
   c.point_tet_.assign(mesh.points.size(), kInvalidIndex);
   c.marks_.assign(mesh.tets.size(), 0);
+  // Each face is matched at its smallest point p, among the tets at p: the faces there whose
+  // other two points are larger than p, sorted by those two, pair up.
   const Incidence inc = point_incidence(mesh.tets, mesh.points.size());
-  for (Index t = 0; t < k; ++t) {
-    const Tet& q = mesh.tets[t];
-    for (Index p : q) c.point_tet_[p] = t;
-    for (int i = 0; i < 4; ++i) {
-      if (c.adjacent_[t][i] != kUnset) continue;
-      const Triangle f = tet_face(q, i);
-      Index other = kInvalidIndex;
-      for (Index e = inc.offsets[f[0]]; e < inc.offsets[f[0] + 1]; ++e) {
-        const Index s = inc.tets[e];
-        if (s == t || !contains(mesh.tets[s], f[1]) || !contains(mesh.tets[s], f[2])) continue;
-        if (other != kInvalidIndex)
-          return absl::InvalidArgumentError(absl::StrFormat(
-              "face (%d, %d, %d) is in more than two tets (%d, %d, %d)", f[0], f[1], f[2], t,
-              other, s));
-        other = s;
+  struct Side {
+    Index u, v;  // the face's other two points, u < v
+    Index tet;
+    int corner;  // the face is opposite this corner of tet
+    bool operator<(const Side& o) const {
+      return u < o.u || (u == o.u && (v < o.v || (v == o.v && tet < o.tet)));
+    }
+  };
+  std::vector<Side> sides;
+  for (Index p = 0; p < n; ++p) {
+    sides.clear();
+    for (Index e = inc.offsets[p]; e < inc.offsets[p + 1]; ++e) {
+      const Index t = inc.tets[e];
+      const Tet& q = mesh.tets[t];
+      c.point_tet_[p] = t;
+      for (int i = 0; i < 4; ++i) {
+        if (q[i] == p) continue;
+        Index u = kInvalidIndex, v = kInvalidIndex;  // the two points other than p and q[i]
+        for (int j = 0; j < 4; ++j)
+          if (j != i && q[j] != p) (u == kInvalidIndex ? u : v) = q[j];
+        if (u > v) std::swap(u, v);
+        if (u > p) sides.push_back({u, v, t, i});
       }
-      c.adjacent_[t][i] = other;
-      if (other == kInvalidIndex) continue;
-      for (int j = 0; j < 4; ++j) {
-        const Index p = mesh.tets[other][j];
-        if (p != f[0] && p != f[1] && p != f[2]) c.adjacent_[other][j] = t;
+    }
+    std::sort(sides.begin(), sides.end());
+    for (std::size_t i = 0; i < sides.size();) {
+      std::size_t j = i + 1;
+      while (j < sides.size() && sides[j].u == sides[i].u && sides[j].v == sides[i].v) ++j;
+      if (j - i > 2)
+        return absl::InvalidArgumentError(absl::StrFormat(
+            "face (%d, %d, %d) is in more than two tets (%d, %d, %d)", p, sides[i].u, sides[i].v,
+            sides[i].tet, sides[i + 1].tet, sides[i + 2].tet));
+      if (j - i == 2) {
+        c.adjacent_[sides[i].tet][sides[i].corner] = sides[i + 1].tet;
+        c.adjacent_[sides[i + 1].tet][sides[i + 1].corner] = sides[i].tet;
+      } else {
+        c.adjacent_[sides[i].tet][sides[i].corner] = kInvalidIndex;
       }
+      i = j;
     }
   }
   return c;
