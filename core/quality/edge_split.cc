@@ -74,7 +74,7 @@ bool make_edge_split(TetComplex& c, const EdgeSplit& split, Index fixed_points,
     c.drop_last_point();
     return false;
   }
-  smooth_point(c, z, fixed_points, /*climb=*/true, scratch);
+  smooth_point(c, z, fixed_points, /*climb_too=*/true, scratch);
   return true;
 }
 

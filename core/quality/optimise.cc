@@ -112,7 +112,7 @@ absl::Status Optimiser::smoothing_sweep(Progress& progress) {
   for (Index v = fixed_; v < static_cast<Index>(c_.points().size()); ++v) {
     if ((v & 4095) == 0 && progress.cancelled())
       return absl::CancelledError("mesh optimisation cancelled");
-    stats.points_moved += smooth_point(c_, v, fixed_, /*climb=*/false, smoothing_);
+    stats.points_moved += smooth_point(c_, v, fixed_, /*climb_too=*/false, smoothing_);
   }
   return absl::OkStatus();
 }
@@ -164,7 +164,7 @@ bool Optimiser::smooth_corners(Index t, std::vector<BadTet>& next) {
   bool moved = false;
   const Tet k = c_.tet(t);
   for (Index v : k) {
-    if (!smooth_point(c_, v, fixed_, /*climb=*/true, smoothing_)) continue;
+    if (!smooth_point(c_, v, fixed_, /*climb_too=*/true, smoothing_)) continue;
     moved = true;
     ++stats.points_moved;
     changed(smoothing_.ball, next);

@@ -41,8 +41,10 @@ struct OptimiseParams {
   // tets that changes made and that are still under it, and those that could not be improved.
   int passes = 4;
   // Sweeps of Laplacian smoothing (kept only where better) over every movable point before the
-  // rounds (0 = none).
-  int smoothing_sweeps = 1;
+  // rounds (0 = none). One sweep raises the mean radius ratio by about 0.05 and halves the tets
+  // under the target, for about 4 µs per movable point; off by default so that the cost stays
+  // with the bad tets.
+  int smoothing_sweeps = 0;
   // The steps tried on a bad tet; edge removal considers rings of up to max_edge_ring tets.
   bool edge_removal = true;
   int max_edge_ring = 7;
@@ -62,11 +64,12 @@ struct OptimiseStats {
   std::int64_t edge_splits = 0;    // each adds one point
 };
 
-// Improves `mesh.tets` (K×4, positive, conforming) over `mesh.points` (N×3) in place. Points
-// with index >= fixed_points may move; tets are replaced, added and removed (new tets get tag 0;
-// the others keep their order). Returns CANCELLED when progress.cancelled() turns true (the mesh
-// is then still valid, only less optimised) and INVALID_ARGUMENT, naming it, for a tet with an
-// index out of range or repeated, or a face in more than two tets.
+// Improves `mesh.tets` (K×4, positive, conforming: every face in one or two tets) over
+// `mesh.points` (N×3) in place. Points with index >= fixed_points may move and new points may be
+// appended (edge splits); tets are replaced, added and removed (new tets get tag 0; the others
+// keep their order). Returns CANCELLED when progress.cancelled() turns true (the mesh is then
+// still valid, only less optimised) and INVALID_ARGUMENT, naming it, for a tet with an index out
+// of range or repeated, or a face in more than two tets.
 absl::StatusOr<OptimiseStats> optimise_tets(Mesh& mesh, Index fixed_points,
                                             const OptimiseParams& params, Progress& progress);
 

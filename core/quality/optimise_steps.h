@@ -44,6 +44,7 @@ struct SmoothingScratch {
   std::vector<double> quality;       // their qualities
   std::vector<double> trial;         // their qualities at a trial position
   std::vector<std::size_t> order;    // positions in `ball`, worst quality first
+  std::vector<Point> gradients;      // of the nearly-worst tets' qualities
 };
 
 // Moves point v (not fixed: v >= fixed_points) to raise the smallest quality of the tets around
@@ -52,8 +53,8 @@ struct SmoothingScratch {
 // smoothing", 1997), after trying the centroid of its neighbours. A move is kept only when all
 // tets stay positive (exact orient3d) and the smallest quality strictly rises. Returns true when
 // the point moved.
-// With climb false only the centroid is tried (plain Laplacian smoothing, kept only if better).
-bool smooth_point(TetComplex& c, Index v, Index fixed_points, bool climb,
+// With climb_too false only the centroid is tried (Laplacian smoothing, kept only if better).
+bool smooth_point(TetComplex& c, Index v, Index fixed_points, bool climb_too,
                   SmoothingScratch& scratch);
 
 // Edge split by insertion (Klingner and Shewchuk, "Aggressive tetrahedral mesh improvement",

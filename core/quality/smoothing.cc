@@ -125,21 +125,8 @@ Point ascent_direction(const std::vector<Point>& gradients) {
   return {0, 0, 0};
 }
 
-}  // namespace
-
-bool smooth_point(TetComplex& c, Index v, Index fixed_points, bool climb,
-                  SmoothingScratch& scratch) {
-  if (v < fixed_points) return false;
-  c.ball(v, scratch.ball);
-  if (scratch.ball.empty()) return false;
-  double current = ball_quality(c, scratch);
-  if (current == -std::numeric_limits<double>::infinity()) return false;
-  sort_worst_first(scratch);
-  const double length = mean_edge_length(c, v, scratch.ball);
-  if (!(length > 0)) return false;
-  bool moved = false;
-
-  // The centroid of the neighbours (Laplacian smoothing), and halfway to it.
+// Laplacian step: v to the centroid of its neighbours, or halfway, when that beats `current`.
+bool move_toward_centroid(TetComplex& c, Index v, double& current, SmoothingScratch& scratch) {
   Point centroid{0, 0, 0};
   int count = 0;
   for (Index t : scratch.ball)
@@ -148,23 +135,25 @@ bool smooth_point(TetComplex& c, Index v, Index fixed_points, bool climb,
   centroid = scale(centroid, 1.0 / count);
   const Point start = c.point(v);
   for (double w : {1.0, 0.5})
-    if (try_position(c, v, lerp(start, centroid, w), current, scratch)) {
-      moved = true;
-      break;
-    }
-  if (!climb) return moved;
+    if (try_position(c, v, lerp(start, centroid, w), current, scratch)) return true;
+  return false;
+}
 
-  // Hill climbing on the smallest quality.
-  std::vector<Point> gradients;
+// Hill climbing on the smallest quality of the ball: a step along a direction that raises
+// every nearly-worst tet, found by a backtracking line search; repeated while it gains.
+bool climb(TetComplex& c, Index v, double& current, SmoothingScratch& scratch) {
+  const double length = mean_edge_length(c, v, scratch.ball);
+  if (!(length > 0)) return false;
+  bool moved = false;
   double last_step = kFirstStep * length;
   for (int iteration = 0; iteration < kClimbIterations; ++iteration) {
-    gradients.clear();
+    scratch.gradients.clear();
     for (std::size_t i : scratch.order) {
-      if (!gradients.empty() && scratch.quality[i] > current + kActiveBand) break;
-      gradients.push_back(
+      if (!scratch.gradients.empty() && scratch.quality[i] > current + kActiveBand) break;
+      scratch.gradients.push_back(
           quality_gradient(c, c.tet(scratch.ball[i]), scratch.quality[i], v, 1e-7 * length));
     }
-    const Point d = ascent_direction(gradients);
+    const Point d = ascent_direction(scratch.gradients);
     const double dn = norm(d);
     if (!(dn > 0)) break;
     const Point unit = scale(d, 1.0 / dn);
@@ -180,6 +169,21 @@ bool smooth_point(TetComplex& c, Index v, Index fixed_points, bool climb,
     if (current - before < kMinGain) break;
   }
   return moved;
+}
+
+}  // namespace
+
+bool smooth_point(TetComplex& c, Index v, Index fixed_points, bool climb_too,
+                  SmoothingScratch& scratch) {
+  if (v < fixed_points) return false;
+  c.ball(v, scratch.ball);
+  if (scratch.ball.empty()) return false;
+  double current = ball_quality(c, scratch);
+  if (current == -std::numeric_limits<double>::infinity()) return false;
+  sort_worst_first(scratch);
+  const bool centred = move_toward_centroid(c, v, current, scratch);
+  const bool climbed = climb_too && climb(c, v, current, scratch);
+  return centred || climbed;
 }
 
 }  // namespace afmesh

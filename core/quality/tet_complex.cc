@@ -22,24 +22,52 @@ int permutation_sign(int i0, int i1, int i2, int i3) {
 
 Triangle reversed(const Triangle& f) { return {f[0], f[2], f[1]}; }
 
-// Point -> tets incidence in compressed rows: the tets using point p are
-// tets[offsets[p] .. offsets[p+1]), ascending.
-struct Incidence {
+// The tets keyed by the smallest point of each of their faces: a tet's three faces at its
+// smallest point, and its fourth face (opposite that point) at its second smallest. In compressed
+// rows: the tets of point p are tets[offsets[p] .. offsets[p+1]), ascending. Two entries per tet.
+struct FaceKeys {
   std::vector<Index> offsets;
   std::vector<Index> tets;
 };
 
-Incidence point_incidence(const std::vector<Tet>& tets, std::size_t point_count) {
-  Incidence inc;
-  inc.offsets.assign(point_count + 1, 0);
-  for (const Tet& t : tets)
-    for (Index p : t) ++inc.offsets[p + 1];
-  for (std::size_t p = 0; p < point_count; ++p) inc.offsets[p + 1] += inc.offsets[p];
-  inc.tets.resize(4 * tets.size());
-  std::vector<Index> fill(inc.offsets.begin(), inc.offsets.end() - 1);
-  for (Index t = 0; t < static_cast<Index>(tets.size()); ++t)
-    for (Index p : tets[t]) inc.tets[fill[p]++] = t;
-  return inc;
+// The corners of tet q by ascending point: q[order[0]] < q[order[1]] < ...
+std::array<int, 4> ascending_corners(const Tet& q) {
+  std::array<int, 4> order = {0, 1, 2, 3};
+  // A sorting network of five compare-exchanges.
+  const auto exchange = [&](int i, int j) {
+    if (q[order[j]] < q[order[i]]) std::swap(order[i], order[j]);
+  };
+  exchange(0, 1);
+  exchange(2, 3);
+  exchange(0, 2);
+  exchange(1, 3);
+  exchange(1, 2);
+  return order;
+}
+
+// The two smallest points of tet q.
+std::pair<Index, Index> two_smallest(const Tet& q) {
+  const std::array<int, 4> order = ascending_corners(q);
+  return {q[order[0]], q[order[1]]};
+}
+
+FaceKeys face_keys(const std::vector<Tet>& tets, std::size_t point_count) {
+  FaceKeys keys;
+  keys.offsets.assign(point_count + 1, 0);
+  for (const Tet& q : tets) {
+    const auto [first, second] = two_smallest(q);
+    ++keys.offsets[first + 1];
+    ++keys.offsets[second + 1];
+  }
+  for (std::size_t p = 0; p < point_count; ++p) keys.offsets[p + 1] += keys.offsets[p];
+  keys.tets.resize(2 * tets.size());
+  std::vector<Index> fill(keys.offsets.begin(), keys.offsets.end() - 1);
+  for (Index t = 0; t < static_cast<Index>(tets.size()); ++t) {
+    const auto [first, second] = two_smallest(tets[t]);
+    keys.tets[fill[first]++] = t;
+    keys.tets[fill[second]++] = t;
+  }
+  return keys;
 }
 
 }  // namespace
@@ -63,12 +91,11 @@ absl::StatusOr<TetComplex> TetComplex::build(Mesh& mesh) {
   TetComplex c(mesh);
   c.adjacent_.assign(mesh.tets.size(), {kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex});
   c.point_tet_.assign(mesh.points.size(), kInvalidIndex);
-  c.marks_.assign(mesh.tets.size(), 0);
-  // Each face is matched at its smallest point p, among the tets at p: the faces there whose
-  // other two points are larger than p, sorted by those two, pair up.
-  const Incidence inc = point_incidence(mesh.tets, mesh.points.size());
+  // Each face is matched at its smallest point p, among the tets keyed there: their faces whose
+  // smallest point is p, sorted by the other two points, pair up.
+  const FaceKeys keys = face_keys(mesh.tets, mesh.points.size());
   struct Side {
-    Index u, v;  // the face's other two points, u < v
+    Index u, v;  // the face's other two points, p < u < v
     Index tet;
     int corner;  // the face is opposite this corner of tet
     bool operator<(const Side& o) const {
@@ -78,17 +105,16 @@ absl::StatusOr<TetComplex> TetComplex::build(Mesh& mesh) {
   std::vector<Side> sides;
   for (Index p = 0; p < n; ++p) {
     sides.clear();
-    for (Index e = inc.offsets[p]; e < inc.offsets[p + 1]; ++e) {
-      const Index t = inc.tets[e];
+    for (Index e = keys.offsets[p]; e < keys.offsets[p + 1]; ++e) {
+      const Index t = keys.tets[e];
       const Tet& q = mesh.tets[t];
-      c.point_tet_[p] = t;
-      for (int i = 0; i < 4; ++i) {
-        if (q[i] == p) continue;
-        Index u = kInvalidIndex, v = kInvalidIndex;  // the two points other than p and q[i]
-        for (int j = 0; j < 4; ++j)
-          if (j != i && q[j] != p) (u == kInvalidIndex ? u : v) = q[j];
-        if (u > v) std::swap(u, v);
-        if (u > p) sides.push_back({u, v, t, i});
+      const std::array<int, 4> o = ascending_corners(q);
+      if (q[o[0]] == p) {  // the three faces at the tet's smallest point
+        sides.push_back({q[o[2]], q[o[3]], t, o[1]});
+        sides.push_back({q[o[1]], q[o[3]], t, o[2]});
+        sides.push_back({q[o[1]], q[o[2]], t, o[3]});
+      } else {  // the face opposite it
+        sides.push_back({q[o[2]], q[o[3]], t, o[0]});
       }
     }
     std::sort(sides.begin(), sides.end());
@@ -102,12 +128,12 @@ absl::StatusOr<TetComplex> TetComplex::build(Mesh& mesh) {
       if (j - i == 2) {
         c.adjacent_[sides[i].tet][sides[i].corner] = sides[i + 1].tet;
         c.adjacent_[sides[i + 1].tet][sides[i + 1].corner] = sides[i].tet;
-      } else {
-        c.adjacent_[sides[i].tet][sides[i].corner] = kInvalidIndex;
       }
       i = j;
     }
   }
+  for (Index t = 0; t < k; ++t)
+    for (Index p : mesh.tets[t]) c.point_tet_[p] = t;
   return c;
 }
 
@@ -151,28 +177,20 @@ bool TetComplex::edge_ring(Index t, Index a, Index b, int max_tets, EdgeRing& ou
   return true;
 }
 
-bool TetComplex::mark(Index t, std::uint32_t stamp) const {
-  if (marks_[t] == stamp) return false;
-  marks_[t] = stamp;
-  return true;
-}
-
 void TetComplex::ball(Index p, std::vector<Index>& out) const {
   out.clear();
   const Index start = point_tet_[p];
   if (start == kInvalidIndex) return;
-  if (++stamp_ == 0) {  // wrapped: no stale mark may equal a new stamp
-    std::fill(marks_.begin(), marks_.end(), 0);
-    stamp_ = 1;
-  }
-  mark(start, stamp_);
   out.push_back(start);
+  // Breadth first through the faces at p. A ball has a few dozen tets: a linear membership test
+  // is cheaper than any per-tet mark.
   for (std::size_t i = 0; i < out.size(); ++i) {
     const Index t = out[i];
     const int own = corner_of(t, p);
     for (int c = 0; c < 4; ++c) {
       const Index s = adjacent_[t][c];
-      if (c != own && s != kInvalidIndex && mark(s, stamp_)) out.push_back(s);
+      if (c != own && s != kInvalidIndex && std::find(out.begin(), out.end(), s) == out.end())
+        out.push_back(s);
     }
   }
 }
@@ -186,7 +204,6 @@ Index TetComplex::new_slot() {
   m_->tets.push_back({kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex});
   m_->tet_tags.push_back(0);
   adjacent_.push_back({kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex});
-  marks_.push_back(0);
   return static_cast<Index>(m_->tets.size()) - 1;
 }
 
@@ -294,7 +311,6 @@ void TetComplex::compact() {
   adjacent_.clear();
   point_tet_.clear();
   free_.clear();
-  marks_.clear();
 }
 
 }  // namespace afmesh

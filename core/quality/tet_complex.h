@@ -32,10 +32,10 @@ struct EdgeRing {
 class TetComplex {
  public:
   // Adjacency of mesh.tets over mesh.points (kept by reference; both are edited by the calls
-  // below). O(K·v) time with v the mean number of tets at a point; 16 bytes per tet and 4 per
-  // point are kept, 16 bytes per tet more while building.
-  // Fails with InvalidArgument, naming the face, when a face is in more than two tets, and when
-  // an index is out of range or repeated in a tet.
+  // below). O(K log v) time with v the mean number of tets at a point; 16 bytes per tet and 4
+  // per point are kept, 8 bytes per tet more while building.
+  // Fails with InvalidArgument, naming what is wrong, when an index is out of range or repeated
+  // in a tet and when a face is in more than two tets.
   static absl::StatusOr<TetComplex> build(Mesh& mesh);
 
   const Mesh& mesh() const { return *m_; }
@@ -79,15 +79,11 @@ class TetComplex {
  private:
   explicit TetComplex(Mesh& mesh) : m_(&mesh) {}
   Index new_slot();
-  // Marks the visit of tet t in walk number `stamp`; false when it was already marked.
-  bool mark(Index t, std::uint32_t stamp) const;
 
   Mesh* m_;
   std::vector<std::array<Index, 4>> adjacent_;  // K×4: neighbour across the face opposite corner i
   std::vector<Index> point_tet_;                // N: one live tet using the point, or kInvalidIndex
   std::vector<Index> free_;                     // deleted slots, reused last-in first-out
-  mutable std::vector<std::uint32_t> marks_;    // K: walk stamps for ball()
-  mutable std::uint32_t stamp_ = 0;
 };
 
 }  // namespace afmesh

@@ -68,6 +68,19 @@ TEST(TetComplex, FaceInThreeTetsIsAnError) {
   EXPECT_NE(c.status().message().find("(0, 1, 2)"), std::string::npos) << c.status();
 }
 
+TEST(TetComplex, BadIndicesAreNamed) {
+  Mesh m = testing::two_tet_mesh();
+  m.tets[1][3] = 5;
+  absl::StatusOr<TetComplex> c = TetComplex::build(m);
+  ASSERT_FALSE(c.ok());
+  EXPECT_EQ(c.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(c.status().message().find("tet 1"), std::string::npos) << c.status();
+  m.tets[1][3] = m.tets[1][0];
+  c = TetComplex::build(m);
+  ASSERT_FALSE(c.ok());
+  EXPECT_NE(c.status().message().find("tet 1 repeats point"), std::string::npos) << c.status();
+}
+
 TEST(TetComplex, ReplaceMakesA23FlipAndRefusesAMismatchedCavity) {
   Mesh two = testing::two_tet_mesh();  // tets (0 1 2 3) and (0 2 1 4) share face (0 1 2)
   absl::StatusOr<TetComplex> c = TetComplex::build(two);
