@@ -212,6 +212,26 @@ absl::Status Optimiser::round(const std::vector<BadTet>& work, std::vector<BadTe
   return absl::OkStatus();
 }
 
+// The work of the next round from the entries made in this one. Slots are reused, so each live
+// tet under the target is kept once, with its current quality and the earliest failure mark among
+// its entries (-1 when it is new, so that it is tried).
+std::vector<BadTet> next_work(const TetComplex& c, const Optimiser& opt,
+                              const std::vector<BadTet>& entries) {
+  std::vector<BadTet> work;
+  for (const BadTet& b : entries)
+    if (c.alive(b.tet) && opt.bad(opt.quality(b.tet)))
+      work.push_back({opt.quality(b.tet), b.tet, b.failed_at});
+  std::sort(work.begin(), work.end(), [](const BadTet& x, const BadTet& y) {
+    return x.tet < y.tet || (x.tet == y.tet && x.failed_at < y.failed_at);
+  });
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < work.size(); ++i)
+    if (kept == 0 || work[kept - 1].tet != work[i].tet) work[kept++] = work[i];
+  work.resize(kept);
+  std::sort(work.begin(), work.end());
+  return work;
+}
+
 }  // namespace
 
 absl::StatusOr<OptimiseStats> optimise_tets(Mesh& mesh, Index fixed_points,
@@ -229,20 +249,7 @@ absl::StatusOr<OptimiseStats> optimise_tets(Mesh& mesh, Index fixed_points,
     next.clear();
     status = opt.round(work, next, changed, progress);
     if (!changed) break;
-    // Slots are reused: keep each live tet once, with its current quality (and the latest
-    // failure mark among its entries, so that a tet just made is tried).
-    work.clear();
-    for (const BadTet& b : next)
-      if (complex->alive(b.tet) && opt.bad(opt.quality(b.tet)))
-        work.push_back({opt.quality(b.tet), b.tet, b.failed_at});
-    std::sort(work.begin(), work.end(), [](const BadTet& x, const BadTet& y) {
-      return x.tet < y.tet || (x.tet == y.tet && x.failed_at < y.failed_at);
-    });
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < work.size(); ++i)  // of one slot's entries, the earliest mark
-      if (kept == 0 || work[kept - 1].tet != work[i].tet) work[kept++] = work[i];
-    work.resize(kept);
-    std::sort(work.begin(), work.end());
+    work = next_work(*complex, opt, next);
   }
   complex->compact();
   if (!status.ok()) return status;

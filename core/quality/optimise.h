@@ -1,22 +1,26 @@
-// Tetrahedral mesh optimisation: local topological changes and point smoothing that raise the
-// worst element quality without touching the boundary.
+// Tetrahedral mesh optimisation: local topological changes, point smoothing and, as a last
+// resort, edge splits that raise the worst element quality without touching the boundary.
 //
-// The advancing front leaves a small share of slivers where fronts meet. This pass works only on
-// the tets whose quality is under the target, worst first, and for each tries
-//   - edge removal (Shewchuk, "Two discrete optimization algorithms for the topological
-//     improvement of tetrahedral meshes", 2002): an interior edge of the tet with n <= 7 tets
-//     around it is removed, its ring re-triangulated by the triangulation that maximises the
-//     smallest quality (a 3-2 flip when n = 3);
-//   - 2-3 flips: an interior face of the tet is removed (two tets become three around the segment
-//     joining their apexes);
-// taking the change whose worst new tet is best, when it beats the worst tet it replaces; and
-// when none does,
-//   - smoothing: each movable corner of the tet is moved by hill climbing on the smallest quality
-//     around it (Freitag and Ollivier-Gooch 1997).
-// Tets made by a change that are still under the target are worked on in the next round.
+// The advancing front leaves a small share of slivers where fronts meet and flat tets across
+// boundary quads. This pass works only on the tets whose quality is under the target, worst
+// first, and for each tries in turn
+//   1. edge removal (Shewchuk, "Two discrete optimization algorithms for the topological
+//      improvement of tetrahedral meshes", 2002): an interior edge of the tet with n <= 7 tets
+//      around it is removed, its ring re-triangulated by the triangulation that maximises the
+//      smallest quality (a 3-2 flip when n = 3); optionally 2-3 flips of its interior faces;
+//      the change whose worst new tet is best is made when it beats the worst tet it replaces;
+//   2. smoothing: each movable corner of the tet is moved by hill climbing on the smallest quality
+//      around it (Freitag and Ollivier-Gooch 1997);
+//   3. edge split (Klingner and Shewchuk 2007): when the tet is still under the target, a new
+//      interior point splits the interior edge whose split gives the best worst tet. This is what
+//      removes a flat tet across a boundary quad when no triangulation of the ring of the quad's
+//      interior diagonal has only positive tets.
+// Tets made or changed that are still under the target are worked on in the next round; a tet
+// on which every step failed is tried again only after a change at one of its points.
 // Quality is the minimum over the six dihedral angles of their sine (0 for a flat tet, negative
 // for an inverted one), so small and near-180° angles are both improved. Every new tet is
-// positive by exact orient3d.
+// positive by exact orient3d, and every change raises the smallest quality among the tets it
+// touches, so the mesh's worst tet never gets worse.
 //
 // The boundary is left exactly as it is: points with index < fixed_points never move, and
 // changes replace only faces and edges that are interior (a face with a tet on both sides, an
