@@ -4,6 +4,13 @@
 //
 //   afmesh-bench-volume --shape sphere --size 0.05 [--growth 1] [--surface PREFIX]
 //                       [--out mesh.msh] [--no-optimise] [--no-validate] [--json]
+//   afmesh-bench-volume --shape torus --size 0.08 --study [--steps default|LIST]...
+//                       [--target DEG]... [--passes 4] [--max-ring 7]
+//     LIST: comma-separated steps of edge,face,smooth,split,sweep (or none); every --steps is
+//     run with every --target (default: the optimiser's defaults)
+//     meshes without optimisation, then runs the optimiser apart (bench/optimise_study.h) and
+//     prints the quality before and after, its time, and the classes of the tets left under
+//     10 and 20 degrees.
 //
 // Run one measurement per process: the peak resident memory (VmHWM) is reset just before the
 // mesher starts, and "bytes/tet" is (peak during meshing - resident before) / tets.
@@ -20,6 +27,7 @@
 #include "absl/strings/str_format.h"
 #include "bench/bench_shapes.h"
 #include "bench/json_line.h"
+#include "bench/optimise_study.h"
 #include "bench/process_memory.h"
 #include "bench/tetgen_files.h"
 #include "core/common/progress.h"
@@ -231,6 +239,7 @@ int run_benchmark(const Options& o) {
 }  // namespace afmesh::bench
 
 int main(int argc, char** argv) {
+  using afmesh::bench::StudyOptions;
   afmesh::bench::Options o;
   CLI::App app{"Benchmark of the core volume mesher on one solid (one thread)."};
   app.add_option("--shape", o.shape, "sphere | torus | box | lblock")->required();
@@ -239,12 +248,50 @@ int main(int argc, char** argv) {
   app.add_option("--surface", o.surface_prefix,
                  "write the surface as PREFIX.stl (ascii), .mesh, .smesh and .poly for the peers");
   app.add_option("--out", o.out_path, "write the volume mesh (format by extension)");
-  bool no_optimise = false, no_validate = false;
+  bool no_optimise = false, no_validate = false, study = false;
+  std::vector<std::string> steps_list;
+  std::vector<double> targets;
+  int passes = afmesh::OptimiseParams{}.passes;
+  int max_ring = afmesh::OptimiseParams{}.max_edge_ring;
+  StudyOptions so;
+  app.add_flag("--study", study, "measure the optimiser apart, before and after (see above)");
+  app.add_option("--steps", steps_list,
+                 "with --study: optimisation steps, default or of edge,face,smooth,split,sweep "
+                 "(repeatable)");
+  app.add_option("--target", targets, "with --study: target min dihedral angle, degrees (repeatable)");
+  app.add_option("--passes", passes, "with --study: rounds over the bad tets");
+  app.add_option("--max-ring", max_ring, "with --study: largest ring of an edge removal or split");
   app.add_flag("--no-optimise", no_optimise, "skip the optimisation step after the front closes");
   app.add_flag("--no-validate", no_validate, "skip validate_volume_mesh");
   app.add_flag("--json", o.json, "print one JSON object instead of the readable report");
   CLI11_PARSE(app, argc, argv);
   o.optimise = !no_optimise;
   o.validate = !no_validate;
-  return afmesh::bench::run_benchmark(o);
+  if (!study) return afmesh::bench::run_benchmark(o);
+  if (steps_list.empty()) steps_list.push_back("default");
+  if (targets.empty()) targets.push_back(afmesh::OptimiseParams{}.target_min_dihedral_deg);
+  for (const std::string& steps : steps_list) {
+    for (double target : targets) {
+      afmesh::bench::StudyVariant v;
+      v.params.target_min_dihedral_deg = target;
+      v.params.passes = passes;
+      v.params.max_edge_ring = max_ring;
+      if (const std::string error = afmesh::bench::set_optimise_steps(steps, v.params);
+          !error.empty()) {
+        std::fprintf(stderr, "afmesh-bench-volume: %s\n", error.c_str());
+        return 2;
+      }
+      v.label = absl::StrCat(steps, " @ ", target, " deg");
+      so.variants.push_back(v);
+    }
+  }
+  absl::StatusOr<afmesh::Mesh> surface = afmesh::bench::bench_surface(o.shape, o.size);
+  if (!surface.ok()) {
+    std::fprintf(stderr, "afmesh-bench-volume: %s\n", surface.status().ToString().c_str());
+    return 2;
+  }
+  so.size = o.size;
+  so.growth = o.growth;
+  so.json = o.json;
+  return afmesh::bench::run_optimise_study(o.shape, *surface, so);
 }

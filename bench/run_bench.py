@@ -39,8 +39,12 @@ TARGET_TETS = {"50k": 50_000, "500k": 500_000, "2M": 2_000_000}
 SIZES = {
     "sphere": {"50k": 0.1, "500k": 0.05, "2M": 0.030},
     "torus": {"50k": 0.08, "500k": 0.039, "2M": 0.026},
+    # found at commit 76bd97b; no 2M size tried yet
+    "box": {"50k": 0.057, "500k": 0.0265},
+    "lblock": {"50k": 0.07, "500k": 0.0325},
 }
-SHAPE_TITLES = {"sphere": "sphere, radius 1", "torus": "torus, R = 1, r = 0.35"}
+SHAPE_TITLES = {"sphere": "sphere, radius 1", "torus": "torus, R = 1, r = 0.35",
+                "box": "unit cube", "lblock": "L-block with a square hole, voxels 0.5"}
 
 
 def parse_arguments(argv):
@@ -150,7 +154,10 @@ def skip_reason(args, tool, target):
 
 
 def run_case(args, tools, shape, target):
-    h = SIZES[shape][target]
+    h = SIZES.get(shape, {}).get(target)
+    if h is None:
+        print(f"\n== {shape}: no size for target {target}; give one with --size {shape}:{target}=H ==")
+        return [{"tool": "afmesh", "error": f"no size for {shape} at {target}"}]
     prefix = os.path.join(args.work_dir, f"{shape}-{target}")
     print(f"\n== {SHAPE_TITLES.get(shape, shape)}: target ~{target} tets (afmesh), h = {h:g} ==",
           flush=True)

@@ -6,257 +6,252 @@
 #include <utility>
 #include <vector>
 
-#include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
+#include "core/quality/optimise_steps.h"
+#include "core/quality/tet_complex.h"
 
 namespace afmesh {
 
 double tet_min_sine(const Point& a, const Point& b, const Point& c, const Point& d) {
-  // n[i]: twice the area of the face opposite corner i. The sine of the dihedral angle at edge
-  // (i, j), between the faces opposite k and l, is det · |e_ij| / (n[k] n[l]).
-  const double n[4] = {norm(cross(sub(c, b), sub(d, b))), norm(cross(sub(c, a), sub(d, a))),
-                       norm(cross(sub(b, a), sub(d, a))), norm(cross(sub(b, a), sub(c, a)))};
-  const double det = dot(cross(sub(b, a), sub(c, a)), sub(d, a));
-  if (!(n[0] > 0 && n[1] > 0 && n[2] > 0 && n[3] > 0)) return 0.0;
-  const double r[6] = {distance(a, b) / (n[2] * n[3]), distance(a, c) / (n[1] * n[3]),
-                       distance(a, d) / (n[1] * n[2]), distance(b, c) / (n[0] * n[3]),
-                       distance(b, d) / (n[0] * n[2]), distance(c, d) / (n[0] * n[1])};
-  const auto [lo, hi] = std::minmax_element(r, r + 6);
-  return det >= 0 ? det * *lo : det * *hi;
+  // The value is scale-free: edges are scaled by 1 / |b - a| so that the squares below neither
+  // overflow nor underflow for any sensible coordinates.
+  const double ab = norm(sub(b, a));
+  if (!(ab > 0)) return 0.0;
+  const double s = 1.0 / ab;
+  const Point u = scale(sub(b, a), s), v = scale(sub(c, a), s), w = scale(sub(d, a), s);
+  // N[i]: squared twice-area of the face opposite corner i. The sine of the dihedral angle at
+  // edge (i, j), between the faces opposite k and l, is det · |e_ij| / sqrt(N[k] N[l]).
+  const Point vu = sub(v, u), wu = sub(w, u);
+  const double area2[4] = {squared_norm(cross(vu, wu)), squared_norm(cross(v, w)),
+                           squared_norm(cross(u, w)), squared_norm(cross(u, v))};
+  if (!(area2[0] > 0 && area2[1] > 0 && area2[2] > 0 && area2[3] > 0)) return 0.0;
+  const double det = dot(cross(u, v), w);
+  const double r2[6] = {1.0 / (area2[2] * area2[3]),  // |u|^2 = 1
+                        squared_norm(v) / (area2[1] * area2[3]),
+                        squared_norm(w) / (area2[1] * area2[2]),
+                        squared_norm(vu) / (area2[0] * area2[3]),
+                        squared_norm(wu) / (area2[0] * area2[2]),
+                        squared_norm(sub(w, v)) / (area2[0] * area2[1])};
+  const auto [lo, hi] = std::minmax_element(r2, r2 + 6);
+  return det >= 0 ? det * std::sqrt(*lo) : det * std::sqrt(*hi);
 }
 
 namespace {
 
-// Local operations on a tet mesh with its point-to-tet incidence kept up to date.
-class TetOptimiser {
+constexpr int kCancelCheckInterval = 256;
+constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+
+// A tet to work on, ordered worst first, then by slot. `failed_at` is the change count when
+// every step last failed on it (-1: not tried yet); it is tried again only once something
+// around it has changed since.
+struct BadTet {
+  double quality;
+  Index tet;
+  std::int64_t failed_at = -1;
+  bool operator<(const BadTet& o) const {
+    return quality < o.quality || (quality == o.quality && tet < o.tet);
+  }
+};
+
+void consider(const TopologyChange& candidate, TopologyChange& best) {
+  if (candidate.quality > best.quality) best = candidate;
+}
+
+class Optimiser {
  public:
-  TetOptimiser(Mesh& mesh, Index fixed_points) : m_(mesh), fixed_(fixed_points) {
-    ball_.resize(m_.points.size());
-    for (Index t = 0; t < static_cast<Index>(m_.tets.size()); ++t)
-      for (Index p : m_.tets[t]) ball_[p].push_back(t);
-  }
+  Optimiser(TetComplex& c, Index fixed_points, const OptimiseParams& params)
+      : c_(c), fixed_(fixed_points), params_(params),
+        threshold_(std::sin(params.target_min_dihedral_deg * std::numbers::pi / 180.0)),
+        touched_(c.points().size(), -1) {}
 
-  double quality(Index t) const {
-    const Tet& k = m_.tets[t];
-    return tet_min_sine(m_.points[k[0]], m_.points[k[1]], m_.points[k[2]], m_.points[k[3]]);
-  }
-  bool alive(Index t) const { return m_.tets[t][0] != kInvalidIndex; }
+  double quality(Index t) const { return tet_min_sine(c_.points(), c_.tet(t)); }
+  bool bad(double quality) const { return quality < threshold_; }
 
-  // 3-2 flip of edge (a, b): see optimise.h.
-  bool remove_edge(Index a, Index b);
-  // 2-3 flip of the face of tet t opposite its corner k.
-  bool flip_face(Index t, int k);
-  // Moves point v toward the centroid of its neighbours when that raises its ball's worst tet.
-  bool smooth(Index v);
-
-  // Drops deleted tets.
-  void compact();
+  // Laplacian smoothing over every movable point, kept where the worst tet around it improves.
+  absl::Status smoothing_sweep(Progress& progress);
+  // The tets under the target, worst first.
+  std::vector<BadTet> bad_tets() const;
+  // One round over `work` (sorted); the tets to look at in the next round are appended to
+  // `next`. Returns CANCELLED when asked to stop.
+  absl::Status round(const std::vector<BadTet>& work, std::vector<BadTet>& next, bool& changed,
+                     Progress& progress);
 
   OptimiseStats stats;
 
  private:
-  Index add_tet(const Tet& tet);
-  void remove_tet(Index t);
-  double worst(const std::vector<Index>& tets) const {
-    double q = 2.0;
-    for (Index t : tets) q = std::min(q, quality(t));
-    return q;
-  }
-  double worst_of(std::initializer_list<Tet> tets) const {
-    double q = 2.0;
-    for (const Tet& k : tets)
-      q = std::min(q, tet_min_sine(m_.points[k[0]], m_.points[k[1]], m_.points[k[2]],
-                                   m_.points[k[3]]));
-    return q;
-  }
-  bool positive(const Tet& k) const {
-    return orient3d(m_.points[k[0]], m_.points[k[1]], m_.points[k[2]], m_.points[k[3]]) > 0;
+  // The best change of edge removal and 2-3 flip around tet t, made; its tets in created_.
+  bool change_topology(Index t);
+  // Smooths the movable corners of tet t; the tets around a moved point that are under the
+  // target are appended to `next`.
+  bool smooth_corners(Index t, std::vector<BadTet>& next);
+  // Splits the interior edge of tet t whose split gives the best worst tet; its tets in created_.
+  bool split_an_edge(Index t);
+  // Records a change to `tets` (their points are touched) and queues those under the target.
+  void changed(const std::vector<Index>& tets, std::vector<BadTet>& next);
+  // True when a tet at one of t's points changed after `since`.
+  bool touched_since(Index t, std::int64_t since) const {
+    for (Index p : c_.tet(t))
+      if (touched_[p] > since) return true;
+    return false;
   }
 
-  Mesh& m_;
+  TetComplex& c_;
   Index fixed_;
-  std::vector<std::vector<Index>> ball_;  // per point: the live tets using it
-  std::vector<Index> free_;               // deleted tet slots, reused by add_tet
-  std::vector<Index> scratch_;
+  const OptimiseParams& params_;
+  double threshold_;
+  std::vector<std::int64_t> touched_;  // per point: the change count of the last change at it
+  std::int64_t changes_ = 0;
+  EdgeRing ring_;
+  TopologyChange candidate_, best_;
+  EdgeSplit split_, best_split_;
+  SmoothingScratch smoothing_;
+  std::vector<Index> created_;
 };
 
-Index TetOptimiser::add_tet(const Tet& tet) {
-  Index t;
-  if (!free_.empty()) {
-    t = free_.back();
-    free_.pop_back();
-    m_.tets[t] = tet;
-    m_.tet_tags[t] = 0;
-  } else {
-    t = static_cast<Index>(m_.tets.size());
-    m_.tets.push_back(tet);
-    m_.tet_tags.push_back(0);
-  }
-  for (Index p : tet) ball_[p].push_back(t);
-  return t;
-}
-
-void TetOptimiser::remove_tet(Index t) {
-  for (Index p : m_.tets[t]) {
-    std::vector<Index>& b = ball_[p];
-    *std::find(b.begin(), b.end(), t) = b.back();
-    b.pop_back();
-  }
-  m_.tets[t][0] = kInvalidIndex;
-  free_.push_back(t);
-}
-
-bool TetOptimiser::remove_edge(Index a, Index b) {
-  std::vector<Index>& around = scratch_;
-  around.clear();
-  for (Index t : ball_[a]) {
-    const Tet& k = m_.tets[t];
-    if (k[0] == b || k[1] == b || k[2] == b || k[3] == b) around.push_back(t);
-  }
-  if (around.size() != 3) return false;
-  // The ring: the three other corners, each in exactly two of the tets (a closed ring, so the
-  // edge is interior).
-  Index ring[6];
-  int n = 0;
-  for (Index t : around)
-    for (Index p : m_.tets[t])
-      if (p != a && p != b) ring[n++] = p;
-  std::sort(ring, ring + 6);
-  if (!(ring[0] == ring[1] && ring[2] == ring[3] && ring[4] == ring[5] && ring[1] != ring[2] &&
-        ring[3] != ring[4]))
-    return false;
-  Index p = ring[0], q = ring[2], r = ring[4];
-  const int side_a = orient3d(m_.points[p], m_.points[q], m_.points[r], m_.points[a]);
-  if (side_a == 0) return false;
-  if (side_a < 0) std::swap(p, q);
-  const Tet t1{p, q, r, a}, t2{q, p, r, b};
-  if (!positive(t2)) return false;  // the triangle pqr must separate a from b
-  if (worst_of({t1, t2}) <= worst(around)) return false;
-  const std::vector<Index> old = around;
-  for (Index t : old) remove_tet(t);
-  add_tet(t1);
-  add_tet(t2);
-  ++stats.flips_32;
-  return true;
-}
-
-bool TetOptimiser::flip_face(Index t, int k) {
-  const Tet tet = m_.tets[t];
-  const Index a = tet[k];
-  Index face[3];
-  for (int i = 0, n = 0; i < 4; ++i)
-    if (i != k) face[n++] = tet[i];
-  Index u = kInvalidIndex;  // the tet on the other side of the face
-  for (Index s : ball_[face[0]]) {
-    if (s == t) continue;
-    const Tet& w = m_.tets[s];
-    int shared = 0;
-    for (Index p : w) shared += (p == face[1] || p == face[2]);
-    if (shared == 2) {
-      u = s;
-      break;
-    }
-  }
-  if (u == kInvalidIndex) return false;  // a boundary face stays
-  Index b = kInvalidIndex;
-  for (Index p : m_.tets[u])
-    if (p != face[0] && p != face[1] && p != face[2]) b = p;
-  Index p = face[0], q = face[1], r = face[2];
-  if (orient3d(m_.points[p], m_.points[q], m_.points[r], m_.points[a]) < 0) std::swap(p, q);
-  // Around the new edge ab, one tet per edge (x, y) of the face: (y, x, a, b).
-  const Tet n1{q, p, a, b}, n2{r, q, a, b}, n3{p, r, a, b};
-  if (!positive(n1) || !positive(n2) || !positive(n3)) return false;
-  if (worst_of({n1, n2, n3}) <= std::min(quality(t), quality(u))) return false;
-  remove_tet(t);
-  remove_tet(u);
-  add_tet(n1);
-  add_tet(n2);
-  add_tet(n3);
-  ++stats.flips_23;
-  return true;
-}
-
-bool TetOptimiser::smooth(Index v) {
-  if (v < fixed_ || ball_[v].empty()) return false;
-  Point centroid{0, 0, 0};
-  int count = 0;
-  for (Index t : ball_[v])
-    for (Index p : m_.tets[t])
-      if (p != v) centroid = add(centroid, m_.points[p]), ++count;
-  centroid = scale(centroid, 1.0 / count);
-  const Point old = m_.points[v];
-  const double before = worst(ball_[v]);
-  for (double step : {1.0, 0.5, 0.25}) {
-    m_.points[v] = lerp(old, centroid, step);
-    bool valid = true;
-    for (Index t : ball_[v]) valid = valid && positive(m_.tets[t]);
-    if (valid && worst(ball_[v]) > before) {
-      ++stats.points_moved;
-      return true;
-    }
-  }
-  m_.points[v] = old;
-  return false;
-}
-
-void TetOptimiser::compact() {
-  std::size_t n = 0;
-  for (std::size_t t = 0; t < m_.tets.size(); ++t) {
-    if (m_.tets[t][0] == kInvalidIndex) continue;
-    m_.tets[n] = m_.tets[t];
-    m_.tet_tags[n] = m_.tet_tags[t];
-    ++n;
-  }
-  m_.tets.resize(n);
-  m_.tet_tags.resize(n);
-}
-
-// One pass over the tets below the threshold, worst first.
-absl::Status improve_bad_tets(TetOptimiser& opt, const Mesh& m, double threshold,
-                              Progress& progress) {
-  std::vector<std::pair<double, Index>> bad;
-  for (Index t = 0; t < static_cast<Index>(m.tets.size()); ++t) {
-    if (!opt.alive(t)) continue;
-    const double q = opt.quality(t);
-    if (q < threshold) bad.emplace_back(q, t);
-  }
-  std::sort(bad.begin(), bad.end());
-  std::int64_t visited = 0;
-  for (const auto& [q0, t] : bad) {
-    if ((++visited & 1023) == 0 && progress.cancelled())
+absl::Status Optimiser::smoothing_sweep(Progress& progress) {
+  for (Index v = fixed_; v < static_cast<Index>(c_.points().size()); ++v) {
+    if ((v & 4095) == 0 && progress.cancelled())
       return absl::CancelledError("mesh optimisation cancelled");
-    if (!opt.alive(t) || opt.quality(t) >= threshold) continue;
-    const Tet k = m.tets[t];
-    bool done = false;
-    static constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-    for (const auto& e : kEdges)
-      if (!done) done = opt.remove_edge(k[e[0]], k[e[1]]);
-    for (int f = 0; f < 4 && !done; ++f) done = opt.flip_face(t, f);
-    for (int i = 0; i < 4 && !done; ++i) done = opt.smooth(k[i]);
+    stats.points_moved += smooth_point(c_, v, fixed_, /*climb_too=*/false, smoothing_);
   }
   return absl::OkStatus();
+}
+
+std::vector<BadTet> Optimiser::bad_tets() const {
+  std::vector<BadTet> bad;
+  for (Index t = 0; t < c_.slots(); ++t) {
+    if (!c_.alive(t)) continue;
+    const double q = quality(t);
+    if (q < threshold_) bad.push_back({q, t});
+  }
+  std::sort(bad.begin(), bad.end());
+  return bad;
+}
+
+void Optimiser::changed(const std::vector<Index>& tets, std::vector<BadTet>& next) {
+  ++changes_;
+  touched_.resize(c_.points().size(), -1);  // an edge split adds a point
+  for (Index t : tets) {
+    for (Index p : c_.tet(t)) touched_[p] = changes_;
+    if (const double q = quality(t); bad(q)) next.push_back({q, t});
+  }
+}
+
+bool Optimiser::change_topology(Index t) {
+  best_.quality = -std::numeric_limits<double>::infinity();
+  const Tet k = c_.tet(t);
+  if (params_.edge_removal)
+    for (const auto& e : kEdges)
+      if (propose_edge_removal(c_, t, k[e[0]], k[e[1]], params_.max_edge_ring, ring_, candidate_))
+        consider(candidate_, best_);
+  if (params_.face_removal)
+    for (int corner = 0; corner < 4; ++corner)
+      if (propose_face_removal(c_, t, corner, candidate_)) consider(candidate_, best_);
+  if (best_.fresh.empty() || best_.quality == -std::numeric_limits<double>::infinity())
+    return false;
+  created_.clear();
+  if (!c_.replace(best_.old, best_.fresh, created_)) return false;
+  if (best_.fresh.size() == 3 && best_.old.size() == 2) {
+    ++stats.flips_23;
+  } else {
+    ++stats.edge_removals;
+    stats.flips_32 += best_.old.size() == 3;
+  }
+  return true;
+}
+
+bool Optimiser::smooth_corners(Index t, std::vector<BadTet>& next) {
+  bool moved = false;
+  const Tet k = c_.tet(t);
+  for (Index v : k) {
+    if (!smooth_point(c_, v, fixed_, /*climb_too=*/true, smoothing_)) continue;
+    moved = true;
+    ++stats.points_moved;
+    changed(smoothing_.ball, next);
+  }
+  return moved;
+}
+
+bool Optimiser::split_an_edge(Index t) {
+  const Tet k = c_.tet(t);
+  best_split_.quality = -std::numeric_limits<double>::infinity();
+  for (const auto& e : kEdges)
+    if (propose_edge_split(c_, t, k[e[0]], k[e[1]], params_.max_edge_ring, split_) &&
+        split_.quality > best_split_.quality)
+      best_split_ = split_;
+  if (best_split_.quality == -std::numeric_limits<double>::infinity()) return false;
+  created_.clear();
+  if (!make_edge_split(c_, best_split_, fixed_, smoothing_, created_)) return false;
+  ++stats.edge_splits;
+  return true;
+}
+
+absl::Status Optimiser::round(const std::vector<BadTet>& work, std::vector<BadTet>& next,
+                              bool& any_change, Progress& progress) {
+  std::int64_t visited = 0;
+  for (const BadTet& w : work) {
+    if (++visited % kCancelCheckInterval == 0 && progress.cancelled())
+      return absl::CancelledError("mesh optimisation cancelled");
+    if (!c_.alive(w.tet) || !bad(quality(w.tet))) continue;
+    if (w.failed_at >= 0 && !touched_since(w.tet, w.failed_at)) {
+      next.push_back(w);  // nothing new around it: not worth another try yet
+      continue;
+    }
+    const std::int64_t before = changes_;
+    if (change_topology(w.tet)) {
+      changed(created_, next);
+    } else if (params_.smoothing && smooth_corners(w.tet, next) && !bad(quality(w.tet))) {
+      // smoothed enough
+    } else if (params_.edge_split && bad(quality(w.tet)) && split_an_edge(w.tet)) {
+      changed(created_, next);
+    } else if (c_.alive(w.tet) && bad(quality(w.tet))) {
+      next.push_back({quality(w.tet), w.tet, changes_});
+    }
+    any_change = any_change || changes_ > before;
+  }
+  return absl::OkStatus();
+}
+
+// The work of the next round from the entries made in this one. Slots are reused, so each live
+// tet under the target is kept once, with its current quality and the earliest failure mark among
+// its entries (-1 when it is new, so that it is tried).
+std::vector<BadTet> next_work(const TetComplex& c, const Optimiser& opt,
+                              const std::vector<BadTet>& entries) {
+  std::vector<BadTet> work;
+  for (const BadTet& b : entries)
+    if (c.alive(b.tet) && opt.bad(opt.quality(b.tet)))
+      work.push_back({opt.quality(b.tet), b.tet, b.failed_at});
+  std::sort(work.begin(), work.end(), [](const BadTet& x, const BadTet& y) {
+    return x.tet < y.tet || (x.tet == y.tet && x.failed_at < y.failed_at);
+  });
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < work.size(); ++i)
+    if (kept == 0 || work[kept - 1].tet != work[i].tet) work[kept++] = work[i];
+  work.resize(kept);
+  std::sort(work.begin(), work.end());
+  return work;
 }
 
 }  // namespace
 
 absl::StatusOr<OptimiseStats> optimise_tets(Mesh& mesh, Index fixed_points,
                                             const OptimiseParams& params, Progress& progress) {
-  mesh.tet_tags.resize(mesh.tets.size(), 0);
-  TetOptimiser opt(mesh, fixed_points);
-  const double threshold = std::sin(params.target_min_dihedral_deg * std::numbers::pi / 180.0);
+  absl::StatusOr<TetComplex> complex = TetComplex::build(mesh);
+  if (!complex.ok()) return complex.status();
+  Optimiser opt(*complex, fixed_points, params);
   absl::Status status;
-  for (int sweep = 0; sweep < params.smoothing_sweeps && status.ok(); ++sweep) {
-    for (Index v = fixed_points; v < static_cast<Index>(mesh.points.size()); ++v) {
-      if ((v & 4095) == 0 && progress.cancelled()) {
-        status = absl::CancelledError("mesh optimisation cancelled");
-        break;
-      }
-      opt.smooth(v);
-    }
+  for (int sweep = 0; sweep < params.smoothing_sweeps && status.ok(); ++sweep)
+    status = opt.smoothing_sweep(progress);
+  std::vector<BadTet> work = opt.bad_tets(), next;
+  opt.stats.bad_tets = static_cast<std::int64_t>(work.size());
+  for (int pass = 0; pass < params.passes && status.ok() && !work.empty(); ++pass) {
+    bool changed = false;
+    next.clear();
+    status = opt.round(work, next, changed, progress);
+    if (!changed) break;
+    work = next_work(*complex, opt, next);
   }
-  for (int pass = 0; pass < params.passes && status.ok(); ++pass)
-    status = improve_bad_tets(opt, mesh, threshold, progress);
-  opt.compact();
+  complex->compact();
   if (!status.ok()) return status;
   return opt.stats;
 }

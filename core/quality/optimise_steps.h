@@ -1,0 +1,81 @@
+// The local steps of the tet optimiser (optimise.h). Each topological step proposes a change
+// around one tet without making it; the driver makes the best proposal through
+// TetComplex::replace. Smoothing moves one point.
+//
+// Quality is tet_min_sine (optimise.h) throughout: larger is better, <= 0 for a flat or inverted
+// tet. Every proposed tet is positive by exact orient3d.
+#pragma once
+
+#include <limits>
+#include <vector>
+
+#include "core/mesh/mesh.h"
+#include "core/quality/optimise.h"
+#include "core/quality/tet_complex.h"
+
+namespace afmesh {
+
+inline double tet_min_sine(const std::vector<Point>& points, const Tet& k) {
+  return tet_min_sine(points[k[0]], points[k[1]], points[k[2]], points[k[3]]);
+}
+
+// Tets `old` to be replaced by `fresh`; quality is the smallest quality among `fresh`.
+struct TopologyChange {
+  std::vector<Index> old;
+  std::vector<Tet> fresh;
+  double quality = -std::numeric_limits<double>::infinity();
+};
+
+// Edge removal (Shewchuk 2002, §2): the n <= max_ring tets around the interior edge (a, b) of tet
+// t become the 2(n - 2) tets over the best triangulation of its ring (ring_triangulation.h).
+// `ring` is scratch. False when the edge is on the boundary (its ring is not closed), has more
+// than max_ring tets, or no triangulation gives positive tets better than the ring's worst.
+bool propose_edge_removal(const TetComplex& c, Index t, Index a, Index b, int max_ring,
+                          EdgeRing& ring, TopologyChange& out);
+
+// 2-3 flip: the face of tet t opposite corner `corner` and the tet beyond it become three tets
+// around the edge joining the two apexes. False on a boundary face, when a new tet is not
+// positive, or when the new worst is not better than the old.
+bool propose_face_removal(const TetComplex& c, Index t, int corner, TopologyChange& out);
+
+// Scratch for smooth_point.
+struct SmoothingScratch {
+  std::vector<Index> ball;           // the tets around the point
+  std::vector<double> quality;       // their qualities
+  std::vector<double> trial;         // their qualities at a trial position
+  std::vector<std::size_t> order;    // positions in `ball`, worst quality first
+  std::vector<Point> gradients;      // of the nearly-worst tets' qualities
+};
+
+// Moves point v (not fixed: v >= fixed_points) to raise the smallest quality of the tets around
+// it: hill climbing along the gradient of the worst tets' quality with a backtracking line
+// search (Freitag and Ollivier-Gooch, "Tetrahedral mesh improvement using swapping and
+// smoothing", 1997), after trying the centroid of its neighbours. A move is kept only when all
+// tets stay positive (exact orient3d) and the smallest quality strictly rises. Returns true when
+// the point moved.
+// With climb_too false only the centroid is tried (Laplacian smoothing, kept only if better).
+bool smooth_point(TetComplex& c, Index v, Index fixed_points, bool climb_too,
+                  SmoothingScratch& scratch);
+
+// Edge split by insertion (Klingner and Shewchuk, "Aggressive tetrahedral mesh improvement",
+// 2007, §3): a new point z inside the ring of the interior edge (a, b) of tet t replaces the
+// n <= max_ring tets around the edge by the 2n tets (z, b, r_i, r_{i+1}) and (a, z, r_i, r_{i+1}),
+// so every face on the ring's outside, boundary faces included, stays. z is the best of a few
+// points between the edge's midpoint and the ring's centroid.
+struct EdgeSplit {
+  EdgeRing ring;
+  Point z{};
+  double quality = -std::numeric_limits<double>::infinity();  // worst of the 2n new tets
+};
+
+// Proposes the split of edge (a, b) of tet t; false when the edge is on the boundary, has more
+// than max_ring tets around it, or no placement beats the ring's worst tet. Leaves the complex
+// as it was.
+bool propose_edge_split(TetComplex& c, Index t, Index a, Index b, int max_ring, EdgeSplit& out);
+
+// Makes a proposed split: adds point z, replaces the ring, then smooths z (smooth_point). The
+// new tets are appended to `created`. False (nothing changed) if the ring changed meanwhile.
+bool make_edge_split(TetComplex& c, const EdgeSplit& split, Index fixed_points,
+                     SmoothingScratch& scratch, std::vector<Index>& created);
+
+}  // namespace afmesh

@@ -1,0 +1,316 @@
+#include "core/quality/tet_complex.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "absl/strings/str_format.h"
+#include "core/quality/mesh_topology.h"
+
+namespace afmesh {
+namespace {
+
+bool contains(const Tet& t, Index p) { return t[0] == p || t[1] == p || t[2] == p || t[3] == p; }
+
+// +1 when (t[i0], t[i1], t[i2], t[i3]) is an even permutation of t, -1 when odd.
+int permutation_sign(int i0, int i1, int i2, int i3) {
+  const int p[4] = {i0, i1, i2, i3};
+  int inversions = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) inversions += p[i] > p[j];
+  return inversions % 2 == 0 ? 1 : -1;
+}
+
+Triangle reversed(const Triangle& f) { return {f[0], f[2], f[1]}; }
+
+// The tets keyed by the smallest point of each of their faces: a tet's three faces at its
+// smallest point, and its fourth face (opposite that point) at its second smallest. In compressed
+// rows: the tets of point p are tets[offsets[p] .. offsets[p+1]), ascending. Two entries per tet.
+struct FaceKeys {
+  std::vector<Index> offsets;
+  std::vector<Index> tets;
+};
+
+// The corners of tet q by ascending point: q[order[0]] < q[order[1]] < ...
+std::array<int, 4> ascending_corners(const Tet& q) {
+  std::array<int, 4> order = {0, 1, 2, 3};
+  // A sorting network of five compare-exchanges.
+  const auto exchange = [&](int i, int j) {
+    if (q[order[j]] < q[order[i]]) std::swap(order[i], order[j]);
+  };
+  exchange(0, 1);
+  exchange(2, 3);
+  exchange(0, 2);
+  exchange(1, 3);
+  exchange(1, 2);
+  return order;
+}
+
+// The two smallest points of tet q.
+std::pair<Index, Index> two_smallest(const Tet& q) {
+  const std::array<int, 4> order = ascending_corners(q);
+  return {q[order[0]], q[order[1]]};
+}
+
+FaceKeys face_keys(const std::vector<Tet>& tets, std::size_t point_count) {
+  FaceKeys keys;
+  keys.offsets.assign(point_count + 1, 0);
+  for (const Tet& q : tets) {
+    const auto [first, second] = two_smallest(q);
+    ++keys.offsets[first + 1];
+    ++keys.offsets[second + 1];
+  }
+  for (std::size_t p = 0; p < point_count; ++p) keys.offsets[p + 1] += keys.offsets[p];
+  keys.tets.resize(2 * tets.size());
+  std::vector<Index> fill(keys.offsets.begin(), keys.offsets.end() - 1);
+  for (Index t = 0; t < static_cast<Index>(tets.size()); ++t) {
+    const auto [first, second] = two_smallest(tets[t]);
+    keys.tets[fill[first]++] = t;
+    keys.tets[fill[second]++] = t;
+  }
+  return keys;
+}
+
+}  // namespace
+
+absl::StatusOr<TetComplex> TetComplex::build(Mesh& mesh) {
+  const auto n = static_cast<Index>(mesh.points.size());
+  const auto k = static_cast<Index>(mesh.tets.size());
+  for (Index t = 0; t < k; ++t) {
+    const Tet& q = mesh.tets[t];
+    for (int i = 0; i < 4; ++i) {
+      if (q[i] < 0 || q[i] >= n)
+        return absl::InvalidArgumentError(
+            absl::StrFormat("tet %d: point index %d out of range [0, %d)", t, q[i], n));
+      for (int j = 0; j < i; ++j)
+        if (q[i] == q[j])
+          return absl::InvalidArgumentError(
+              absl::StrFormat("tet %d repeats point %d", t, q[i]));
+    }
+  }
+  mesh.tet_tags.resize(mesh.tets.size(), 0);
+  TetComplex c(mesh);
+  c.adjacent_.assign(mesh.tets.size(), {kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex});
+  c.point_tet_.assign(mesh.points.size(), kInvalidIndex);
+  // Each face is matched at its smallest point p, among the tets keyed there: their faces whose
+  // smallest point is p, sorted by the other two points, pair up.
+  const FaceKeys keys = face_keys(mesh.tets, mesh.points.size());
+  struct Side {
+    Index u, v;  // the face's other two points, p < u < v
+    Index tet;
+    int corner;  // the face is opposite this corner of tet
+    bool operator<(const Side& o) const {
+      return u < o.u || (u == o.u && (v < o.v || (v == o.v && tet < o.tet)));
+    }
+  };
+  std::vector<Side> sides;
+  for (Index p = 0; p < n; ++p) {
+    sides.clear();
+    for (Index e = keys.offsets[p]; e < keys.offsets[p + 1]; ++e) {
+      const Index t = keys.tets[e];
+      const Tet& q = mesh.tets[t];
+      const std::array<int, 4> o = ascending_corners(q);
+      if (q[o[0]] == p) {  // the three faces at the tet's smallest point
+        sides.push_back({q[o[2]], q[o[3]], t, o[1]});
+        sides.push_back({q[o[1]], q[o[3]], t, o[2]});
+        sides.push_back({q[o[1]], q[o[2]], t, o[3]});
+      } else {  // the face opposite it
+        sides.push_back({q[o[2]], q[o[3]], t, o[0]});
+      }
+    }
+    std::sort(sides.begin(), sides.end());
+    for (std::size_t i = 0; i < sides.size();) {
+      std::size_t j = i + 1;
+      while (j < sides.size() && sides[j].u == sides[i].u && sides[j].v == sides[i].v) ++j;
+      if (j - i > 2)
+        return absl::InvalidArgumentError(absl::StrFormat(
+            "face (%d, %d, %d) is in more than two tets (%d, %d, %d)", p, sides[i].u, sides[i].v,
+            sides[i].tet, sides[i + 1].tet, sides[i + 2].tet));
+      if (j - i == 2) {
+        c.adjacent_[sides[i].tet][sides[i].corner] = sides[i + 1].tet;
+        c.adjacent_[sides[i + 1].tet][sides[i + 1].corner] = sides[i].tet;
+      }
+      i = j;
+    }
+  }
+  for (Index t = 0; t < k; ++t)
+    for (Index p : mesh.tets[t]) c.point_tet_[p] = t;
+  return c;
+}
+
+int TetComplex::corner_of(Index t, Index p) const {
+  const Tet& q = m_->tets[t];
+  for (int i = 0; i < 4; ++i)
+    if (q[i] == p) return i;
+  return -1;
+}
+
+bool TetComplex::edge_ring(Index t, Index a, Index b, int max_tets, EdgeRing& out) const {
+  out.a = a;
+  out.b = b;
+  out.tets.clear();
+  out.ring.clear();
+  const Tet& q = m_->tets[t];
+  const int ia = corner_of(t, a), ib = corner_of(t, b);
+  if (ia < 0 || ib < 0 || ia == ib) return false;
+  int rest[2], n = 0;
+  for (int i = 0; i < 4; ++i)
+    if (i != ia && i != ib) rest[n++] = i;
+  if (permutation_sign(ia, ib, rest[0], rest[1]) < 0) std::swap(rest[0], rest[1]);
+  // Invariant: cur = (a, b, u, v) up to an even permutation.
+  Index u = q[rest[0]], v = q[rest[1]], cur = t;
+  out.ring.push_back(u);
+  out.tets.push_back(t);
+  while (true) {
+    const Index next = adjacent_[cur][corner_of(cur, u)];  // across face (a, b, v)
+    if (next == kInvalidIndex) return false;
+    if (next == t) break;
+    if (static_cast<int>(out.tets.size()) >= max_tets) return false;
+    Index w = kInvalidIndex;
+    for (Index p : m_->tets[next])
+      if (p != a && p != b && p != v) w = p;
+    out.ring.push_back(v);
+    out.tets.push_back(next);
+    u = v;
+    v = w;
+    cur = next;
+  }
+  return true;
+}
+
+void TetComplex::ball(Index p, std::vector<Index>& out) const {
+  out.clear();
+  const Index start = point_tet_[p];
+  if (start == kInvalidIndex) return;
+  out.push_back(start);
+  // Breadth first through the faces at p. A ball has a few dozen tets: a linear membership test
+  // is cheaper than any per-tet mark.
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const Index t = out[i];
+    const int own = corner_of(t, p);
+    for (int c = 0; c < 4; ++c) {
+      const Index s = adjacent_[t][c];
+      if (c != own && s != kInvalidIndex && std::find(out.begin(), out.end(), s) == out.end())
+        out.push_back(s);
+    }
+  }
+}
+
+Index TetComplex::new_slot() {
+  if (!free_.empty()) {
+    const Index t = free_.back();
+    free_.pop_back();
+    return t;
+  }
+  m_->tets.push_back({kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex});
+  m_->tet_tags.push_back(0);
+  adjacent_.push_back({kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex});
+  return static_cast<Index>(m_->tets.size()) - 1;
+}
+
+bool TetComplex::replace(absl::Span<const Index> old, absl::Span<const Tet> fresh,
+                         std::vector<Index>& created) {
+  // The cavity's outside faces, oriented outward, each with the tet beyond it.
+  struct Outer {
+    Triangle face;
+    Index beyond;
+    bool used;
+  };
+  std::vector<Outer> outer;
+  outer.reserve(4 * old.size());
+  for (Index o : old)
+    for (int i = 0; i < 4; ++i)
+      if (std::find(old.begin(), old.end(), adjacent_[o][i]) == old.end())
+        outer.push_back({canonical_rotation(tet_face(m_->tets[o], i)), adjacent_[o][i], false});
+  for (Index o : old)
+    for (Index p : m_->tets[o]) {
+      bool used = false;
+      for (const Tet& f : fresh) used = used || contains(f, p);
+      if (!used) return false;
+    }
+  // link[4 f + i]: the fresh face (4 g + j) glued to face i of fresh[f], or -(k + 1) for the
+  // outside face outer[k].
+  std::vector<int> link(4 * fresh.size(), 0);
+  for (std::size_t f = 0; f < fresh.size(); ++f) {
+    for (int i = 0; i < 4; ++i) {
+      const Triangle face = canonical_rotation(tet_face(fresh[f], i));
+      const Triangle back = canonical_rotation(reversed(face));
+      int found = -1;
+      for (std::size_t k = 0; k < outer.size() && found < 0; ++k)
+        if (!outer[k].used && outer[k].face == face) {
+          outer[k].used = true;
+          link[4 * f + i] = -static_cast<int>(k) - 1;
+          found = 0;
+        }
+      for (std::size_t g = 0; g < fresh.size() && found < 0; ++g)
+        for (int j = 0; j < 4 && found < 0; ++j)
+          if (g != f && canonical_rotation(tet_face(fresh[g], j)) == back) {
+            link[4 * f + i] = static_cast<int>(4 * g + j);
+            found = 0;
+          }
+      if (found < 0) return false;
+    }
+  }
+  for (const Outer& o : outer)
+    if (!o.used) return false;
+  for (std::size_t e = 0; e < link.size(); ++e)
+    if (link[e] >= 0 && link[link[e]] != static_cast<int>(e)) return false;
+
+  for (Index o : old) {
+    m_->tets[o][0] = kInvalidIndex;
+    free_.push_back(o);
+  }
+  const std::size_t first = created.size();
+  for (const Tet& f : fresh) {
+    const Index t = new_slot();
+    m_->tets[t] = f;
+    m_->tet_tags[t] = 0;
+    for (Index p : f) point_tet_[p] = t;
+    created.push_back(t);
+  }
+  for (std::size_t f = 0; f < fresh.size(); ++f) {
+    const Index t = created[first + f];
+    for (int i = 0; i < 4; ++i) {
+      const int l = link[4 * f + i];
+      if (l >= 0) {
+        adjacent_[t][i] = created[first + l / 4];
+        continue;
+      }
+      const Outer& o = outer[-l - 1];
+      adjacent_[t][i] = o.beyond;
+      if (o.beyond == kInvalidIndex) continue;
+      for (int j = 0; j < 4; ++j) {
+        const Index p = m_->tets[o.beyond][j];
+        if (p != o.face[0] && p != o.face[1] && p != o.face[2]) adjacent_[o.beyond][j] = t;
+      }
+    }
+  }
+  return true;
+}
+
+Index TetComplex::add_point(const Point& x) {
+  m_->points.push_back(x);
+  point_tet_.push_back(kInvalidIndex);
+  return static_cast<Index>(m_->points.size()) - 1;
+}
+
+void TetComplex::drop_last_point() {
+  m_->points.pop_back();
+  point_tet_.pop_back();
+}
+
+void TetComplex::compact() {
+  std::size_t n = 0;
+  for (std::size_t t = 0; t < m_->tets.size(); ++t) {
+    if (m_->tets[t][0] == kInvalidIndex) continue;
+    m_->tets[n] = m_->tets[t];
+    m_->tet_tags[n] = m_->tet_tags[t];
+    ++n;
+  }
+  m_->tets.resize(n);
+  m_->tet_tags.resize(n);
+  adjacent_.clear();
+  point_tet_.clear();
+  free_.clear();
+}
+
+}  // namespace afmesh
