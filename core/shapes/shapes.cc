@@ -209,4 +209,17 @@ Mesh torus_surface(double major_radius, double minor_radius, double h) {
   return m;
 }
 
+Mesh schoenhardt_prism_surface() {
+  Mesh m;
+  const double pi = std::numbers::pi;
+  for (int level = 0; level < 2; ++level)
+    for (int i = 0; i < 3; ++i) {
+      const double a = pi / 2 + 2 * pi * i / 3 + level * pi / 6;
+      m.points.push_back({std::cos(a), std::sin(a), static_cast<double>(level)});
+    }
+  m.triangles = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
+  m.triangle_tags.assign(m.triangles.size(), 0);
+  return m;
+}
+
 }  // namespace afmesh

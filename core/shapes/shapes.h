@@ -30,4 +30,9 @@ Mesh sphere_surface(const Point& center, double radius, double h);
 // A torus around the z axis with major radius R and minor radius r, edges about h.
 Mesh torus_surface(double major_radius, double minor_radius, double h);
 
+// Schönhardt's twisted prism: a unit triangle in z = 0 and the same triangle turned by 30° in
+// z = 1, the three side quads split along their reflex diagonals, so that no tetrahedralisation
+// of its six corners exists (a new point is needed). Eight triangles.
+Mesh schoenhardt_prism_surface();
+
 }  // namespace afmesh

@@ -114,6 +114,14 @@ Mesh meshed_without_optimisation(const Mesh& front, double h) {
 // ---------------------------------------------------------------------------------------------
 // The ring triangulation programme.
 
+TEST(Optimise, MinSineOfTheRegularTetIsSinOfItsDihedralAngle) {
+  const Point a{1, 1, 1}, b{1, -1, -1}, c{-1, 1, -1}, d{-1, -1, 1};
+  const double s = tet_min_sine(b, a, c, d);  // positive orientation
+  EXPECT_NEAR(s, std::sin(std::acos(1.0 / 3.0)), 1e-12);
+  EXPECT_NEAR(tet_min_sine(a, b, c, d), -s, 1e-12);  // inverted: negative
+  EXPECT_EQ(tet_min_sine({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}), 0.0);  // flat
+}
+
 TEST(RingTriangulation, MatchesExhaustiveSearch) {
   for (int n = 3; n <= 9; ++n) {
     int calls = 0;

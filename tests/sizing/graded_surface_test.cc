@@ -156,7 +156,8 @@ TEST(GradedSurface, SphereStaysAClosedOrientedManifoldWithinTheBound) {
 TEST(GradedSurface, IsDeterministicAndLeavesFineSurfacesAlone) {
   const SizeSpec spec{.max_size = 0.3,
                       .growth = 1.0,
-                      .sources = {SizeSource{{{0.5, 0.5, 1.0}}, 0.04, 0.0, 0.3, PowerLaw{1.5}}}};
+                      .sources = {SizeSource{{{0.5, 0.5, 1.0}}, 0.04, 0.0, 0.3, PowerLaw{1.5}}},
+                      .background = std::nullopt};
   absl::StatusOr<SpecSizeField> field = SpecSizeField::create(spec, Box{{0, 0, 0}, {1, 1, 1}});
   ASSERT_TRUE(field.ok());
   absl::StatusOr<Mesh> first = grade_surface(tagged_cube(0.3), *field);

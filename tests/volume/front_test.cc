@@ -7,6 +7,7 @@
 
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
+#include "core/shapes/shapes.h"
 #include "core/sizing/size_field.h"
 #include "core/volume/front.h"
 #include "core/volume/front_bins.h"
@@ -153,18 +154,7 @@ TEST(CrossingEnvironments, FacesAndPointsOfAnotherEnvironmentAreIgnored) {
 // three side diagonals reflex) is filled from a kernel point inside it, every element positive,
 // and the front is empty after.
 TEST(FillPocket, SchoenhardtPrismIsFilledFromAKernelPoint) {
-  Mesh input;
-  const double pi = std::numbers::pi;
-  for (int i = 0; i < 3; ++i) {
-    const double a = pi / 2 + 2 * pi * i / 3;
-    input.points.push_back({std::cos(a), std::sin(a), 0.0});
-  }
-  for (int i = 0; i < 3; ++i) {
-    const double a = pi / 2 + 2 * pi * i / 3 + pi / 6;
-    input.points.push_back({std::cos(a), std::sin(a), 1.0});
-  }
-  input.triangles = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3},
-                     {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
+  const Mesh input = schoenhardt_prism_surface();
   // No tet on the six corners fits: each candidate crosses a side or a reflex edge.
   const UniformSize size(1.0);
   volume::MesherState s(input, 1.0, size, Box{{-2, -2, -1}, {2, 2, 2}}, 0.5);

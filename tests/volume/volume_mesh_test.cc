@@ -64,19 +64,7 @@ TEST(VolumeMesh, LBlockWithHoleIsValid) {
 // tetrahedralisation of its six corners exists. The front closes it only through the end game
 // (F11): a pocket filled from a new kernel point.
 TEST(VolumeMesh, SchoenhardtPrismNeedsAndGetsAKernelPoint) {
-  Mesh front;
-  const double pi = std::numbers::pi;
-  for (int i = 0; i < 3; ++i) {
-    const double a = pi / 2 + 2 * pi * i / 3;
-    front.points.push_back({std::cos(a), std::sin(a), 0.0});
-  }
-  for (int i = 0; i < 3; ++i) {
-    const double a = pi / 2 + 2 * pi * i / 3 + pi / 6;  // the top turned by 30 degrees
-    front.points.push_back({std::cos(a), std::sin(a), 1.0});
-  }
-  front.triangles = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3},
-                     {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
-  front.triangle_tags.assign(front.triangles.size(), 0);
+  const Mesh front = schoenhardt_prism_surface();
   const VolumeResult r = mesh_and_check(front, 1.0);
   EXPECT_GT(r.mesh.points.size(), 6u);  // a Steiner point was needed
 }
@@ -167,50 +155,6 @@ TEST(VolumeMesh, CancellationStopsTheFront) {
 }  // namespace
 }  // namespace afmesh
 
-namespace afmesh {
-namespace {
-
-double worst_min_dihedral(const Mesh& m) {
-  double worst = 180;
-  for (const Tet& t : m.tets) worst = std::min(worst, tet_quality(m.points, t).min_dihedral_deg);
-  return worst;
-}
-
-std::int64_t count_below(const Mesh& m, double degrees) {
-  std::int64_t n = 0;
-  for (const Tet& t : m.tets) n += tet_quality(m.points, t).min_dihedral_deg < degrees;
-  return n;
-}
-
-TEST(Optimise, KeepsTheMeshValidAndRaisesTheWorstElements) {
-  const Mesh front = sphere_surface({0, 0, 0}, 1.0, 0.2);
-  VolumeParams params;
-  params.size = 0.2;
-  params.optimise = false;
-  absl::StatusOr<VolumeResult> raw = generate_volume_mesh(front, params, no_progress());
-  ASSERT_TRUE(raw.ok()) << raw.status();
-  Mesh mesh = raw->mesh;
-  const absl::StatusOr<OptimiseStats> stats =
-      optimise_tets(mesh, static_cast<Index>(front.points.size()), OptimiseParams{}, no_progress());
-  ASSERT_TRUE(stats.ok()) << stats.status();
-  EXPECT_GT(stats->flips_23 + stats->flips_32 + stats->points_moved, 0);
-  const ValidationReport report = validate_volume_mesh(mesh, &front);
-  EXPECT_TRUE(report.valid()) << report.to_string();
-  for (std::size_t p = 0; p < front.points.size(); ++p) EXPECT_EQ(mesh.points[p], front.points[p]);
-  EXPECT_GT(worst_min_dihedral(mesh), worst_min_dihedral(raw->mesh));
-  EXPECT_LT(count_below(mesh, 20), count_below(raw->mesh, 20));
-}
-
-TEST(Optimise, MinSineOfTheRegularTetIsSinOfItsDihedralAngle) {
-  const Point a{1, 1, 1}, b{1, -1, -1}, c{-1, 1, -1}, d{-1, -1, 1};
-  const double s = tet_min_sine(b, a, c, d);  // positive orientation
-  EXPECT_NEAR(s, std::sin(std::acos(1.0 / 3.0)), 1e-12);
-  EXPECT_NEAR(tet_min_sine(a, b, c, d), -s, 1e-12);  // inverted: negative
-  EXPECT_EQ(tet_min_sine({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}), 0.0);  // flat
-}
-
-}  // namespace
-}  // namespace afmesh
 
 namespace afmesh {
 namespace {
