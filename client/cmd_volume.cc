@@ -124,20 +124,20 @@ double mean_edge_length(const Mesh& front) {
   return edges == 0 ? 1.0 : sum / static_cast<double>(edges);
 }
 
-// The specification travels in the call's first message, whole (an inline background grid
-// included), and gRPC refuses messages over 4 MiB (its default, which the server keeps: it
-// answers "Received message larger than max"); the other header fields take a few bytes.
+// The specification travels in the call's first message, except its background grid, which
+// follows in slices of any number (volume_call.cc). gRPC refuses messages over 4 MiB (its
+// default, which the server keeps), so only an absurd number of sources can overflow the header;
+// the other header fields take a few bytes.
 absl::Status check_fits_in_header(const SizeSpec& spec) {
   constexpr std::size_t kMaxSpecBytes = 4 * 1024 * 1024 - 1024;
-  const std::size_t bytes = size_spec_to_proto(spec).ByteSizeLong();
+  v1::SizeSpec message = size_spec_to_proto(spec);
+  message.clear_background();
+  const std::size_t bytes = message.ByteSizeLong();
   if (bytes <= kMaxSpecBytes) return absl::OkStatus();
-  const std::size_t points = spec.background ? spec.background->points.size() : 0;
-  const std::size_t tets = spec.background ? spec.background->tets.size() : 0;
   return absl::InvalidArgumentError(absl::StrFormat(
-      "the size specification takes %.2f MiB on the wire (%zu sources, a background grid of %zu "
-      "points and %zu tets), more than the 4 MiB the call's first message can carry: use a "
-      "coarser background grid, or sources",
-      static_cast<double>(bytes) / (1024.0 * 1024.0), spec.sources.size(), points, tets));
+      "the size specification's %zu sources take %.2f MiB on the wire, more than the 4 MiB the "
+      "call's first message can carry: use fewer sources, or a background grid",
+      spec.sources.size(), static_cast<double>(bytes) / (1024.0 * 1024.0)));
 }
 
 // The size specification of --spec with the command line's overrides: --size, else the file's

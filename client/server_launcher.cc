@@ -110,7 +110,8 @@ PrivateServer::~PrivateServer() { stop(); }
 absl::Status PrivateServer::spawn(const std::string& binary) {
   std::vector<std::string> args = {binary,   "--listen",        address_, "--workers",
                                    "1",      "--max-queue",     "0",      "--max-points",
-                                   kNoLimit, "--max-triangles", kNoLimit};
+                                   kNoLimit, "--max-triangles", kNoLimit,    "--max-grid-points",
+                                   kNoLimit, "--max-grid-tets", kNoLimit};
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());
   argv.push_back(nullptr);

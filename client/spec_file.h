@@ -15,8 +15,9 @@ namespace afmesh::cli {
 //
 // A `background.file` is read here, by the client: its path is relative to the folder of the
 // JSON file (unless absolute), a .msh with a $NodeData view or a .mesh with its .sol
-// (core/io/sized_grid.h), and it becomes the inline background grid (points, tets, sizes) that
-// is sent on the wire; servers never open client paths. What the grid reader passed over is
+// (core/io/sized_grid.h), and it becomes the background grid (points, tets, sizes) that
+// `afmesh volume` streams to the server in background_grid slices; servers never open client
+// paths. What the grid reader passed over is
 // added to `report` when not null.
 //
 // INVALID_ARGUMENT, with the JSON file's path first, when the file cannot be read, is not valid

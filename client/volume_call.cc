@@ -26,6 +26,12 @@ Request header_request(const Mesh& front, const VolumeCallOptions& options) {
   v1::MeshVolumeHeader& header = *request.mutable_header();
   if (options.spec) {
     *header.mutable_options()->mutable_size() = size_spec_to_proto(*options.spec);
+    // The background grid, whatever its size, follows in slices (grid_requests).
+    header.mutable_options()->mutable_size()->clear_background();
+    if (options.spec->background) {
+      header.set_grid_point_count(options.spec->background->points.size());
+      header.set_grid_tet_count(options.spec->background->tets.size());
+    }
   } else {
     header.mutable_options()->mutable_size()->set_max_size(options.size);
     header.mutable_options()->mutable_size()->set_growth(options.growth);
@@ -68,12 +74,50 @@ Request triangles_request(const Mesh& front, std::size_t begin, std::size_t end)
   return request;
 }
 
-// Header, point slices, triangle slices, half-close. Stops early when a write fails: the server
+// Streams the background grid in slices, each of one kind (points, sizes or tets) and at most
+// kSliceItems of it: under 1 MiB each, built one at a time. False once a write fails.
+bool send_grid(Stream& stream, const BackgroundGridSpec& grid) {
+  bool open = true;
+  for (std::size_t begin = 0; open && begin < grid.points.size(); begin += kSliceItems) {
+    const std::size_t end = std::min(grid.points.size(), begin + kSliceItems);
+    Request request;
+    auto& xyz = *request.mutable_background_grid()->mutable_xyz();
+    xyz.Reserve(static_cast<int>(3 * (end - begin)));
+    for (std::size_t p = begin; p < end; ++p) {
+      for (const double c : grid.points[p]) xyz.Add(c);
+    }
+    open = stream.Write(request);
+  }
+  for (std::size_t begin = 0; open && begin < grid.sizes.size(); begin += kSliceItems) {
+    const std::size_t end = std::min(grid.sizes.size(), begin + kSliceItems);
+    Request request;
+    request.mutable_background_grid()->mutable_sizes()->Add(
+        grid.sizes.begin() + static_cast<std::ptrdiff_t>(begin),
+        grid.sizes.begin() + static_cast<std::ptrdiff_t>(end));
+    open = stream.Write(request);
+  }
+  for (std::size_t begin = 0; open && begin < grid.tets.size(); begin += kSliceItems) {
+    const std::size_t end = std::min(grid.tets.size(), begin + kSliceItems);
+    Request request;
+    auto& tets = *request.mutable_background_grid()->mutable_tets();
+    tets.Reserve(static_cast<int>(4 * (end - begin)));
+    for (std::size_t t = begin; t < end; ++t) {
+      for (const Index i : grid.tets[t]) tets.Add(i);
+    }
+    open = stream.Write(request);
+  }
+  return open;
+}
+
+// Header, background grid slices, point slices, triangle slices, half-close. Stops early when a write fails: the server
 // ended the call, and Finish() says why.
 void send_front(Stream& stream, const Mesh& front, const VolumeCallOptions& options,
                 const ProgressCallback& on_progress) {
   const double total = static_cast<double>(front.points.size() + front.triangles.size());
   bool open = stream.Write(header_request(front, options));
+  if (open && options.spec && options.spec->background) {
+    open = send_grid(stream, *options.spec->background);
+  }
   for (std::size_t begin = 0; open && begin < front.points.size(); begin += kSliceItems) {
     const std::size_t end = std::min(front.points.size(), begin + kSliceItems);
     open = stream.Write(points_request(front, begin, end));

@@ -47,8 +47,8 @@ absl::StatusOr<BackgroundGridSpec> background_from_proto(const v1::BackgroundGri
     return absl::InvalidArgumentError(absl::StrCat(
         "background.file (\"", grid.file(),
         "\"): servers never open client paths; the client must read the grid file and send the "
-        "grid inline (background.points, background.tets, background.sizes), as the afmesh "
-        "CLI does"));
+        "grid itself, in MeshVolume's background_grid slices (or inline as background.points, "
+        "background.tets, background.sizes), as the afmesh CLI does"));
   }
   if (grid.tets_size() % 4 != 0) {
     return absl::InvalidArgumentError(

@@ -16,8 +16,8 @@ namespace afmesh {
 // indices at a time. Checks only what the conversion needs, with errors naming the JSON field
 // (callers prefix their context, e.g. "options.size."):
 //  - INVALID_ARGUMENT "background.file ...": a file name cannot be converted (servers never
-//    open client paths); the client reads the file and sends the grid inline (the CLI does so
-//    in client/spec_file.cc);
+//    open client paths); the client reads the file (client/spec_file.cc) and sends the grid
+//    (the CLI streams it in background_grid slices, client/volume_call.cc);
 //  - INVALID_ARGUMENT "background.tets ...": the index count is not a multiple of 4.
 // Values are not checked: run validate_size_spec on the result before using it.
 absl::StatusOr<SizeSpec> size_spec_from_proto(const v1::SizeSpec& message);

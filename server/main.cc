@@ -50,6 +50,14 @@ void add_flags(CLI::App& app, afmesh::server::ServerOptions& options) {
                  "most input triangles per request")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  app.add_option("--max-grid-points", options.service.limits.max_grid_points,
+                 "most background grid points per request")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-grid-tets", options.service.limits.max_grid_tets,
+                 "most background grid tetrahedra per request")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   app.add_flag_callback(
       "--quiet", [&options] { options.service.log_calls = false; }, "do not log each call");
 }

@@ -17,9 +17,11 @@ namespace {
 std::string message_name(std::int64_t count) { return absl::StrCat("message ", count); }
 
 // Checks options.size: max_size finite and > 0, growth 0 (meaning 1) or finite and >= 1; with
-// sources or a background grid, the whole specification (validate_size_spec) goes to the job in
-// params.spec. Errors name the field under "options.size.".
-absl::Status params_from_options(const v1::VolumeOptions& options, VolumeParams& params) {
+// sources, a background grid or `grid_streamed` (the grid comes in slices, attached at
+// half-close), the whole specification (validate_size_spec) goes to the job in params.spec.
+// Errors name the field under "options.size.".
+absl::Status params_from_options(const v1::VolumeOptions& options, bool grid_streamed,
+                                 VolumeParams& params) {
   const v1::SizeSpec& size = options.size();
   if (!std::isfinite(size.max_size()) || size.max_size() <= 0.0) {
     return absl::InvalidArgumentError(
@@ -32,7 +34,9 @@ absl::Status params_from_options(const v1::VolumeOptions& options, VolumeParams&
   }
   params.size = size.max_size();
   params.growth = growth;
-  if (size.sources_size() == 0 && !size.has_background()) return absl::OkStatus();
+  if (size.sources_size() == 0 && !size.has_background() && !grid_streamed) {
+    return absl::OkStatus();
+  }
   absl::StatusOr<SizeSpec> spec = size_spec_from_proto(size);
   absl::Status status = spec.ok() ? validate_size_spec(*spec) : spec.status();
   if (!status.ok()) {
@@ -48,6 +52,22 @@ absl::Status over_limit(std::string_view what, std::uint64_t count, std::int64_t
       "the input has %d %s, over this server's limit of %d (%s)", count, what, limit, flag));
 }
 
+// The grid limits on an inline options.size.background (it is small, being in the header, but
+// the limits hold however the grid comes).
+absl::Status check_inline_grid_limits(const v1::SizeSpec& size, const InputLimits& limits) {
+  if (!size.has_background()) return absl::OkStatus();
+  const auto points = static_cast<std::uint64_t>(size.background().points_size());
+  const auto tets = static_cast<std::uint64_t>(size.background().tets_size() / 4);
+  if (points > static_cast<std::uint64_t>(limits.max_grid_points)) {
+    return over_limit("background grid points", points, limits.max_grid_points,
+                      "--max-grid-points");
+  }
+  if (tets > static_cast<std::uint64_t>(limits.max_grid_tets)) {
+    return over_limit("background grid tets", tets, limits.max_grid_tets, "--max-grid-tets");
+  }
+  return absl::OkStatus();
+}
+
 }  // namespace
 
 absl::Status VolumeInput::add(const v1::MeshVolumeRequest& request) {
@@ -59,11 +79,13 @@ absl::Status VolumeInput::add(const v1::MeshVolumeRequest& request) {
       return add_points(request.points());
     case v1::MeshVolumeRequest::kTriangles:
       return add_triangles(request.triangles());
+    case v1::MeshVolumeRequest::kBackgroundGrid:
+      return add_grid_slice(request.background_grid());
     case v1::MeshVolumeRequest::PART_NOT_SET:
       break;
   }
-  return absl::InvalidArgumentError(
-      absl::StrCat(message_name(message_count_), " is empty: set header, points or triangles"));
+  return absl::InvalidArgumentError(absl::StrCat(
+      message_name(message_count_), " is empty: set header, points, triangles or background_grid"));
 }
 
 absl::Status VolumeInput::add_header(const v1::MeshVolumeHeader& header) {
@@ -85,6 +107,37 @@ absl::Status VolumeInput::add_header(const v1::MeshVolumeHeader& header) {
                         "--max-triangles");
     }
   }
+  if (header.has_grid_point_count() != header.has_grid_tet_count()) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "the header sets ", header.has_grid_point_count() ? "grid_point_count" : "grid_tet_count",
+        " but not ", header.has_grid_point_count() ? "grid_tet_count" : "grid_point_count",
+        ": set both to stream a background grid, or neither"));
+  }
+  const bool grid_streamed = header.has_grid_point_count();
+  if (grid_streamed) {
+    if (header.options().size().has_background()) {
+      return absl::InvalidArgumentError(
+          "the header declares a streamed background grid (grid_point_count, grid_tet_count) "
+          "and also gives options.size.background: give the grid one way only");
+    }
+    declared_grid_points_ = header.grid_point_count();
+    declared_grid_tets_ = header.grid_tet_count();
+    if (*declared_grid_points_ > static_cast<std::uint64_t>(limits_.max_grid_points)) {
+      return over_limit("background grid points", *declared_grid_points_,
+                        limits_.max_grid_points, "--max-grid-points");
+    }
+    if (*declared_grid_tets_ > static_cast<std::uint64_t>(limits_.max_grid_tets)) {
+      return over_limit("background grid tets", *declared_grid_tets_, limits_.max_grid_tets,
+                        "--max-grid-tets");
+    }
+    grid_.points.reserve(*declared_grid_points_);
+    grid_.sizes.reserve(*declared_grid_points_);
+    grid_.tets.reserve(*declared_grid_tets_);
+  }
+  if (absl::Status status = check_inline_grid_limits(header.options().size(), limits_);
+      !status.ok()) {
+    return status;
+  }
   const v1::EnvironmentMode mode = header.options().environments();
   if (!v1::EnvironmentMode_IsValid(mode)) {
     return absl::InvalidArgumentError(absl::StrFormat(
@@ -93,7 +146,7 @@ absl::Status VolumeInput::add_header(const v1::MeshVolumeHeader& header) {
         static_cast<int>(mode)));
   }
   environment_mode_ = mode;
-  return params_from_options(header.options(), params_);
+  return params_from_options(header.options(), grid_streamed, params_);
 }
 
 absl::Status VolumeInput::add_points(const v1::PointSlice& slice) {
@@ -176,7 +229,130 @@ absl::Status VolumeInput::add_triangles(const v1::TriangleSlice& slice) {
   return absl::OkStatus();
 }
 
-absl::Status VolumeInput::finish() const {
+absl::Status VolumeInput::add_grid_slice(const v1::BackgroundGridSlice& slice) {
+  if (!has_header_) {
+    return absl::InvalidArgumentError(
+        absl::StrCat(message_name(message_count_),
+                     " is a background_grid slice before the header; send the header first"));
+  }
+  if (!declared_grid_points_) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        message_name(message_count_),
+        " is a background_grid slice, but the header declares no streamed grid: set "
+        "grid_point_count and grid_tet_count in the header"));
+  }
+  if (absl::Status status = add_grid_points(slice); !status.ok()) return status;
+  if (absl::Status status = add_grid_sizes(slice); !status.ok()) return status;
+  return add_grid_tets(slice);
+}
+
+absl::Status VolumeInput::add_grid_points(const v1::BackgroundGridSlice& slice) {
+  const int size = slice.xyz_size();
+  if (size % 3 != 0) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("%s: background_grid slice has %d coordinates, not a multiple of 3",
+                        message_name(message_count_), size));
+  }
+  const std::uint64_t total = grid_.points.size() + static_cast<std::uint64_t>(size / 3);
+  if (total > *declared_grid_points_) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "%s: %d background grid points sent, more than the %d the header declared "
+        "(grid_point_count)",
+        message_name(message_count_), total, *declared_grid_points_));
+  }
+  for (int i = 0; i < size; i += 3) {
+    const Point p = {slice.xyz(i), slice.xyz(i + 1), slice.xyz(i + 2)};
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!std::isfinite(p[axis])) {
+        return absl::InvalidArgumentError(
+            absl::StrFormat("background_grid.points[%d].%c must be finite, got %g",
+                            grid_.points.size(), "xyz"[axis], p[axis]));
+      }
+    }
+    grid_.points.push_back(p);
+  }
+  return absl::OkStatus();
+}
+
+absl::Status VolumeInput::add_grid_sizes(const v1::BackgroundGridSlice& slice) {
+  const std::uint64_t total = grid_.sizes.size() + static_cast<std::uint64_t>(slice.sizes_size());
+  if (total > *declared_grid_points_) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "%s: %d background grid sizes sent, more than the %d points the header declared "
+        "(grid_point_count; one size per point)",
+        message_name(message_count_), total, *declared_grid_points_));
+  }
+  for (const double size : slice.sizes()) {
+    if (!std::isfinite(size) || size <= 0.0) {
+      return absl::InvalidArgumentError(absl::StrFormat(
+          "background_grid.sizes[%d] must be finite and > 0, got %g", grid_.sizes.size(), size));
+    }
+    grid_.sizes.push_back(size);
+  }
+  return absl::OkStatus();
+}
+
+absl::Status VolumeInput::add_grid_tets(const v1::BackgroundGridSlice& slice) {
+  const int size = slice.tets_size();
+  if (size % 4 != 0) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("%s: background_grid slice has %d tet indices, not a multiple of 4",
+                        message_name(message_count_), size));
+  }
+  const std::uint64_t total = grid_.tets.size() + static_cast<std::uint64_t>(size / 4);
+  if (total > *declared_grid_tets_) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "%s: %d background grid tets sent, more than the %d the header declared "
+        "(grid_tet_count)",
+        message_name(message_count_), total, *declared_grid_tets_));
+  }
+  for (int i = 0; i < size; i += 4) {
+    const Tet tet = {slice.tets(i), slice.tets(i + 1), slice.tets(i + 2), slice.tets(i + 3)};
+    for (int corner = 0; corner < 4; ++corner) {
+      if (tet[corner] < 0) {
+        return absl::InvalidArgumentError(absl::StrFormat(
+            "background_grid.tets[%d][%d] = %d is a negative point index", grid_.tets.size(),
+            corner, tet[corner]));
+      }
+    }
+    grid_.tets.push_back(tet);
+  }
+  return absl::OkStatus();
+}
+
+// The streamed grid is whole and valid (indices in range, positive tets: validate_background_grid,
+// one exact orientation test per tet), then becomes the specification's background grid.
+absl::Status VolumeInput::finish_grid() {
+  if (!declared_grid_points_) return absl::OkStatus();
+  const auto mismatch = [](std::string_view what, std::uint64_t declared, std::size_t sent,
+                           std::string_view field) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("the header declared %d background grid %s (%s) but %d were sent",
+                        declared, what, field, sent));
+  };
+  if (grid_.points.size() != *declared_grid_points_) {
+    return mismatch("points", *declared_grid_points_, grid_.points.size(), "grid_point_count");
+  }
+  if (grid_.sizes.size() != *declared_grid_points_) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "the header declared %d background grid points (grid_point_count), so as many sizes, "
+        "but %d sizes were sent",
+        *declared_grid_points_, grid_.sizes.size()));
+  }
+  if (grid_.tets.size() != *declared_grid_tets_) {
+    return mismatch("tets", *declared_grid_tets_, grid_.tets.size(), "grid_tet_count");
+  }
+  if (absl::Status status = validate_background_grid(grid_, "background_grid"); !status.ok()) {
+    return status;
+  }
+  params_.spec->background = std::move(grid_);
+  grid_ = {};
+  declared_grid_points_.reset();
+  declared_grid_tets_.reset();
+  return absl::OkStatus();
+}
+
+absl::Status VolumeInput::finish() {
   if (!has_header_) {
     return absl::InvalidArgumentError("the request stream ended without a header");
   }
@@ -192,7 +368,8 @@ absl::Status VolumeInput::finish() const {
                         front_.triangles.size()));
   }
   if (absl::Status status = check_indices(); !status.ok()) return status;
-  return check_environment_tags();
+  if (absl::Status status = check_environment_tags(); !status.ok()) return status;
+  return finish_grid();
 }
 
 // With environments from tags, the tags must be environment ids: none negative, some positive.

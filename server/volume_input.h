@@ -1,5 +1,5 @@
-// Assembles the client stream of a MeshVolume call (header, point slices, triangle slices) into
-// a core Mesh and VolumeParams, checking everything that is cheap to check before any meshing
+// Assembles the client stream of a MeshVolume call (header, point slices, triangle slices,
+// background grid slices) into a core Mesh and VolumeParams, checking everything that is cheap to check before any meshing
 // work: stream order, slice shapes, options, finite coordinates, size limits, declared counts,
 // non-empty input and indices in range. Every error names the message, element or limit.
 // Topological checks of the front (closed, oriented, no degenerate triangle) are the job's
@@ -12,14 +12,19 @@
 #include "absl/status/status.h"
 #include "afmesh/v1/mesher.pb.h"
 #include "core/mesh/mesh.h"
+#include "core/sizing/size_spec.h"
 #include "core/volume/generate_volume_mesh.h"
 
 namespace afmesh::server {
 
-// The server's size limits on one request (flags --max-points, --max-triangles).
+// The server's size limits on one request (flags --max-points, --max-triangles,
+// --max-grid-points, --max-grid-tets; the grid limits count a background grid inline or
+// streamed).
 struct InputLimits {
   std::int64_t max_points = 10'000'000;
   std::int64_t max_triangles = 20'000'000;
+  std::int64_t max_grid_points = 10'000'000;
+  std::int64_t max_grid_tets = 60'000'000;
 };
 
 class VolumeInput {
@@ -32,8 +37,10 @@ class VolumeInput {
 
   // Checks the whole input at half-close: a header was sent, points and triangles are present,
   // counts match the header's, every index is in range; with ENVIRONMENT_MODE_TAGS, no tag is
-  // negative and some tag is positive.
-  absl::Status finish() const;
+  // negative and some tag is positive. A streamed background grid must match its declared
+  // counts and pass validate_background_grid (errors name "background_grid..."); it then
+  // becomes params().spec->background.
+  absl::Status finish();
 
   const VolumeParams& params() const { return params_; }
   // options.environments of the header (crossing environments, paper §2).
@@ -45,6 +52,11 @@ class VolumeInput {
   absl::Status add_header(const v1::MeshVolumeHeader& header);
   absl::Status add_points(const v1::PointSlice& slice);
   absl::Status add_triangles(const v1::TriangleSlice& slice);
+  absl::Status add_grid_slice(const v1::BackgroundGridSlice& slice);
+  absl::Status add_grid_points(const v1::BackgroundGridSlice& slice);
+  absl::Status add_grid_tets(const v1::BackgroundGridSlice& slice);
+  absl::Status add_grid_sizes(const v1::BackgroundGridSlice& slice);
+  absl::Status finish_grid();
   absl::Status check_indices() const;
   absl::Status check_environment_tags() const;
 
@@ -53,6 +65,10 @@ class VolumeInput {
   bool has_header_ = false;
   std::optional<std::uint64_t> declared_points_;
   std::optional<std::uint64_t> declared_triangles_;
+  // Set when the header declares a streamed background grid (grid_point_count, grid_tet_count).
+  std::optional<std::uint64_t> declared_grid_points_;
+  std::optional<std::uint64_t> declared_grid_tets_;
+  BackgroundGridSpec grid_;  // the streamed grid, so far
   VolumeParams params_;
   v1::EnvironmentMode environment_mode_ = v1::ENVIRONMENT_MODE_NONE;
   Mesh front_;

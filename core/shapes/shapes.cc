@@ -80,6 +80,48 @@ Mesh voxel_surface(const std::vector<std::array<int, 3>>& cells, double voxel_si
   return m;
 }
 
+Mesh box_tets(const Point& lo, const Point& hi, int n) {
+  Mesh mesh;
+  const int m = n + 1;
+  mesh.points.reserve(static_cast<std::size_t>(m) * m * m);
+  for (int k = 0; k < m; ++k) {
+    for (int j = 0; j < m; ++j) {
+      for (int i = 0; i < m; ++i) {
+        const std::array<int, 3> ijk = {i, j, k};
+        Point p;
+        for (int a = 0; a < 3; ++a) {
+          p[a] = ijk[a] == n ? hi[a] : lo[a] + (hi[a] - lo[a]) * ijk[a] / n;
+        }
+        mesh.points.push_back(p);
+      }
+    }
+  }
+  const auto at = [m](int i, int j, int k) { return static_cast<Index>((k * m + j) * m + i); };
+  // The six axis orders (a, b, c); the tet lo, lo + e_a, lo + e_a + e_b, hi has
+  // det[e_a, e_b, e_c] = the order's parity, so odd orders swap their last two points.
+  constexpr std::array<std::array<int, 3>, 6> kOrders = {
+      {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}}};
+  mesh.tets.reserve(6 * static_cast<std::size_t>(n) * n * n);
+  for (int k = 0; k < n; ++k) {
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        for (int o = 0; o < 6; ++o) {
+          std::array<int, 3> c = {i, j, k};
+          const Index v0 = at(c[0], c[1], c[2]);
+          ++c[kOrders[o][0]];
+          const Index v1 = at(c[0], c[1], c[2]);
+          ++c[kOrders[o][1]];
+          const Index v2 = at(c[0], c[1], c[2]);
+          const Index v3 = at(i + 1, j + 1, k + 1);
+          mesh.tets.push_back(o < 3 ? Tet{v0, v1, v2, v3} : Tet{v0, v1, v3, v2});
+        }
+      }
+    }
+  }
+  mesh.tet_tags.assign(mesh.tets.size(), 0);
+  return mesh;
+}
+
 Mesh box_surface(const Point& lo, const Point& hi, double h) {
   // A single voxel stretched to the box: divide each axis on its own.
   const std::array<int, 3> n{divisions(hi[0] - lo[0], h), divisions(hi[1] - lo[1], h),

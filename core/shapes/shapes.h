@@ -19,6 +19,12 @@ Mesh voxel_surface(const std::vector<std::array<int, 3>>& cells, double voxel_si
 // An axis-aligned box [lo, hi] with edges about h (at least one division per side).
 Mesh box_surface(const Point& lo, const Point& hi, double h);
 
+// The box [lo, hi] filled with tetrahedra: (n+1)^3 lattice points (x fastest, then y, then z),
+// each of the n^3 cells split into the six Kuhn tets around its diagonal lo-hi, all positive and
+// conforming (one tet tag 0 each; no triangles). A structured background grid for tests and
+// benchmarks. n >= 1.
+Mesh box_tets(const Point& lo, const Point& hi, int n);
+
 // An L-shaped block with a square through-hole in its long leg (a non-convex solid of genus 1):
 // voxels of side `unit` (see the picture in shapes.cc), divided to edges about h.
 Mesh l_block_with_hole_surface(double unit, double h);

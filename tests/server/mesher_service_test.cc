@@ -29,6 +29,7 @@
 #include "core/environments/detect_environments.h"
 #include "core/environments/environments.h"
 #include "core/io/mesh_io.h"
+#include "core/shapes/shapes.h"
 #include "proto/size_spec_convert.h"
 #include "server/server.h"
 #include "server/volume_output.h"
@@ -907,12 +908,12 @@ TEST_F(MesherServiceTest, RejectsSourceWhoseLawIsUnknownToTheServer) {
 }
 
 // The server is stateless and never opens client paths: the client inlines grid files.
-TEST_F(MesherServiceTest, RejectsBackgroundFileSayingTheClientMustInlineIt) {
+TEST_F(MesherServiceTest, RejectsBackgroundFileSayingTheClientMustSendTheGrid) {
   start(counting_job(probe_));
   expect_rejected(requests_with_spec(R"({"maxSize": 0.5, "background": {"file": "bg.msh"}})"),
                   grpc::StatusCode::INVALID_ARGUMENT,
                   {"options.size.background.file", "servers never open client paths",
-                   "the client must read the grid file and send the grid inline"});
+                   "the client must read the grid file and send the grid itself"});
 }
 
 TEST_F(MesherServiceTest, RejectsInvertedBackgroundTet) {
@@ -922,6 +923,189 @@ TEST_F(MesherServiceTest, RejectsInvertedBackgroundTet) {
           "points": [{}, {"x": 1}, {"y": 1}, {"z": 1}], "tets": [0, 2, 1, 3],
           "sizes": [1, 1, 1, 1]}})"),
       grpc::StatusCode::INVALID_ARGUMENT, {"options.size.background.tets[0]"});
+}
+
+// An inline grid in the header (small grids, e.g. from grpcurl) still reaches the job.
+TEST_F(MesherServiceTest, InlineBackgroundGridInTheHeaderReachesTheJob) {
+  start(counting_job(probe_));
+  const CallOutcome outcome = call(requests_with_spec(R"({"maxSize": 0.5, "background": {
+          "points": [{}, {"x": 1}, {"y": 1}, {"z": 1}], "tets": [0, 1, 2, 3],
+          "sizes": [0.1, 0.2, 0.3, 0.4]}})"));
+  ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+  ASSERT_TRUE(probe_->params.spec.has_value());
+  ASSERT_TRUE(probe_->params.spec->background.has_value());
+  EXPECT_EQ(probe_->params.spec->background->sizes, (std::vector<double>{0.1, 0.2, 0.3, 0.4}));
+}
+
+// A streamed background grid: the header declares its counts, BackgroundGridSlice messages carry
+// points, sizes and tets (each list continuing across slices independently).
+
+// A structured grid of (n+1)^3 points over [-1, 2]^3 with size 0.1 + 0.01 * (point index).
+BackgroundGridSpec structured_grid(int n) {
+  Mesh mesh = box_tets({-1, -1, -1}, {2, 2, 2}, n);
+  BackgroundGridSpec grid{.points = std::move(mesh.points), .tets = std::move(mesh.tets)};
+  for (std::size_t i = 0; i < grid.points.size(); ++i) grid.sizes.push_back(0.1 + 0.01 * i);
+  return grid;
+}
+
+// The tetrahedron's requests with `grid` streamed in slices of `slice` items, points and tets
+// of one slice together and sizes in slices of their own, after the front's slices.
+std::vector<Request> requests_with_grid(const BackgroundGridSpec& grid, std::size_t slice) {
+  std::vector<Request> requests = requests_for(tetrahedron_front());
+  requests[0].mutable_header()->set_grid_point_count(grid.points.size());
+  requests[0].mutable_header()->set_grid_tet_count(grid.tets.size());
+  const std::size_t longest = std::max(grid.points.size(), grid.tets.size());
+  for (std::size_t begin = 0; begin < longest; begin += slice) {
+    v1::BackgroundGridSlice& part = *requests.emplace_back().mutable_background_grid();
+    for (std::size_t p = begin; p < std::min(grid.points.size(), begin + slice); ++p) {
+      for (const double c : grid.points[p]) part.add_xyz(c);
+    }
+    for (std::size_t t = begin; t < std::min(grid.tets.size(), begin + slice); ++t) {
+      for (const Index i : grid.tets[t]) part.add_tets(i);
+    }
+  }
+  for (std::size_t begin = 0; begin < grid.sizes.size(); begin += slice) {
+    v1::BackgroundGridSlice& part = *requests.emplace_back().mutable_background_grid();
+    for (std::size_t p = begin; p < std::min(grid.sizes.size(), begin + slice); ++p) {
+      part.add_sizes(grid.sizes[p]);
+    }
+  }
+  return requests;
+}
+
+TEST_F(MesherServiceTest, StreamedBackgroundGridReachesTheJobWholeAndBitExact) {
+  start(counting_job(probe_));
+  const BackgroundGridSpec grid = structured_grid(4);  // 125 points, 384 tets
+  const std::vector<Request> requests = requests_with_grid(grid, 50);
+  for (const Request& request : requests) EXPECT_LE(request.ByteSizeLong(), kMessageCap);
+  const CallOutcome outcome = call(requests);
+  ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+  ASSERT_TRUE(probe_->params.spec.has_value());
+  EXPECT_EQ(probe_->params.spec->max_size, 0.25);
+  ASSERT_TRUE(probe_->params.spec->background.has_value());
+  const BackgroundGridSpec& received = *probe_->params.spec->background;
+  EXPECT_TRUE(same_bits(received.points, grid.points));
+  EXPECT_EQ(received.tets, grid.tets);
+  EXPECT_EQ(received.sizes, grid.sizes);
+}
+
+TEST_F(MesherServiceTest, RejectsFewerGridPointsThanDeclared) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_with_grid(structured_grid(2), 1000);
+  requests[0].mutable_header()->set_grid_point_count(28);
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
+                  {"declared 28 background grid points (grid_point_count) but 27 were sent"});
+}
+
+TEST_F(MesherServiceTest, RejectsMoreGridTetsThanDeclared) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_with_grid(structured_grid(2), 1000);
+  requests[0].mutable_header()->set_grid_tet_count(47);
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
+                  {"48 background grid tets sent, more than the 47", "grid_tet_count"});
+}
+
+TEST_F(MesherServiceTest, RejectsMissingGridSizes) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_with_grid(structured_grid(2), 1000);
+  requests.pop_back();  // the sizes slice
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
+                  {"declared 27 background grid points (grid_point_count), so as many sizes, but 0 sizes "
+                   "were sent"});
+}
+
+TEST_F(MesherServiceTest, RejectsGridTetIndexOutOfRangeNamingTheTet) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_with_grid(structured_grid(2), 10);
+  // Tet 12 (the slice of points and tets 10 to 19), corner 2.
+  requests[4].mutable_background_grid()->set_tets(4 * 2 + 2, 27);
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
+                  {"background_grid.tets[12][2] = 27 is out of range [0, 27)"});
+}
+
+TEST_F(MesherServiceTest, RejectsNegativeGridTetIndexNamingTheTet) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_with_grid(structured_grid(2), 10);
+  requests[4].mutable_background_grid()->set_tets(1, -3);
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
+                  {"background_grid.tets[10][1] = -3"});
+}
+
+TEST_F(MesherServiceTest, RejectsInvertedGridTetNamingIt) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_with_grid(structured_grid(2), 1000);
+  auto& tets = *requests[3].mutable_background_grid()->mutable_tets();
+  std::swap(tets[4 * 7 + 2], tets[4 * 7 + 3]);
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
+                  {"background_grid.tets[7]", "inverted"});
+}
+
+TEST_F(MesherServiceTest, RejectsNonPositiveAndNanGridSizesNamingThePoint) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_with_grid(structured_grid(2), 1000);
+  requests.back().mutable_background_grid()->set_sizes(5, 0.0);
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
+                  {"background_grid.sizes[5] must be finite and > 0, got 0"});
+  requests.back().mutable_background_grid()->set_sizes(5, std::nan(""));
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT, {"background_grid.sizes[5]"});
+}
+
+TEST_F(MesherServiceTest, RejectsNonFiniteGridPointNamingIt) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_with_grid(structured_grid(2), 1000);
+  requests[3].mutable_background_grid()->set_xyz(3 * 4 + 1,
+                                                 std::numeric_limits<double>::infinity());
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
+                  {"background_grid.points[4].y must be finite, got inf"});
+}
+
+TEST_F(MesherServiceTest, RejectsGridSliceWithoutDeclaredCounts) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_with_grid(structured_grid(2), 1000);
+  requests[0].mutable_header()->clear_grid_point_count();
+  requests[0].mutable_header()->clear_grid_tet_count();
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
+                  {"message 4 is a background_grid slice", "grid_point_count and grid_tet_count"});
+}
+
+TEST_F(MesherServiceTest, RejectsHeaderDeclaringOnlyOneGridCount) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_with_grid(structured_grid(2), 1000);
+  requests[0].mutable_header()->clear_grid_tet_count();
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
+                  {"sets grid_point_count but not grid_tet_count"});
+}
+
+TEST_F(MesherServiceTest, RejectsGridBothInlineAndStreamed) {
+  start(counting_job(probe_));
+  std::vector<Request> requests = requests_with_grid(structured_grid(2), 1000);
+  *requests[0].mutable_header()->mutable_options()->mutable_size()->mutable_background() =
+      size_spec_to_proto(SizeSpec{.max_size = 1.0, .background = structured_grid(1)}).background();
+  expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
+                  {"options.size.background", "one way only"});
+}
+
+TEST_F(MesherServiceTest, GridCountsOverTheLimitsAreRefusedAtOnceNamingTheFlag) {
+  ServerOptions options;
+  options.service.limits.max_grid_points = 26;
+  options.service.limits.max_grid_tets = 47;
+  start(counting_job(probe_), options);
+  std::vector<Request> requests = requests_with_grid(structured_grid(2), 1000);
+  expect_rejected({requests[0]}, grpc::StatusCode::RESOURCE_EXHAUSTED,
+                  {"27 background grid points", "--max-grid-points"});
+  requests[0].mutable_header()->set_grid_point_count(26);
+  expect_rejected({requests[0]}, grpc::StatusCode::RESOURCE_EXHAUSTED,
+                  {"48 background grid tets", "--max-grid-tets"});
+}
+
+TEST_F(MesherServiceTest, InlineGridOverTheLimitIsRefusedNamingTheFlag) {
+  ServerOptions options;
+  options.service.limits.max_grid_points = 3;
+  start(counting_job(probe_), options);
+  expect_rejected(requests_with_spec(R"({"maxSize": 0.5, "background": {
+          "points": [{}, {"x": 1}, {"y": 1}, {"z": 1}], "tets": [0, 1, 2, 3],
+          "sizes": [1, 1, 1, 1]}})"),
+                  grpc::StatusCode::RESOURCE_EXHAUSTED, {"4 background grid points", "--max-grid-points"});
 }
 
 // ---------------------------------------------------------------------------------------------

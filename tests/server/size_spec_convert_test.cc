@@ -157,14 +157,15 @@ TEST(SizeSpecConvert, JsonNanParsesToNanAndValidationNamesTheField) {
   EXPECT_THAT(validate_size_spec(*spec).message(), HasSubstr("sources[0].delta0"));
 }
 
-TEST(SizeSpecConvert, BackgroundFileIsRejectedSayingTheClientMustInlineIt) {
+TEST(SizeSpecConvert, BackgroundFileIsRejectedSayingTheClientMustSendTheGrid) {
   const absl::StatusOr<SizeSpec> spec =
       spec_from_json(R"({"maxSize": 1, "background": {"file": "background.msh"}})");
   EXPECT_EQ(spec.status().code(), absl::StatusCode::kInvalidArgument);
   EXPECT_THAT(spec.status().message(), HasSubstr("background.file"));
   EXPECT_THAT(spec.status().message(), HasSubstr("servers never open client paths"));
   EXPECT_THAT(spec.status().message(),
-              HasSubstr("the client must read the grid file and send the grid inline"));
+              HasSubstr("the client must read the grid file and send the grid itself, in "
+                        "MeshVolume's background_grid slices"));
 }
 
 TEST(SizeSpecConvert, BackgroundTetsNotFourPerTetAreRejected) {
