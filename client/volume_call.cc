@@ -109,8 +109,8 @@ bool send_grid(Stream& stream, const BackgroundGridSpec& grid) {
   return open;
 }
 
-// Header, background grid slices, point slices, triangle slices, half-close. Stops early when a write fails: the server
-// ended the call, and Finish() says why.
+// Header, background grid slices, point slices, triangle slices, half-close. Stops early when a
+// write fails: the server ended the call, and Finish() says why.
 void send_front(Stream& stream, const Mesh& front, const VolumeCallOptions& options,
                 const ProgressCallback& on_progress) {
   const double total = static_cast<double>(front.points.size() + front.triangles.size());

@@ -1,7 +1,8 @@
 // Assembles the client stream of a MeshVolume call (header, point slices, triangle slices,
-// background grid slices) into a core Mesh and VolumeParams, checking everything that is cheap to check before any meshing
-// work: stream order, slice shapes, options, finite coordinates, size limits, declared counts,
-// non-empty input and indices in range. Every error names the message, element or limit.
+// background grid slices) into a core Mesh and VolumeParams, checking everything that is cheap
+// to check before any meshing work: stream order, slice shapes, options, finite coordinates,
+// size limits, declared counts, non-empty input, indices in range and the streamed background
+// grid (one exact orientation test per tet). Every error names the message, element or limit.
 // Topological checks of the front (closed, oriented, no degenerate triangle) are the job's
 // (afmesh::validate_front), since they cost more than a pass over the arrays.
 #pragma once

@@ -1010,8 +1010,8 @@ TEST_F(MesherServiceTest, RejectsMissingGridSizes) {
   std::vector<Request> requests = requests_with_grid(structured_grid(2), 1000);
   requests.pop_back();  // the sizes slice
   expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
-                  {"declared 27 background grid points (grid_point_count), so as many sizes, but 0 sizes "
-                   "were sent"});
+                  {"declared 27 background grid points (grid_point_count), so as many sizes, "
+                   "but 0 sizes were sent"});
 }
 
 TEST_F(MesherServiceTest, RejectsGridTetIndexOutOfRangeNamingTheTet) {
@@ -1105,7 +1105,8 @@ TEST_F(MesherServiceTest, InlineGridOverTheLimitIsRefusedNamingTheFlag) {
   expect_rejected(requests_with_spec(R"({"maxSize": 0.5, "background": {
           "points": [{}, {"x": 1}, {"y": 1}, {"z": 1}], "tets": [0, 1, 2, 3],
           "sizes": [1, 1, 1, 1]}})"),
-                  grpc::StatusCode::RESOURCE_EXHAUSTED, {"4 background grid points", "--max-grid-points"});
+                  grpc::StatusCode::RESOURCE_EXHAUSTED,
+                  {"4 background grid points", "--max-grid-points"});
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -13,6 +13,9 @@
 #include "absl/strings/match.h"
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
+#include "core/quality/validate.h"
+#include "core/shapes/shapes.h"
+#include "core/sizing/size_spec.h"
 
 namespace afmesh {
 namespace {
@@ -179,6 +182,33 @@ TEST(BackgroundGrid, FromArraysRejectsBadGridsNamingTheField) {
     EXPECT_EQ(grid.status().message(),
               "background.sizes must hold one size per point: got 7 sizes for 8 points");
   }
+}
+
+}  // namespace
+}  // namespace afmesh
+
+namespace afmesh {
+namespace {
+
+// box_tets (core/shapes), the structured grid the server and CLI tests stream: every tet
+// positive, conforming, and filling the box exactly.
+TEST(BoxTets, IsAValidConformingGridFillingTheBox) {
+  const Mesh grid = box_tets({-1, 0, 2}, {2, 1, 3.5}, 3);
+  ASSERT_EQ(grid.points.size(), 64u);
+  ASSERT_EQ(grid.tets.size(), 6u * 27u);
+  const ValidationReport report = validate_volume_mesh(grid);
+  EXPECT_TRUE(report.valid()) << report.to_string();
+  double volume = 0.0;
+  for (const Tet& t : grid.tets) {
+    const Point& a = grid.points[t[0]];
+    const Point ab = sub(grid.points[t[1]], a), ac = sub(grid.points[t[2]], a),
+                ad = sub(grid.points[t[3]], a);
+    volume += dot(ab, cross(ac, ad)) / 6.0;
+  }
+  EXPECT_NEAR(volume, 3.0 * 1.0 * 1.5, 1e-12);
+  const BackgroundGridSpec spec{.points = grid.points, .tets = grid.tets,
+                                .sizes = std::vector<double>(grid.points.size(), 1.0)};
+  EXPECT_TRUE(validate_background_grid(spec).ok());
 }
 
 }  // namespace
