@@ -74,9 +74,11 @@ bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictne
 }
 
 Strictness strictness_for(int attempts) {
+  // The first tries look for points close to the ideal point only (most faces take one of
+  // them, and a small search is cheap); faces that failed look further.
   static constexpr Strictness kRules[] = {
-      {0.30, 0.55, 0.35}, {0.20, 0.45, 0.28}, {0.10, 0.35, 0.20},
-      {0.04, 0.25, 0.12}, {0.01, 0.15, 0.06}, {0.0, 0.08, 0.03},
+      {0.30, 0.55, 0.35, 1.1}, {0.20, 0.45, 0.28, 1.4}, {0.10, 0.35, 0.20, 1.4},
+      {0.04, 0.25, 0.12, 1.4}, {0.01, 0.15, 0.06, 1.4}, {0.0, 0.08, 0.03, 1.4},
   };
   constexpr int n = sizeof(kRules) / sizeof(kRules[0]);
   return kRules[std::clamp(attempts, 0, n - 1)];
@@ -127,7 +129,7 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
   s.candidates.clear();
 
   // Existing front points near the ideal point that form a positive, well-shaped element.
-  const double reach = 1.4 * d;
+  const double reach = rules.reach * d;
   s.near_points.clear();
   s.front.bins().points_near(cube_around(ideal, reach), s.near_points);
   for (Index q : s.near_points) {

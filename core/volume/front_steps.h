@@ -41,6 +41,7 @@ struct Strictness {
   double min_quality;     // smallest accepted tet quality (tet_shape_quality)
   double point_spacing;   // a new point keeps this fraction of d from front points
   double face_clearance;  // ... and this fraction of d from front faces
+  double reach;           // front points within reach·d of the ideal point are candidates
 };
 Strictness strictness_for(int attempts);
 

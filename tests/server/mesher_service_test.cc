@@ -943,7 +943,7 @@ TEST_F(MesherServiceTest, InlineBackgroundGridInTheHeaderReachesTheJob) {
 // A structured grid of (n+1)^3 points over [-1, 2]^3 with size 0.1 + 0.01 * (point index).
 BackgroundGridSpec structured_grid(int n) {
   Mesh mesh = box_tets({-1, -1, -1}, {2, 2, 2}, n);
-  BackgroundGridSpec grid{.points = std::move(mesh.points), .tets = std::move(mesh.tets)};
+  BackgroundGridSpec grid{.points = std::move(mesh.points), .tets = std::move(mesh.tets), .sizes = {}};
   for (std::size_t i = 0; i < grid.points.size(); ++i) grid.sizes.push_back(0.1 + 0.01 * i);
   return grid;
 }
@@ -1080,7 +1080,11 @@ TEST_F(MesherServiceTest, RejectsGridBothInlineAndStreamed) {
   start(counting_job(probe_));
   std::vector<Request> requests = requests_with_grid(structured_grid(2), 1000);
   *requests[0].mutable_header()->mutable_options()->mutable_size()->mutable_background() =
-      size_spec_to_proto(SizeSpec{.max_size = 1.0, .background = structured_grid(1)}).background();
+      size_spec_to_proto(SizeSpec{.max_size = 1.0,
+                                  .growth = 1.0,
+                                  .sources = {},
+                                  .background = structured_grid(1)})
+          .background();
   expect_rejected(requests, grpc::StatusCode::INVALID_ARGUMENT,
                   {"options.size.background", "one way only"});
 }
