@@ -39,8 +39,10 @@
 namespace afmesh {
 
 struct OptimiseParams {
-  // Tets with quality under sin(target_min_dihedral_deg) are worked on (degrees).
-  double target_min_dihedral_deg = 25.0;
+  // Tets with quality under sin(target_min_dihedral_deg) are worked on (degrees). 20 ends with
+  // no tet under 20° on the benchmark solids at 60% of the cost of 25 (sphere, 514k tets:
+  // 0.42 s against 0.70 s; min 20.0° against 23.8°, mean radius ratio 0.8161 against 0.8165).
+  double target_min_dihedral_deg = 20.0;
   // Rounds over the bad tets: round 0 takes every tet under the target, each later round the
   // tets that changes made and that are still under it, and those that could not be improved.
   int passes = 4;

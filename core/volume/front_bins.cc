@@ -43,17 +43,27 @@ void FrontBins::for_each_cell(const CellRange& r, Fn&& fn) const {
       for (std::int64_t i = r[0][0]; i <= r[0][1]; ++i) fn(cell_index(i, j, k), i, j, k);
 }
 
-FrontBins::CellBox FrontBins::cell_box(const Box& box, std::int64_t i, std::int64_t j,
-                                       std::int64_t k) const {
+FrontBins::CellBox FrontBins::range_ends(const Box& box, const CellRange& r) const {
+  CellBox out;
+  for (int a = 0; a < 3; ++a) {
+    const double first = origin_[a] + static_cast<double>(r[a][0]) * cell_;
+    const double last = origin_[a] + static_cast<double>(r[a][1]) * cell_;
+    // Half a unit of slack each way covers the rounding of this arithmetic.
+    const double lo = std::floor((box.lo[a] - first) / cell_ * 255.0 - 0.5);
+    const double hi = std::ceil((box.hi[a] - last) / cell_ * 255.0 + 0.5);
+    out[a][0] = static_cast<std::uint8_t>(std::clamp(lo, 0.0, 255.0));  // NaN-free: boxes
+    out[a][1] = static_cast<std::uint8_t>(std::clamp(hi, 0.0, 255.0));  // hold finite points
+  }
+  return out;
+}
+
+FrontBins::CellBox FrontBins::cell_box(const CellBox& ends, const CellRange& r, std::int64_t i,
+                                       std::int64_t j, std::int64_t k) {
   const std::int64_t ijk[3] = {i, j, k};
   CellBox out;
   for (int a = 0; a < 3; ++a) {
-    const double low = origin_[a] + static_cast<double>(ijk[a]) * cell_;
-    // Half a unit of slack each way covers the rounding of this arithmetic.
-    const double lo = std::floor((box.lo[a] - low) / cell_ * 255.0 - 0.5);
-    const double hi = std::ceil((box.hi[a] - low) / cell_ * 255.0 + 0.5);
-    out[a][0] = static_cast<std::uint8_t>(std::clamp(lo, 0.0, 255.0));  // NaN-free: boxes
-    out[a][1] = static_cast<std::uint8_t>(std::clamp(hi, 0.0, 255.0));  // hold finite points
+    out[a][0] = ijk[a] == r[a][0] ? ends[a][0] : std::uint8_t{0};
+    out[a][1] = ijk[a] == r[a][1] ? ends[a][1] : std::uint8_t{255};
   }
   return out;
 }
@@ -78,8 +88,10 @@ void FrontBins::erase_point(Index p, const Point& x) {
 }
 
 void FrontBins::insert_face(Index f, const Box& box) {
-  for_each_cell(cells_of(box), [&](std::int64_t c, std::int64_t i, std::int64_t j, std::int64_t k) {
-    const CellBox q = cell_box(box, i, j, k);
+  const CellRange r = cells_of(box);
+  const CellBox ends = range_ends(box, r);
+  for_each_cell(r, [&](std::int64_t c, std::int64_t i, std::int64_t j, std::int64_t k) {
+    const CellBox q = cell_box(ends, r, i, j, k);
     face_cells_[c].push_back({f, {q[0][0], q[1][0], q[2][0]}, {q[0][1], q[1][1], q[2][1]}});
   });
 }
@@ -106,10 +118,12 @@ void FrontBins::faces_near(const Box& box, std::vector<Index>& out) const {
     std::fill(mark_.begin(), mark_.end(), 0);
     epoch_ = 1;
   }
-  for_each_cell(cells_of(box), [&](std::int64_t c, std::int64_t i, std::int64_t j, std::int64_t k) {
+  const CellRange r = cells_of(box);
+  const CellBox ends = range_ends(box, r);
+  for_each_cell(r, [&](std::int64_t c, std::int64_t i, std::int64_t j, std::int64_t k) {
     const std::vector<FaceEntry>& cell = face_cells_[c];
     if (cell.empty()) return;
-    const CellBox q = cell_box(box, i, j, k);
+    const CellBox q = cell_box(ends, r, i, j, k);
     for (const FaceEntry& e : cell) {
       if (e.lo[0] > q[0][1] || e.hi[0] < q[0][0] || e.lo[1] > q[1][1] || e.hi[1] < q[1][0] ||
           e.lo[2] > q[2][1] || e.hi[2] < q[2][0])

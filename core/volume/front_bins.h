@@ -71,7 +71,13 @@ class FrontBins {
     std::array<std::uint8_t, 3> lo, hi;
   };
   using CellBox = std::array<std::array<std::uint8_t, 2>, 3>;  // [axis][lo, hi]
-  CellBox cell_box(const Box& box, std::int64_t i, std::int64_t j, std::int64_t k) const;
+  // The box's bounds in the first and last cells of its range r along each axis: [a][0] its low
+  // end within cell r[a][0], [a][1] its high end within cell r[a][1].
+  CellBox range_ends(const Box& box, const CellRange& r) const;
+  // The part of the box inside cell (i, j, k) of its range: the ends in the first and last
+  // cells, the whole cell (0..255) between them.
+  static CellBox cell_box(const CellBox& ends, const CellRange& r, std::int64_t i,
+                          std::int64_t j, std::int64_t k);
   std::vector<std::vector<FaceEntry>> face_cells_;
   // Query scratch for faces_near: face f was listed in this query when mark_[f] == epoch_.
   mutable std::vector<std::uint32_t> mark_;
