@@ -9,8 +9,9 @@
 namespace afmesh::server {
 
 // generate_volume_mesh (which validates the front first: INVALID_ARGUMENT naming the element),
-// then summarize_quality ("quality" stage) and validate_volume_mesh against the front
-// ("validation" stage; with params.face_environments also the environment_gap check). A mesh that fails validation is not handed out: INTERNAL with the
+// then summarize_quality and validate_volume_mesh against the front (with
+// params.face_environments also the environment_gap check) side by side on two threads, one
+// "quality+validation" stage. A mesh that fails validation is not handed out: INTERNAL with the
 // validator's report. Checks that only warn go to VolumeJobOutput::validation.messages.
 absl::StatusOr<VolumeJobOutput> run_volume_job(const Mesh& front, const VolumeParams& params,
                                                Progress& progress);
