@@ -52,8 +52,8 @@ Box cube_around(const Point& x, double r) {
 }  // namespace
 
 bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictness& rules,
-                        Index env) {
-  const double spacing = rules.point_spacing * d;
+                        Index env, double min_spacing) {
+  const double spacing = std::max(rules.point_spacing * d, min_spacing);
   const double clearance = rules.face_clearance * d;
   const double reach = std::max(spacing, clearance);
   s.near_points.clear();
@@ -95,16 +95,17 @@ double tet_shape_quality(const Point& a, const Point& b, const Point& c, const P
   return std::sqrt(2.0) * six_v / (l_rms * l_rms * l_rms);
 }
 
-double element_size_for_face(const MesherState& s, const Triangle& v) {
-  const Point& a = s.points[v[0]];
-  const Point& b = s.points[v[1]];
-  const Point& c = s.points[v[2]];
-  const Point centroid = scale(add(a, add(b, c)), 1.0 / 3.0);
+double target_size_for_face(const MesherState& s, const Triangle& v) {
+  const Point centroid =
+      scale(add(s.points[v[0]], add(s.points[v[1]], s.points[v[2]])), 1.0 / 3.0);
   const double attached =
       s.growth * std::min({s.point_size[v[0]], s.point_size[v[1]], s.point_size[v[2]]});
-  const double wanted = std::min(s.size_field.size_at(centroid), attached);  // eq. 15
-  const double edge = mean_edge(a, b, c);
-  return std::clamp(wanted, 0.55 * edge, 1.6 * edge);
+  return std::min(s.size_field.size_at(centroid), attached);  // eq. 15
+}
+
+double element_size_for_face(const MesherState& s, const Triangle& v) {
+  const double edge = mean_edge(s.points[v[0]], s.points[v[1]], s.points[v[2]]);
+  return std::clamp(target_size_for_face(s, v), 0.55 * edge, 1.6 * edge);
 }
 
 Point ideal_point(const MesherState& s, const Triangle& v, double d) {

@@ -49,6 +49,9 @@ Strictness strictness_for(int attempts);
 // square edge length: 1 for the regular tet, 0 when flat, negative when inverted.
 double tet_shape_quality(const Point& a, const Point& b, const Point& c, const Point& d);
 
+// Eq. 15: the size wanted at face v, min(delta_bg(centroid), c_i · min(delta_A, delta_B, delta_C)).
+double target_size_for_face(const MesherState& s, const Triangle& v);
+
 // F5/F9 with eq. 15: the size of the element face `v` should form,
 //   d = min(delta_bg(centroid), c_i · min(delta_A, delta_B, delta_C)),
 // kept within [0.55, 1.6] × the face's mean edge so the element is not needle- or flat-shaped.
@@ -68,9 +71,10 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
 // F7.2: true when a new point at x keeps its distance from the front for element size d:
 // rules.point_spacing·d from front points and rules.face_clearance·d from front faces (else an
 // existing point is to be used in lieu of it).
-// Only points and faces visible from environment `env` count (paper §2).
+// Only points and faces visible from environment `env` count (paper §2). Front points closer
+// than `min_spacing` always count as too close, whatever d.
 bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictness& rules,
-                        Index env);
+                        Index env, double min_spacing);
 
 // F7.3: true when tet (v[0], v[1], v[2], p) would cross the front: it intersects a front face
 // other than those it shares properly, or contains a front point. `p` is an index into

@@ -22,6 +22,7 @@ using volume::MesherState;
 
 constexpr int kAttemptsBeforeBackOff = 6;  // queue classes a face passes before a cavity opens
 constexpr int kMaxCavityRings = 4;
+constexpr double kMinNewPointSpacing = 0.04;  // of the wanted size; the last class allows 0.044
 constexpr std::size_t kMaxPocketFaces = 256;  // larger unmeshed regions are not pockets
 constexpr int kCancelCheckInterval = 256;  // faces between cancellation checks
 
@@ -120,13 +121,18 @@ bool delete_face(MesherState& s, Index face) {
   const Triangle v = s.front.face(face).v;
   const volume::Strictness rules = volume::strictness_for(s.front.face(face).attempts);
   const double d = volume::element_size_for_face(s, v);               // F5/F9
+  // A face much smaller than the size wanted there (a sliver of front left between elements)
+  // closes with points that exist: a new point may not come closer to the front's points than
+  // this share of the wanted size. Else each tiny face spawns a tinier element next to it, for
+  // ever (seen on the L-block at h 0.05: points 1e-5 apart, tets without end).
+  const double min_spacing = kMinNewPointSpacing * volume::target_size_for_face(s, v);
   const Point ideal = volume::ideal_point(s, v, d);                    // F7.1
   volume::gather_candidates(s, face, ideal, d, rules);                 // F7.2
   for (const volume::Candidate& c : s.candidates) {
     Index p = c.point;
     if (p == kInvalidIndex) {  // a new point: eq. 15 sets its size
       if (!volume::new_point_is_clear(s, c.position, c.clearance_size, rules,
-                                      s.front.face(face).env))
+                                      s.front.face(face).env, min_spacing))
         continue;
       p = static_cast<Index>(s.points.size());
       s.points.push_back(c.position);
