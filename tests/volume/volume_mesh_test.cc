@@ -84,6 +84,13 @@ TEST(VolumeMesh, EveryShapeClosesAtManySizes) {
   }
 }
 
+// At this size the end game used to spawn ever tinier elements at one spot (points 1e-5 apart)
+// without end: new points now keep a share of the wanted size from the front's points.
+TEST(VolumeMesh, LBlockAtHalfTenthFinishes) {
+  const Mesh front = l_block_with_hole_surface(0.5, 0.05);
+  mesh_and_check(front, 0.05);
+}
+
 TEST(VolumeMesh, GrowthGivesFewerElements) {
   const Mesh front = box_surface({0, 0, 0}, {2, 2, 2}, 0.25);
   const VolumeResult uniform = mesh_and_check(front, 1.0, 1.0);
