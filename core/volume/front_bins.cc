@@ -19,13 +19,14 @@ FrontBins::FrontBins(const Box& domain, double cell_size, std::int64_t max_cells
     if (total <= max_cells) break;
     cell_ *= 1.25;
   }
+  inverse_cell_ = 1.0 / cell_;
   const auto n = static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]);
   point_cells_.resize(n);
   face_cells_.resize(n);
 }
 
 std::int64_t FrontBins::cell_coord(double x, int axis) const {
-  const double c = std::floor((x - origin_[axis]) / cell_);
+  const double c = std::floor((x - origin_[axis]) * inverse_cell_);  // monotone in x
   if (!(c > 0)) return 0;  // also catches NaN
   return std::min(static_cast<std::int64_t>(c), dims_[axis] - 1);
 }
@@ -49,8 +50,8 @@ FrontBins::CellBox FrontBins::range_ends(const Box& box, const CellRange& r) con
     const double first = origin_[a] + static_cast<double>(r[a][0]) * cell_;
     const double last = origin_[a] + static_cast<double>(r[a][1]) * cell_;
     // Half a unit of slack each way covers the rounding of this arithmetic.
-    const double lo = std::floor((box.lo[a] - first) / cell_ * 255.0 - 0.5);
-    const double hi = std::ceil((box.hi[a] - last) / cell_ * 255.0 + 0.5);
+    const double lo = std::floor((box.lo[a] - first) * inverse_cell_ * 255.0 - 0.5);
+    const double hi = std::ceil((box.hi[a] - last) * inverse_cell_ * 255.0 + 0.5);
     out[a][0] = static_cast<std::uint8_t>(std::clamp(lo, 0.0, 255.0));  // NaN-free: boxes
     out[a][1] = static_cast<std::uint8_t>(std::clamp(hi, 0.0, 255.0));  // hold finite points
   }

@@ -62,6 +62,7 @@ class FrontBins {
 
   Point origin_{};
   double cell_ = 1.0;
+  double inverse_cell_ = 1.0;  // 1 / cell_: cell coordinates by multiplication
   std::array<std::int64_t, 3> dims_{1, 1, 1};
   std::vector<std::vector<Index>> point_cells_;
   // A face's entry in a cell: its id and the part of its bounding box inside the cell, in units
