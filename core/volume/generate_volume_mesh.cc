@@ -12,6 +12,8 @@
 #include "core/environments/environments.h"
 #include "core/geometry/vec.h"
 #include "core/quality/optimise.h"
+#include "core/quality/validate_common.h"
+#include "core/sizing/attached_sizes.h"
 #include "core/sizing/spec_size_field.h"
 #include "core/volume/front_steps.h"
 
@@ -41,12 +43,8 @@ class StageClock {
 };
 
 Box padded_bounds(const std::vector<Point>& points) {
-  Box b{points[0], points[0]};
-  for (const Point& p : points)
-    for (int a = 0; a < 3; ++a) {
-      b.lo[a] = std::min(b.lo[a], p[a]);
-      b.hi[a] = std::max(b.hi[a], p[a]);
-    }
+  Box b = empty_box();
+  for (const Point& p : points) enclose(b, p);
   double extent = 0;
   for (int a = 0; a < 3; ++a) extent = std::max(extent, b.hi[a] - b.lo[a]);
   for (int a = 0; a < 3; ++a) {
@@ -56,23 +54,6 @@ Box padded_bounds(const std::vector<Point>& points) {
   return b;
 }
 
-// F5, eq. 15 for the input: each boundary point gets the mean length of its boundary edges.
-std::vector<double> boundary_point_sizes(const Mesh& front) {
-  std::vector<double> sum(front.points.size(), 0.0);
-  std::vector<int> count(front.points.size(), 0);
-  for (const Triangle& t : front.triangles)
-    for (int i = 0; i < 3; ++i) {
-      const Index a = t[i], b = t[(i + 1) % 3];
-      const double len = norm(sub(front.points[a], front.points[b]));
-      sum[a] += len;
-      sum[b] += len;
-      count[a] += 1;
-      count[b] += 1;
-    }
-  for (std::size_t p = 0; p < sum.size(); ++p) sum[p] = count[p] ? sum[p] / count[p] : 0.0;
-  return sum;
-}
-
 double mean_boundary_edge(const Mesh& front) {
   double sum = 0;
   for (const Triangle& t : front.triangles)
@@ -80,18 +61,15 @@ double mean_boundary_edge(const Mesh& front) {
   return sum / (3.0 * static_cast<double>(front.triangles.size()));
 }
 
-double enclosed_volume(const Mesh& front) {
-  double six_v = 0;
-  for (const Triangle& t : front.triangles)
-    six_v += dot(front.points[t[0]], cross(front.points[t[1]], front.points[t[2]]));
-  return six_v / 6.0;
-}
-
 // F1/F4: the input triangles, flipped to look into the domain, form the initial front, each with
 // its crossing environment (paper §2).
-void load_initial_front(MesherState& s, const Mesh& input,
-                        const std::vector<std::int32_t>& face_env) {
-  s.point_size = boundary_point_sizes(input);
+absl::Status load_initial_front(MesherState& s, const Mesh& input,
+                                const std::vector<std::int32_t>& face_env) {
+  // F5, eq. 15 for the input: each boundary point gets the mean length of its boundary edges.
+  absl::StatusOr<std::vector<double>> sizes = attached_point_sizes(
+      input, {.rule = EdgeLengthRule::kMean, .tag_sizes = {}, .point_sizes = {}});
+  if (!sizes.ok()) return sizes.status();
+  s.point_size = *std::move(sizes);
   if (!face_env.empty())
     s.point_env = point_environments(input.points.size(), input.triangles, face_env);
   for (std::size_t t = 0; t < input.triangles.size(); ++t) {
@@ -100,6 +78,7 @@ void load_initial_front(MesherState& s, const Mesh& input,
     s.front.add(inward, volume::element_size_for_face(s, inward),
                 face_env.empty() ? 0 : face_env[t]);
   }
+  return absl::OkStatus();
 }
 
 absl::Status check_face_environments(const Mesh& front, const std::vector<std::int32_t>& env) {
@@ -136,10 +115,9 @@ bool delete_face(MesherState& s, Index face) {
         continue;
       p = static_cast<Index>(s.points.size());
       s.points.push_back(c.position);
-      s.point_size.push_back(
-          std::min(s.size_field.size_at(c.position),
-                   s.growth * std::min({s.point_size[v[0]], s.point_size[v[1]],
-                                               s.point_size[v[2]]})));
+      s.point_size.push_back(new_point_size(s.size_field.size_at(c.position), s.growth,
+                                            s.point_size[v[0]], s.point_size[v[1]],
+                                            s.point_size[v[2]]));
     }
     if (!volume::element_crosses_front(s, face, p)) {                  // F7.3
       volume::add_element(s, face, p);                                 // F8–F10
@@ -262,17 +240,18 @@ Mesh compact_result(const MesherState& s, const Mesh& input) {
 absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params,
                                    const SizeField& size_field, double growth, StageClock& clock,
                                    Progress& progress) {
-  MesherState s(front, growth, size_field, padded_bounds(front.points),
-                mean_boundary_edge(front));
+  const double boundary_edge = mean_boundary_edge(front);
+  const double domain_volume = enclosed_volume(front.points, front.triangles, nullptr);
+  MesherState s(front, growth, size_field, padded_bounds(front.points), boundary_edge);
   const double max_size = params.spec ? params.spec->max_size : params.size;
-  const double h = std::min(max_size, mean_boundary_edge(front));
+  const double h = std::min(max_size, boundary_edge);
   const double expected_tets =
-      std::max(1.0, enclosed_volume(front) / (h * h * h / (6.0 * std::sqrt(2.0))));
+      std::max(1.0, domain_volume / (h * h * h / (6.0 * std::sqrt(2.0))));
   s.tets.reserve(static_cast<std::size_t>(expected_tets * 1.3));
   s.points.reserve(front.points.size() + static_cast<std::size_t>(expected_tets / 4));
-  load_initial_front(s, front, params.face_environments);
+  if (absl::Status st = load_initial_front(s, front, params.face_environments); !st.ok())
+    return st;
 
-  const double domain_volume = enclosed_volume(front);
   RepairCounts repairs;
   std::int64_t steps = 0;
   // A face is taken from the queue a little more than once per element it builds; a front that

@@ -1,14 +1,14 @@
 // F8–F10 of the volume front, and the local back-off that re-opens a cavity.
 #include <algorithm>
 
-#include "core/geometry/predicates.h"
+#include "core/quality/measures.h"
 #include "core/volume/front_steps.h"
 
 namespace afmesh::volume {
 namespace {
 
 double tet_volume(const MesherState& s, const Tet& k) {
-  return orient3d_fast(s.points[k[0]], s.points[k[1]], s.points[k[2]], s.points[k[3]]) / 6.0;
+  return tet_signed_volume(s.points[k[0]], s.points[k[1]], s.points[k[2]], s.points[k[3]]);
 }
 
 // Deletes live tet t and updates the front around the hole it leaves: each of its faces that
