@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/io/medit.h"
+#include "core/io/medit_header.h"
 #include "core/io/mesh_checks.h"
 #include "core/io/return_if_error.h"
 #include "core/io/string_util.h"
@@ -39,7 +40,7 @@ class SolParser {
     if (scanner_.at_end()) {
       return absl::InvalidArgumentError(str_cat(scanner_.source_name(), ": the file is empty"));
     }
-    AFMESH_RETURN_IF_ERROR(parse_header());
+    AFMESH_RETURN_IF_ERROR(parse_medit_header(scanner_));
     for (;;) {
       const std::string_view keyword = scanner_.next_token();
       if (equals_ignore_case(keyword, "End")) break;
@@ -54,23 +55,6 @@ class SolParser {
   }
 
  private:
-  absl::Status parse_header() {
-    AFMESH_RETURN_IF_ERROR(scanner_.expect_keyword("MeshVersionFormatted"));
-    std::int64_t version = 0;
-    AFMESH_RETURN_IF_ERROR(scanner_.read_int(version, "the format version"));
-    if (version < 1 || version > 4) {
-      return scanner_.error(
-          str_cat("unsupported MeshVersionFormatted ", version, " (expected 1, 2, 3 or 4)"));
-    }
-    AFMESH_RETURN_IF_ERROR(scanner_.expect_keyword("Dimension"));
-    std::int64_t dimension = 0;
-    AFMESH_RETURN_IF_ERROR(scanner_.read_int(dimension, "the dimension"));
-    if (dimension != 3) {
-      return scanner_.error(str_cat("Dimension ", dimension, " is not supported (only 3)"));
-    }
-    return absl::OkStatus();
-  }
-
   absl::Status unexpected_keyword(std::string_view keyword) const {
     if (keyword.empty()) return scanner_.unexpected("'SolAtVertices' or 'End'", keyword);
     return scanner_.error(str_cat("expected 'SolAtVertices' or 'End', found '", keyword,
