@@ -7,12 +7,19 @@ namespace afmesh {
 Front::Front(const std::vector<Point>& points, const Box& domain, double cell_size)
     : points_(points), bins_(domain, cell_size) {}
 
+// The oriented triangle (a, b, c) rotated to start at its smallest index: one key per
+// orientation.
 absl::uint128 Front::key_of(Index a, Index b, Index c) {
-  std::array<Index, 3> s{a, b, c};
-  std::sort(s.begin(), s.end());
-  return (absl::uint128(static_cast<std::uint32_t>(s[0])) << 64) |
-         (absl::uint128(static_cast<std::uint32_t>(s[1])) << 32) |
-         absl::uint128(static_cast<std::uint32_t>(s[2]));
+  if (b < a && b < c) {
+    std::swap(a, b);  // (b, c, a)
+    std::swap(b, c);
+  } else if (c < a && c < b) {
+    std::swap(a, c);  // (c, a, b)
+    std::swap(b, c);
+  }
+  return (absl::uint128(static_cast<std::uint32_t>(a)) << 64) |
+         (absl::uint128(static_cast<std::uint32_t>(b)) << 32) |
+         absl::uint128(static_cast<std::uint32_t>(c));
 }
 
 Box Front::box_of_face(const Triangle& v) const { return triangle_box(points_, v); }
@@ -55,7 +62,10 @@ void Front::remove(Index f) {
   FrontFace& face = faces_[f];
   face.alive = false;
   --live_;
-  lookup_.erase(key_of(face.v[0], face.v[1], face.v[2]));
+  // A second face with the same orientation (two layers over one lens of crossing sides) may
+  // have taken the key; remove only this face's own entry.
+  const auto it = lookup_.find(key_of(face.v[0], face.v[1], face.v[2]));
+  if (it != lookup_.end() && it->second == f) lookup_.erase(it);
   bins_.erase_face(f, boxes_[f]);
   for (Index p : face.v) point_leaves(p);
   free_.push_back(f);

@@ -47,7 +47,9 @@ class Front {
   // re-opened.
   void requeue(Index f, double size);
 
-  // The live face with vertex set {a, b, c} in any order, if any.
+  // The live face (a, b, c), in this orientation (up to rotation), if any. Where the two sides
+  // of a thin region cross (paper §2), faces of the two sides' elements can share their three
+  // points with opposite meshed sides, so the orientation tells them apart.
   std::optional<Index> find(Index a, Index b, Index c) const;
 
   // F6: pops the face to delete next (lowest class, then faces of a crossing environment, then

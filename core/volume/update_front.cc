@@ -20,7 +20,7 @@ void delete_tet(MesherState& s, Index t) {
   const Triangle faces[4] = {{k[0], k[2], k[1]}, {k[0], k[1], k[3]}, {k[1], k[2], k[3]},
                              {k[0], k[3], k[2]}};
   for (const Triangle& f : faces) {
-    if (auto g = s.front.find(f[0], f[1], f[2])) {
+    if (auto g = s.front.find(f[0], f[1], f[2])) {  // a front face looking out of t
       s.front.remove(*g);
     } else {
       const Triangle inward{f[0], f[2], f[1]};
@@ -45,8 +45,11 @@ void add_element(MesherState& s, Index face, Index p) {
   s.front.remove(face);  // F10
   const Triangle sides[3] = {{v[0], v[1], p}, {v[1], v[2], p}, {v[2], v[0], p}};
   for (const Triangle& side : sides) {
-    if (auto g = s.front.find(side[0], side[1], side[2])) {
-      s.front.remove(*g);  // F10: the element closes this face
+    // F10: the element closes the front face facing it (the side reversed). A face with the
+    // side's own orientation would look into the same space as the element: that is another
+    // layer's face where two sides of a thin region cross (paper §2), not one to close.
+    if (auto g = s.front.find(side[0], side[2], side[1])) {
+      s.front.remove(*g);
     } else {
       s.front.add(side, element_size_for_face(s, side), face_environment(s, side));  // F8, F9
     }

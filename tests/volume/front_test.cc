@@ -74,15 +74,24 @@ TEST(FrontBins, FaceQueriesFindEveryOverlappingFace) {
   }
 }
 
-TEST(Front, LookupFindsFacesInAnyVertexOrder) {
+TEST(Front, LookupFindsFacesByOrientation) {
   std::vector<Point> pts = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   Front front(pts, Box{{0, 0, 0}, {1, 1, 1}}, 0.5);
   const Index f = front.add({0, 1, 2}, 1.0);
+  EXPECT_EQ(front.find(0, 1, 2), f);  // every rotation
+  EXPECT_EQ(front.find(1, 2, 0), f);
   EXPECT_EQ(front.find(2, 0, 1), f);
-  EXPECT_EQ(front.find(1, 0, 2), f);
+  EXPECT_FALSE(front.find(1, 0, 2).has_value());  // the other orientation is another face
+  EXPECT_FALSE(front.find(0, 2, 1).has_value());
   EXPECT_FALSE(front.find(0, 1, 3).has_value());
+  // Both orientations on the front at once (two layers where sides cross, paper §2).
+  const Index g = front.add({2, 1, 0}, 1.0);
+  EXPECT_EQ(front.find(0, 2, 1), g);
+  EXPECT_EQ(front.find(0, 1, 2), f);
   front.remove(f);
   EXPECT_FALSE(front.find(0, 1, 2).has_value());
+  EXPECT_EQ(front.find(1, 0, 2), g);
+  front.remove(g);
   EXPECT_EQ(front.size(), 0);
 }
 
