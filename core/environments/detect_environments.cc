@@ -187,33 +187,70 @@ absl::StatusOr<std::vector<ThinPair>> find_thin_pairs(const Mesh& front, const F
 
 // Step 2: groups the faces of thin pairs into sides; returns, per face, the smallest face id of
 // its side, or kInvalidIndex for faces in no thin pair.
+//
+// Two marked faces at a point p join when the fan of faces around p (all faces, marked or not)
+// leads from one to the other across edges through p that do not fold. Around a point on the
+// rim of a thin sheet the fan folds twice (the rim edges), so the sheet's two sides stay apart;
+// at a point where several sheets meet only in a point (the apex where the rims of a crossing
+// X cross) each sheet's faces form their own part of the fan, even where two of them are
+// coplanar.
 std::vector<Index> group_sides(const Mesh& front, const FaceFrames& frames,
                                const std::vector<ThinPair>& pairs, double fold_angle_deg) {
   const std::size_t face_count = front.triangles.size();
   std::vector<bool> marked(face_count, false);
   for (const ThinPair& p : pairs) marked[p.f] = marked[p.g] = true;
 
-  // The marked faces around each point (compressed rows, faces ascending).
+  // The faces around each point (compressed rows, faces ascending).
   std::vector<Index> start(front.points.size() + 1, 0);
-  for (std::size_t t = 0; t < face_count; ++t) {
-    if (!marked[t]) continue;
-    for (const Index p : front.triangles[t]) ++start[p + 1];
+  for (const Triangle& t : front.triangles) {
+    for (const Index p : t) ++start[p + 1];
   }
   for (std::size_t p = 0; p < front.points.size(); ++p) start[p + 1] += start[p];
   std::vector<Index> faces_at(start.back());
   std::vector<Index> fill(start.begin(), start.end() - 1);
   for (std::size_t t = 0; t < face_count; ++t) {
-    if (!marked[t]) continue;
     for (const Index p : front.triangles[t]) faces_at[fill[p]++] = static_cast<Index>(t);
   }
 
   const double fold_cosine = std::cos(fold_angle_deg * std::numbers::pi / 180.0);
   SmallestIdSets sides(face_count);
+  std::vector<std::pair<Index, Index>> spokes;  // (other end of an edge through p, fan slot)
+  std::vector<Index> fan_parent;                // union-find over the fan's slots
+  std::vector<Index> part_face;
+  const auto fan_root = [&](Index i) {
+    while (fan_parent[i] != i) i = fan_parent[i] = fan_parent[fan_parent[i]];
+    return i;
+  };
   for (std::size_t p = 0; p < front.points.size(); ++p) {
-    for (Index i = start[p]; i < start[p + 1]; ++i) {
-      for (Index j = i + 1; j < start[p + 1]; ++j) {
-        const Index f = faces_at[i], g = faces_at[j];
-        if (dot(frames.normal[f], frames.normal[g]) >= fold_cosine) sides.unite(f, g);
+    const Index first = start[p], count = start[p + 1] - first;
+    if (count < 2) continue;
+    spokes.clear();
+    for (Index i = 0; i < count; ++i) {
+      for (const Index q : front.triangles[faces_at[first + i]]) {
+        if (q != static_cast<Index>(p)) spokes.emplace_back(q, i);
+      }
+    }
+    std::sort(spokes.begin(), spokes.end());
+    fan_parent.resize(count);
+    for (Index i = 0; i < count; ++i) fan_parent[i] = i;
+    for (std::size_t k = 0; k < spokes.size(); ++k) {  // faces on one edge (p, q)
+      for (std::size_t l = k + 1; l < spokes.size() && spokes[l].first == spokes[k].first; ++l) {
+        const Index f = faces_at[first + spokes[k].second];
+        const Index g = faces_at[first + spokes[l].second];
+        if (dot(frames.normal[f], frames.normal[g]) >= fold_cosine) {
+          fan_parent[fan_root(spokes[k].second)] = fan_root(spokes[l].second);
+        }
+      }
+    }
+    part_face.assign(count, kInvalidIndex);  // the first marked face of each part of the fan
+    for (Index i = 0; i < count; ++i) {
+      const Index f = faces_at[first + i];
+      if (!marked[f]) continue;
+      Index& seen = part_face[fan_root(i)];
+      if (seen == kInvalidIndex) {
+        seen = f;
+      } else {
+        sides.unite(seen, f);
       }
     }
   }

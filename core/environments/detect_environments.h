@@ -19,13 +19,16 @@
 //           that gap must be filled with tets joining both, so it gets no environment.
 //     Candidate pairs come from an AABB tree (core/spatial) over the faces' boxes, each
 //     enlarged by closeness × h; no all-pairs scan.
-//  2. Sides (group_sides). The faces of thin pairs are grouped: two such faces sharing a vertex
-//     belong to the same side unless they fold, i.e. the angle between their normals exceeds
-//     `fold_angle_deg` -- the ridge where the two sides of a thin sheet meet (their normals
-//     are nearly opposite there), where grouping stops. Across smooth edges and ordinary
-//     corners (a shell meeting a symmetry plane at 90°) a side continues. This is the paper's
-//     "all the surfaces lying on one side of a potentially troublesome region have been given
-//     the same environment variable" (Figure 4).
+//  2. Sides (group_sides). The faces of thin pairs are grouped: two such faces at a common point
+//     belong to the same side when the fan of faces around that point leads from one to the
+//     other across edges that do not fold, i.e. where the angle between the normals of the two
+//     faces on the edge is at most `fold_angle_deg`. The ridge where the two sides of a thin
+//     sheet meet folds (their normals are nearly opposite there), so grouping stops at it, and
+//     sheets that touch only in a point (the apex where the rims of a crossing X cross) stay
+//     apart; across smooth edges and ordinary corners (a shell meeting a symmetry plane at 90°,
+//     the fold of a quadrant's sheet at the crossing of an X) a side continues. This is the
+//     paper's "all the surfaces lying on one side of a potentially troublesome region have been
+//     given the same environment variable" (Figure 4).
 //  3. Growth (grow_sides). Faces next to a side join it, ring by ring (`grow_rings` rings of
 //     faces sharing an edge without a fold), unless they touch two sides. This marks the faces
 //     at the rim of a thin region, whose only close faces on the other side share their rim
