@@ -303,6 +303,71 @@ void add_box(SurfaceBuilder& b, const Point& lo, const Point& hi, double h) {
   }
 }
 
+
+// ----- crossing plates ------------------------------------------------------------------------
+
+// Thickness of a plate at in-plane coordinate w and height z, both in [-1, 1]: full in the
+// middle, 0 on the rim |w| = 1 or |z| = 1, where the plate's two sides meet.
+double plate_thickness(double thickness, double w, double z) {
+  return thickness * (1.0 - std::pow(w, 8)) * (1.0 - std::pow(z, 8));
+}
+
+// The plate's mid-surface offset from its plane at |w|, z: a bulge of depth `camber` towards
+// the plate's normal (+y for plate A, +x for plate B), 0 on the rim and, to second order, on
+// the crossing line, so that the corner stays where the flat plates meet.
+double plate_camber(double camber, double w, double z) {
+  const double s = std::sin(std::numbers::pi * w);
+  return camber * s * s * (1.0 - z * z);
+}
+
+// The quadrants (sign of x, sign of y) in the order of their tags 1..4.
+constexpr std::array<std::array<double, 2>, 4> kQuadrantSigns = {
+    {{1.0, 1.0}, {-1.0, 1.0}, {-1.0, -1.0}, {1.0, -1.0}}};
+
+// The side of quadrant (sx, sy): one grid over (i, j) in [0, 2n] × [0, 2n], z = -1 + j / n.
+// Columns i > n are plate A's face y = m_A + sy t_A / 2 from the corner to the rim x = sx;
+// columns i < n plate B's face x = m_B + sx t_B / 2 from the corner to the rim y = sy (m the
+// camber, t the thickness); column i = n is the
+// corner line (sx t_c / 2, sy t_c / 2, z) where the two faces meet, t_c the thickness on the
+// crossing line, 0 at z = ±1 (the apexes, shared by all four quadrants). Rim points (i = 0,
+// i = 2n, j = 0, j = 2n) lie on the mid-planes and are shared with the neighbouring quadrant
+// across the plate. Quadrants 2 and 4 (sx sy < 0) move their interior points by a fraction of
+// a cell and cut their quads along the other diagonal, so the two sides of every half plate
+// are triangulated independently. Normals point into the plates.
+void add_quadrant_side(SurfaceBuilder& b, const CrossingPlatesParams& params, double sx,
+                       double sy, std::int32_t tag) {
+  const int n = params.divisions;
+  const bool moved = sx * sy < 0.0;
+  const auto at = [&](int i, int j) {
+    const double z = j == 2 * n ? 1.0 : -1.0 + static_cast<double>(j) / n;
+    const double corner = 0.5 * plate_thickness(params.thickness, 0.0, z);
+    if (i == n) return b.point({sx * corner, sy * corner, z});
+    const bool on_a = i > n;
+    const int k = on_a ? i - n : n - i;  // columns from the corner, 1..n
+    const bool rim = k == n || j == 0 || j == 2 * n;
+    double s = static_cast<double>(k) / n, v = static_cast<double>(j) / (2 * n);
+    if (moved && !rim) {
+      const double s0 = s, v0 = v;
+      s += 0.35 / n * std::sin(2.0 * std::numbers::pi * v0) * std::sin(std::numbers::pi * s0);
+      v += 0.35 / (2 * n) * std::sin(3.0 * std::numbers::pi * s0) *
+           std::sin(std::numbers::pi * v0);
+    }
+    const double height = rim ? z : -1.0 + 2.0 * v;
+    const double w = k == n ? 1.0 : corner + s * (1.0 - corner);
+    const double off = rim ? 0.0
+                           : plate_camber(params.camber, w, height) +
+                                 (on_a ? sy : sx) * 0.5 *
+                                     plate_thickness(params.thickness, w, height);
+    return on_a ? b.point({sx * w, off, height}) : b.point({off, sy * w, height});
+  };
+  const Point into_a{0.0, -sy, 0.0}, into_b{-sx, 0.0, 0.0};
+  for (int i = 0; i < 2 * n; ++i) {
+    for (int j = 0; j < 2 * n; ++j) {
+      add_quad(b, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), !moved,
+               i >= n ? into_a : into_b, tag);
+    }
+  }
+}
 }  // namespace
 
 Mesh quarter_dome_surface(const QuarterDomeParams& params) {
@@ -349,17 +414,10 @@ Mesh sails_surface(const SailsParams& params) {
 }
 
 Mesh crossing_plates_surface(const CrossingPlatesParams& params) {
-  const int n = params.divisions;
-  const std::array<SailShape, 2> plates = {{
-      {{-1.0, 0.0, -1.0}, {-1.0, 0.0, 1.0}, 2.0, 2.0, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, 0.0, n, n,
-       1, 2},
-      {{0.0, -1.0, -0.75}, {0.0, -1.0, 0.75}, 2.0, 2.0, {0.0, 1.0, 0.0}, {1.0, 0.0, 0.0}, 0.0, n,
-       n, 3, 4},
-  }};
   SurfaceBuilder b;
-  for (const SailShape& plate : plates) {
-    add_sail_side(b, plate, +1.0, params.thickness, 0.0);
-    add_sail_side(b, plate, -1.0, params.thickness, 0.0);
+  for (std::size_t q = 0; q < kQuadrantSigns.size(); ++q) {
+    add_quadrant_side(b, params, kQuadrantSigns[q][0], kQuadrantSigns[q][1],
+                      static_cast<std::int32_t>(q) + 1);
   }
   add_box(b, {-3.0, -3.0, -3.0}, {3.0, 3.0, 3.0}, params.box_size);
   return b.take();

@@ -84,16 +84,28 @@ struct SailsParams {
 Mesh sails_surface(const SailsParams& params = {});
 
 // ---------------------------------------------------------------------------------------------
-// A crossing X of two thin plates (paper §2, Figure 3: crossing surfaces that are not the same):
-// plate A in the plane y = 0 over x, z in [-1, 1] and plate B in the plane x = 0 over y in
-// [-1, 1], z in [-0.75, 0.75] (so that the rims do not meet), each a flat thin body built like
-// a sail without camber (thickness `thickness`, sides meeting at the rim,
-// side B's interior grid moved), crossing each other along the z axis, in the box [-3, 3]^3.
-// Tags: plate A sides 1 and 2, plate B sides 3 and 4, box 0.
+// A crossing X of two thin plates (paper §2, Figures 3 and 4: crossing surfaces that are not
+// the same, one environment per side of the troublesome region): plate A about the plane y = 0
+// over x, z in [-1, 1] and plate B about the plane x = 0 over y, z in [-1, 1], each a thin
+// body of thickness `thickness` in the middle tapering to 0 on its rim, its mid-surface
+// optionally bulging by `camber` between the crossing and the rim, crossing each other along
+// the z axis, in the box [-3, 3]^3. The front is the boundary of the union of the plates (plus
+// the box): the air around the X is four quadrant wedges, and the side of quadrant (sign x,
+// sign y) is one folded sheet -- plate A's face from the rim to the crossing, then plate B's
+// face from the crossing to its rim -- so the sheets of the four quadrants meet only on the
+// plates' rims and at the two apexes (0, 0, ±1), where the rims cross. Across each half plate
+// the two quadrants' sheets are `thickness` apart and triangulated independently (quadrants 2
+// and 4 move their grid); with a bulge whose chord sag exceeds the thickness they cross.
+// Tags: the quadrant, 1 = (+x, +y), 2 = (-x, +y), 3 = (-x, -y), 4 = (+x, -y); box 0.
 // ---------------------------------------------------------------------------------------------
 struct CrossingPlatesParams {
   double thickness = 0.001;
-  int divisions = 8;  // grid cells along each side of a plate
+  // Bulge of each plate's mid-surface; 0: flat plates, whose sides are `thickness` apart and
+  // do not cross. With a bulge (0.005 and more at the default divisions) the sides' chords
+  // cross, as on the sails; the front does not yet mesh that X reliably (it passes through
+  // itself near the corners of the plates' rims), so the default is flat.
+  double camber = 0.0;
+  int divisions = 4;  // grid cells across a half plate (rim to crossing); 2 × this in z
   double box_size = 1.0;  // edge length of the box's grid
 };
 

@@ -301,7 +301,10 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
   }
   if (absl::Status st = check_face_environments(front, params.face_environments); !st.ok())
     return st;
-  if (absl::Status st = validate_front(front, params.face_environments); !st.ok()) return st;
+  if (absl::Status st =
+          validate_front(front, params.face_environments, params.check_self_intersections);
+      !st.ok())
+    return st;
   absl::StatusOr<std::unique_ptr<SizeField>> size_field = make_size_field(params, front);
   if (!size_field.ok()) return size_field.status();
   const double growth = params.spec ? params.spec->growth : params.growth;

@@ -28,6 +28,10 @@ struct VolumeParams {
   // core/quality/optimise.h). The boundary is never changed.
   bool optimise = true;
   std::vector<std::int32_t> face_environments;  // LFACR per input triangle (paper §2); empty = none
+  // Diagnostics only, never set from the wire: false skips the input check's self-intersection
+  // rule, so that a front whose faces cross can be given to the loop without environments, to
+  // show how the advancing front fails on it (paper §2, Figure 1). The other rules still apply.
+  bool check_self_intersections = true;
 };
 
 struct StageTiming {
@@ -47,7 +51,8 @@ struct VolumeResult {
 // (except, with crossing environments, between faces of two different positive environments,
 // paper §2). INVALID_ARGUMENT names the first offending element(s).
 absl::Status validate_front(const Mesh& front,
-                            std::span<const std::int32_t> face_environments = {});
+                            std::span<const std::int32_t> face_environments = {},
+                            bool check_self_intersections = true);
 
 // Fills the volume enclosed by `front` (outward-oriented closed triangles) with tetrahedra whose
 // boundary faces are exactly the front's triangles.

@@ -1,6 +1,7 @@
 // The file commands of the CLI, run as a user runs them: exit codes tell a valid mesh from an
 // invalid one from an unreadable file, and convert keeps the mesh.
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -30,8 +31,10 @@ std::string slurp(const fs::path& p) {
 class CliFiles : public ::testing::Test {
  protected:
   void SetUp() override {
+    // Unique per process: several checkouts may run the suite on one machine at once.
     dir_ = fs::temp_directory_path() /
-           ("afmesh_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("afmesh_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+            "_" + std::to_string(getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

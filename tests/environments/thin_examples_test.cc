@@ -176,8 +176,22 @@ TEST(ThinExamples, CrossingPlatesAreAValidFrontWithEnvironmentsAndAutoFindsThem)
   relaxed.face_environments = plates.triangle_tags;
   const ValidationReport report = validate_surface(plates, relaxed);
   EXPECT_TRUE(report.valid()) << report.to_string();
-  EXPECT_FALSE(validate_surface(plates).valid());  // the plates cross each other
   expect_auto_matches_tags(plates, "crossing plates");
+  // Flat plates (the default): the sides are 1/1000 apart but do not cross, so the front is
+  // valid without environments too. With a bulge they cross, and only the environments make
+  // the front valid.
+  EXPECT_TRUE(validate_surface(plates).valid());
+  CrossingPlatesParams bulging;
+  bulging.camber = 0.02;
+  const Mesh crossing = crossing_plates_surface(bulging);
+  relaxed.face_environments = crossing.triangle_tags;
+  EXPECT_TRUE(validate_surface(crossing, relaxed).valid());
+  EXPECT_FALSE(validate_surface(crossing).valid());
+  expect_auto_matches_tags(crossing, "crossing plates, bulging");
+}
+
+TEST(ThinExamples, ShippedCrossingPlatesAreTheGeneratorsOutput) {
+  expect_same_front(read_example("crossing/crossing.mesh"), crossing_plates_surface());
 }
 
 TEST(ThinExamples, AutoPartitionDoesNotDependOnTriangleOrder) {
