@@ -4,9 +4,14 @@ and tetgen, each on one thread and in a fresh process, with the same speed, memo
 figures (see /work/shared/peers.md for how each is driven).
 
   peers.py volume --surface PREFIX --size H [--tools gmsh-delaunay,gmsh-hxt,netgen,tetgen]
-                  [--timeout SECONDS] [--json]
+                  [--timeout SECONDS] [--out-dir DIR] [--json]
       PREFIX.mesh (Medit, exact coordinates) and PREFIX.smesh (tetgen) are written by
-      `afmesh-bench-volume --surface PREFIX`.
+      `afmesh-bench-volume --surface PREFIX`; without PREFIX.smesh tetgen gets one written from
+      PREFIX.mesh. --out-dir DIR: each tool's volume mesh goes to DIR/TOOL.mesh (Medit), for
+      tools/check_volume.py. Two more tools for thin or crossing surfaces: tetgen-p (plain
+      `tetgen -p`) and tetgen-d (`tetgen -d`: counts the intersecting face pairs, meshes nothing).
+      A failed run reports its exit status (and signal) and the first line of its log that names
+      the problem.
   peers.py io --stl IN.stl --out OUT.msh [--json]
       gmsh converting binary STL to MSH 4.1 (merge + write), the peer of afmesh-bench-io.
   peers.py quality MESH.mesh
@@ -41,6 +46,8 @@ import time
 import numpy as np
 
 TOOLS = ("gmsh-delaunay", "gmsh-hxt", "netgen", "tetgen")
+TETGEN_VARIANTS = ("tetgen-p", "tetgen-d")  # for thin or crossing surfaces (bench/run_bench.py)
+ALL_TOOLS = TOOLS + TETGEN_VARIANTS
 GMSH_ALGORITHM_3D = {"gmsh-delaunay": 1, "gmsh-hxt": 10}
 TETGEN_VOLUME_FACTOR = 0.34  # tetgen -a: max tet volume = 0.34 h^3 (peers.md)
 TETGEN_QUALITY = "1.2"        # tetgen -q: radius-edge bound
@@ -226,15 +233,58 @@ def netgen_volume(tool, points, triangles, size):
 
 # tetgen's timing lines, e.g. "Total running seconds:  1.23".
 _TETGEN_SECONDS = re.compile(r"^(Total running|Output) seconds:\s+([0-9.eE+-]+)", re.M)
+# tetgen -d's verdict, e.g. "!! Found 2461 pairs of faces are intersecting."
+_TETGEN_PAIRS = re.compile(r"Found (\d+) pairs? of faces (?:are )?intersecting")
+# A log line naming a problem (the first one is reported beside a failure's exit status).
+_PROBLEM_LINE = re.compile(r"error|intersect|overlap|terminate|abort|segmentation|exception|"
+                           r"invalid|fail|cannot|unable", re.I)
+
+
+def first_problem_line(text):
+    """The first line of a log that names a problem (an error, an intersection, ...), or ''.
+    A Python traceback ends the search: its frames quote source code, and its last line (the
+    exception) is reported on its own."""
+    for line in text.splitlines():
+        line = line.strip()
+        if line.startswith("Traceback (most recent call last)"):
+            break
+        if _PROBLEM_LINE.search(line):
+            return line
+    return ""
+
+
+def exit_status_text(status):
+    """'exit status 1', or for a signal (a negative status, or a shell's 128 + n) its name."""
+    number = -status if status < 0 else status - 128 if status > 128 else 0
+    if number:
+        try:
+            return f"exit status {status} ({signal.Signals(number).name})"
+        except ValueError:
+            pass
+    return f"exit status {status}"
+
+
+def write_smesh(points, triangles, path):
+    """tetgen's .smesh of a triangulated surface (1-based, no holes, no regions); repr keeps the
+    coordinates exact."""
+    with open(path, "w") as f:
+        f.write(f"{len(points)} 3 0 0\n")
+        for i, (x, y, z) in enumerate(points.tolist(), start=1):
+            f.write(f"{i} {x!r} {y!r} {z!r}\n")
+        f.write(f"{len(triangles)} 0\n")
+        for a, b, c in (triangles + 1).tolist():
+            f.write(f"3 {a} {b} {c}\n")
+        f.write("0\n0\n")
 
 
 def _run_tetgen(arguments, cwd):
     """Runs tetgen under /usr/bin/time, returning (stdout, peak RSS bytes, cpu seconds, exit
     status). GNU time forks from its own small process: a child forked from this Python process
-    would count Python's resident memory in its peak (ru_maxrss survives exec)."""
+    would count Python's resident memory in its peak (ru_maxrss survives exec). stdbuf -oL: the
+    lines tetgen printed before an abort or a crash are not lost in its stdio buffer."""
     usage_path = os.path.join(cwd, "usage.txt")
-    process = subprocess.run(["/usr/bin/time", "-f", "%M %U %S", "-o", usage_path, "tetgen",
-                              *arguments], cwd=cwd, stdout=subprocess.PIPE,
+    process = subprocess.run(["/usr/bin/time", "-f", "%M %U %S", "-o", usage_path, "stdbuf",
+                              "-oL", "tetgen", *arguments], cwd=cwd, stdout=subprocess.PIPE,
                              stderr=subprocess.STDOUT, text=True)
     with open(usage_path) as f:
         usage = f.read().split()
@@ -266,22 +316,46 @@ def _read_tetgen_table(path, columns):
     return values[:, 0], values[:, 1:1 + columns]
 
 
+def _tetgen_case(workdir, points, triangles, smesh_path):
+    """case.smesh in workdir: a copy of smesh_path, or written from the surface when there is none.
+    A name without dots (tetgen takes "a.b" as iteration b of "a"), and the .smesh alone (given
+    "case.smesh", tetgen opens case.poly instead when one exists)."""
+    case = os.path.join(workdir, "case.smesh")
+    if smesh_path and os.path.exists(smesh_path):
+        shutil.copy(smesh_path, case)
+    else:
+        write_smesh(points, triangles, case)
+
+
+def _tetgen_failure(arguments, status, output):
+    """The error of a failed tetgen run: exit status, the first problem line and the last step."""
+    lines = [line.strip() for line in output.splitlines() if line.strip()]
+    problem = first_problem_line(output)
+    steps = [line for line in lines if line.endswith("...")]
+    step = f" (last step: {steps[-1]})" if steps else ""
+    if problem:
+        return f"tetgen {' '.join(arguments)}: {exit_status_text(status)}: {problem}{step}"
+    return (f"tetgen {' '.join(arguments)}: {exit_status_text(status)}, no error message"
+            f"{step or (': ' + lines[-1] if lines else ', no output')}")
+
+
 def tetgen_volume(tool, points, triangles, size, smesh_path):
-    """tetgen -pYq1.2 -a<0.34 h^3> on the .smesh (-Y keeps the surface as given)."""
+    """tetgen -pYq1.2 -a<0.34 h^3> on the .smesh (-Y keeps the surface as given), or for
+    tetgen-p plain -p (no quality or size bound, may split the surface)."""
     workdir = tempfile.mkdtemp(prefix="afmesh-tetgen-")
     try:
-        # A name without dots (tetgen takes "a.b" as iteration b of "a"), and the .smesh alone
-        # (given "case.smesh", tetgen opens case.poly instead when one exists).
-        shutil.copy(smesh_path, os.path.join(workdir, "case.smesh"))
+        _tetgen_case(workdir, points, triangles, smesh_path)
         footprint = _tetgen_footprint(workdir)
-        max_volume = TETGEN_VOLUME_FACTOR * size ** 3
-        arguments = [f"-pYq{TETGEN_QUALITY}", f"-a{max_volume:.6g}", "case.smesh"]
+        if tool == "tetgen-p":
+            arguments = ["-p", "case.smesh"]
+        else:
+            max_volume = TETGEN_VOLUME_FACTOR * size ** 3
+            arguments = [f"-pYq{TETGEN_QUALITY}", f"-a{max_volume:.6g}", "case.smesh"]
         started = time.perf_counter()
         output, peak, cpu, status = _run_tetgen(arguments, workdir)
         wall = time.perf_counter() - started
         if status != 0:
-            raise RuntimeError(f"tetgen {' '.join(arguments)} exited with {status}: "
-                               + " | ".join(output.strip().splitlines()[-3:]))
+            raise RuntimeError(_tetgen_failure(arguments, status, output))
         seconds = dict(_TETGEN_SECONDS.findall(output))
         clock = PhaseClock()
         clock.seconds = float(seconds["Total running"]) - float(seconds.get("Output", 0.0))
@@ -291,14 +365,46 @@ def tetgen_volume(tool, points, triangles, size, smesh_path):
         first, node_xyz = _read_tetgen_table(os.path.join(workdir, "case.1.node"), 3)
         _, ele = _read_tetgen_table(os.path.join(workdir, "case.1.ele"), 4)
         tets = ele.astype(np.int64) - int(first[0])
-        extra = {"options": " ".join(arguments[:2]), "process_wall_seconds": wall}
+        extra = {"options": " ".join(arguments[:-1]), "process_wall_seconds": wall}
         return clock, probe, node_xyz, tets, extra
     finally:
         shutil.rmtree(workdir, ignore_errors=True)
 
 
-def measure_volume(tool, surface_prefix, size):
-    """Runs one peer on the surface and returns its figures (a dict)."""
+def tetgen_detect(surface_prefix):
+    """tetgen -d: the number of intersecting face pairs it finds on the surface (no mesh)."""
+    points, triangles, _ = read_medit(surface_prefix + ".mesh")
+    workdir = tempfile.mkdtemp(prefix="afmesh-tetgen-")
+    try:
+        _tetgen_case(workdir, points, triangles, surface_prefix + ".smesh")
+        arguments = ["-d", "case.smesh"]
+        started = time.perf_counter()
+        output, _, cpu, status = _run_tetgen(arguments, workdir)
+        wall = time.perf_counter() - started
+        if status != 0:
+            raise RuntimeError(_tetgen_failure(arguments, status, output))
+        found = _TETGEN_PAIRS.search(output)
+        pairs = int(found.group(1)) if found else 0
+        return {"tool": "tetgen-d", "options": "-d", "surface_points": len(points),
+                "surface_triangles": len(triangles), "seconds": wall,
+                "cpu_seconds": cpu, "intersecting_pairs": pairs,
+                "verdict": found.group(0) if found else first_problem_line(output)
+                or "no intersecting face pairs reported"}
+    finally:
+        shutil.rmtree(workdir, ignore_errors=True)
+
+
+def write_volume_medit(points, tets, path):
+    """The tets as a Medit file (no boundary triangles: check_volume.py takes them from the input)."""
+    import meshio
+    meshio.write(path, meshio.Mesh(points, [("tetra", tets)]), file_format="medit")
+
+
+def measure_volume(tool, surface_prefix, size, out=None):
+    """Runs one peer on the surface and returns its figures (a dict); with `out`, writes the
+    volume mesh there (Medit) when it has tets."""
+    if tool == "tetgen-d":
+        return tetgen_detect(surface_prefix)
     points, triangles, _ = read_medit(surface_prefix + ".mesh")
     if tool in GMSH_ALGORITHM_3D:
         run = gmsh_volume(tool, points, triangles, size)
@@ -314,6 +420,9 @@ def measure_volume(tool, surface_prefix, size):
     figures.update(probe.figures(len(tets)))
     figures.update(tet_quality_summary(mesh_points, tets))
     figures.update(extra)
+    if out and len(tets):
+        write_volume_medit(mesh_points, tets, out)
+        figures["mesh_file"] = out
     return figures
 
 
@@ -352,26 +461,38 @@ def measure_io(stl_path, msh_path):
 def run_child(job, result_path):
     """In the child: runs `job` (a dict) and writes its figures as JSON to result_path."""
     if job["kind"] == "volume":
-        figures = measure_volume(job["tool"], job["surface"], job["size"])
+        figures = measure_volume(job["tool"], job["surface"], job["size"], job.get("out"))
     else:
         figures = measure_io(job["stl"], job["out"])
     with open(result_path, "w") as f:
         json.dump(figures, f)
 
 
-def _log_tail(path, lines=4):
+def _log_lines(path):
     with open(path, errors="replace") as f:
-        text = [line.strip() for line in f if line.strip() and not set(line.strip()) <= set("+*")]
-    return " | ".join(text[-lines:])
+        return [line.strip() for line in f if line.strip() and not set(line.strip()) <= set("+*^~")]
+
+
+_NETGEN_PAIR = re.compile(r"Intersecting elements (\d+) and (\d+)")
+
+
+def netgen_intersecting_pairs(text):
+    """Distinct surface element pairs netgen warned about ("WARNING: Intersecting elements a
+    and b"; it may name a pair more than once)."""
+    return len({tuple(sorted(map(int, m))) for m in _NETGEN_PAIR.findall(text)})
 
 
 def in_fresh_process(job, timeout):
     """Runs `job` in a new Python process (one thread: OMP_NUM_THREADS=1) and returns its figures,
-    or {"error": ...} naming what went wrong (the child's last log lines)."""
+    or {"error": ...} naming what went wrong (the child's last log lines; "first_problem": the
+    first log line naming a problem, "last_line": the last one, e.g. the exception). Either way
+    "process_seconds" is the child's wall time from start to exit (start-up and reading
+    included)."""
     with tempfile.TemporaryDirectory(prefix="afmesh-peer-") as tmp:
         result_path, log_path = os.path.join(tmp, "result.json"), os.path.join(tmp, "log.txt")
         env = dict(os.environ, OMP_NUM_THREADS="1")
         command = [sys.executable, os.path.abspath(__file__), "_child", json.dumps(job), result_path]
+        started = time.perf_counter()
         with open(log_path, "w") as log:
             child = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, env=env,
                                      start_new_session=True)
@@ -380,11 +501,23 @@ def in_fresh_process(job, timeout):
             except subprocess.TimeoutExpired:
                 os.killpg(child.pid, signal.SIGKILL)  # the child and its tetgen, nothing else
                 child.wait()
-                return {"error": f"timed out after {timeout:.0f} s (killed)"}
+                return {"error": f"timed out after {timeout:g} s (killed)", "timed_out": True,
+                        "process_seconds": time.perf_counter() - started}
+        elapsed = time.perf_counter() - started
+        lines = _log_lines(log_path)
+        text = "\n".join(lines)
         if child.returncode != 0 or not os.path.exists(result_path):
-            return {"error": f"exit status {child.returncode}: {_log_tail(log_path)}"}
-        with open(result_path) as f:
-            return json.load(f)
+            figures = {"error": f"{exit_status_text(child.returncode)}: {' | '.join(lines[-4:])}",
+                       "last_line": lines[-1] if lines else ""}
+        else:
+            with open(result_path) as f:
+                figures = json.load(f)
+        figures["process_seconds"] = elapsed
+        if first_problem_line(text):
+            figures["first_problem"] = first_problem_line(text)
+        if job.get("tool") == "netgen" and netgen_intersecting_pairs(text):
+            figures["intersecting_pairs"] = netgen_intersecting_pairs(text)
+        return figures
 
 
 # ---------------------------------------------------------------------------------------------
@@ -398,6 +531,12 @@ def print_volume(figures):
     tool = figures.get("tool", "?")
     if "error" in figures:
         print(f"{tool:14s} FAILED: {figures['error']}")
+        return
+    if "intersecting_pairs" in figures and tool == "tetgen-d":
+        print(f"{tool:14s} {figures['verdict']} ({figures['seconds']:.3f} s)")
+        return
+    if figures["tets"] == 0:
+        print(f"{tool:14s} no tets: only the surface came out ({figures.get('options', '')})")
         return
     print(f"{tool:14s} {figures['tets']} tets, {figures['points']} points "
           f"({figures.get('options', '')})")
@@ -430,8 +569,10 @@ def parse_arguments(argv):
     volume = commands.add_parser("volume", help="mesh a surface with the peers")
     volume.add_argument("--surface", required=True, help="PREFIX of PREFIX.mesh and PREFIX.smesh")
     volume.add_argument("--size", type=float, required=True, help="target edge length h")
-    volume.add_argument("--tools", default=",".join(TOOLS), help="comma-separated: " + ",".join(TOOLS))
+    volume.add_argument("--tools", default=",".join(TOOLS),
+                        help="comma-separated: " + ",".join(ALL_TOOLS))
     volume.add_argument("--timeout", type=float, default=3600.0, help="seconds per tool")
+    volume.add_argument("--out-dir", help="write each tool's volume mesh to OUT_DIR/TOOL.mesh")
     volume.add_argument("--json", action="store_true", help="one JSON object per tool and line")
     io = commands.add_parser("io", help="gmsh converting STL to MSH 4.1")
     io.add_argument("--stl", required=True)
@@ -461,9 +602,11 @@ def main(argv):
         return 1 if "error" in figures else 0
     failed = False
     for tool in args.tools.split(","):
-        if tool not in TOOLS:
-            sys.exit(f"peers.py: unknown tool '{tool}'; known: {', '.join(TOOLS)}")
+        if tool not in ALL_TOOLS:
+            sys.exit(f"peers.py: unknown tool '{tool}'; known: {', '.join(ALL_TOOLS)}")
         job = {"kind": "volume", "tool": tool, "surface": args.surface, "size": args.size}
+        if args.out_dir:
+            job["out"] = os.path.join(os.path.abspath(args.out_dir), f"{tool}.mesh")
         figures = in_fresh_process(job, args.timeout)
         figures.setdefault("tool", tool)
         failed |= "error" in figures

@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """The benchmark tables: afmesh's volume mesher against gmsh (Delaunay, HXT), netgen and tetgen on
 the same surfaces, core/io converting a ~1M-triangle STL against gmsh, and the size field's
-evaluations per second with 1 to 1000 sources (afmesh alone: the peers have no source fields).
-Run by scripts/bench.sh.
+evaluations per second with 1 to 1000 sources (afmesh alone: the peers have no source fields),
+and the thin examples (THIN_INPUTS: crossing surfaces with environment tags) given to afmesh and
+to each peer as they are, side by side. Run by scripts/bench.sh.
 
 Every measurement is a fresh process, run one after the other (never in parallel): afmesh by
 afmesh-bench-volume / afmesh-bench-io, the peers by bench/peers.py. Each case first runs afmesh,
@@ -13,6 +14,15 @@ machine wall > cpu); tets/s = tets / wall seconds; bytes/tet = (peak resident me
 phase - resident before) / tets; min dihedral (degrees), shares of tets with min dihedral under 10
 and 20 degrees, min and mean radius ratio (3 r_in / r_circ); afmesh/peer = afmesh's tets/s (or
 bytes/tet) over the peer's, so > 1 means afmesh is faster (or uses more memory per tet).
+
+Thin inputs (--thin, in the full run; --thin-only): each of THIN_INPUTS goes as it is to afmesh
+(`afmesh volume IN -o OUT.msh --spec SIZES --envs tags`, then `--envs auto`) and to every peer.
+Per tool: outcome (valid / INVALID with the failing checks / FAILED or CRASHED with exit status,
+or TIMED OUT; the reason line below the table: the exception or error, and the first log line
+that names a problem), tets, min dihedral, share under 20 degrees, gap tets (tets joining two
+different positive environments, by `afmesh stats --envs tags` for afmesh's meshes and by
+tools/check_volume.py --envs for every mesh) and the wall seconds of the whole process. A peer
+whose run gives no tets is reported as "surface only".
 """
 
 import argparse
@@ -20,8 +30,14 @@ import datetime
 import json
 import os
 import platform
+import re
+import shutil
+import signal
 import subprocess
 import sys
+import time
+
+import peers  # bench/peers.py: the peers' driving, error lines and the Medit reader
 
 BENCH_DIR = os.path.dirname(os.path.abspath(__file__))
 REPO_DIR = os.path.dirname(BENCH_DIR)
@@ -43,6 +59,18 @@ SIZES = {
     "box": {"50k": 0.057, "500k": 0.0265},
     "lblock": {"50k": 0.07, "500k": 0.0325},
 }
+# The thin (crossing) inputs of --thin: name, surface (Medit, triangle refs = crossing
+# environments), size specification (JSON, design.md), title. One line per input.
+THIN_INPUTS = (
+    ("dome", "examples/dome/dome.mesh", "examples/dome/dome-sizes.json",
+     "quarter dome, shell 1/1000 of the radius thick (paper §5 (a))"),
+    ("sails", "examples/sails/sails.mesh", "examples/sails/sails-sizes.json",
+     "two sails 1 mm thick in a 70 m box (paper §5 (b))"),
+)
+# What meshes a thin input: afmesh with each --envs mode, then the peers (tetgen three ways: the
+# benchmark's -pYq1.2 -a, plain -p, and -d which only counts intersecting face pairs).
+THIN_AFMESH_ENVS = ("tags", "auto")
+THIN_PEERS = ("gmsh-delaunay", "gmsh-hxt", "netgen", "tetgen", "tetgen-p", "tetgen-d")
 SHAPE_TITLES = {"sphere": "sphere, radius 1", "torus": "torus, R = 1, r = 0.35",
                 "box": "unit cube", "lblock": "L-block with a square hole, voxels 0.5"}
 
@@ -74,6 +102,14 @@ def parse_arguments(argv):
                         help="skip the size-field throughput benchmark")
     parser.add_argument("--sizing-only", action="store_true",
                         help="only the size-field throughput benchmark")
+    parser.add_argument("--thin", dest="thin", action="store_true", default=True)
+    parser.add_argument("--no-thin", dest="thin", action="store_false",
+                        help="skip the thin (crossing) inputs")
+    parser.add_argument("--thin-only", action="store_true",
+                        help="only the thin inputs: afmesh and every peer on examples/dome, "
+                             "examples/sails")
+    parser.add_argument("--thin-timeout", type=float, default=300.0,
+                        help="seconds before one run on a thin input is killed (timed out)")
     args = parser.parse_args(argv)
     for override in args.size:
         key, h = override.split("=")
@@ -204,6 +240,141 @@ def run_sizing(args):
 
 
 # ---------------------------------------------------------------------------------------------
+# Thin inputs: afmesh through its CLI, the peers through bench/peers.py, every volume mesh checked
+# by afmesh stats (afmesh's own meshes) and by the independent tools/check_volume.py (all).
+
+CHECK_VOLUME = os.environ.get("AFMESH_CHECK_VOLUME") or os.path.join(
+    REPO_DIR, "..", "shared", "tools", "check_volume.py")
+
+
+def run_process(command, timeout, cwd=None):
+    """Runs `command` in its own session (on timeout the whole group is killed: afmesh's private
+    server too). Returns (exit status or None on timeout, stdout, stderr, wall seconds)."""
+    started = time.perf_counter()
+    child = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             cwd=cwd, start_new_session=True)
+    try:
+        out, err = child.communicate(timeout=timeout)
+        status = child.returncode
+    except subprocess.TimeoutExpired:
+        os.killpg(child.pid, signal.SIGKILL)
+        out, err = child.communicate()
+        status = None
+    return status, out, err, time.perf_counter() - started
+
+
+def check_volume(mesh, surface):
+    """tools/check_volume.py MESH SURFACE --envs: {"pass", "gap_tets", "failed" (check names)}
+    or {"error"}."""
+    status, out, err, _ = run_process(["/usr/bin/python3", CHECK_VOLUME, mesh, surface, "--envs",
+                                       "--json"], timeout=600)
+    line = next((l for l in out.splitlines() if l.startswith("{")), None)
+    if line is None:
+        tail = " | ".join((err or out).strip().splitlines()[-2:])
+        return {"error": f"check_volume.py: {peers.exit_status_text(status or 0)}: {tail}"}
+    result = json.loads(line)
+    failed = [k for k in ("positive", "conform", "boundary", "volume", "envs")
+              if k in result and not result[k]["pass"]]
+    return {"pass": result["pass"], "gap_tets": result.get("envs", {}).get("tets_joining_two_envs"),
+            "failed": failed, "figures": result}
+
+
+def afmesh_stats(afmesh, mesh):
+    """afmesh stats --envs tags --json: {"valid", "gap_tets", "failed" (check names)} or
+    {"error"}."""
+    status, out, err, _ = run_process([afmesh, "stats", "--envs", "tags", "--json", mesh], 600)
+    try:
+        report = json.loads(out)
+    except json.JSONDecodeError:
+        return {"error": f"afmesh stats: {peers.exit_status_text(status or 0)}: "
+                         f"{peers.first_problem_line(err) or err.strip()[-200:]}"}
+    checks = report["validation"]["checks"]
+    gap = next((c for c in checks if c["name"] == "environment_gap"), None)
+    return {"valid": report["validation"]["valid"],
+            "gap_tets": None if gap is None or gap["outcome"] == "not run"
+            else gap["finding_count"],
+            "failed": [c["name"] for c in checks if c["outcome"] == "failed"]}
+
+
+def run_thin_afmesh(args, surface, spec, envs, work):
+    """afmesh volume SURFACE -o OUT.msh --spec SPEC --envs ENVS (a private server), then its mesh
+    through afmesh stats and, converted to Medit (meshio 5.0 rejects an MSH 4.1 file whose entities
+    carry physical tags only in part), through check_volume.py."""
+    afmesh = os.path.join(args.build_dir, "client", "afmesh")
+    out = os.path.join(work, f"afmesh-{envs}.msh")
+    command = [afmesh, "volume", surface, "-o", out, "--spec", spec, "--envs", envs, "--json"]
+    status, stdout, stderr, seconds = run_process(command, args.thin_timeout)
+    row = {"tool": f"afmesh --envs {envs}", "command": " ".join(command), "exit_status": status,
+           "process_seconds": seconds}
+    if status is None:
+        row.update(error=f"timed out after {args.thin_timeout:g} s (killed)", timed_out=True)
+        return row
+    if status != 0:
+        lines = [l for l in stderr.splitlines() if l.strip() and not l.startswith("afmesh: ")]
+        row["error"] = (f"{peers.exit_status_text(status)}: "
+                        f"{peers.first_problem_line(stderr) or (lines[-1] if lines else '')}")
+        return row
+    summary = json.loads(stdout)
+    quality = summary.get("quality", {})
+    row.update(tets=int(summary["tetCount"]), points=int(summary["pointCount"]),
+               min_dihedral=quality.get("minDihedralDeg"),
+               share_below_20=quality.get("shareBelow20Deg"),
+               server_validation=summary.get("validation", {}).get("passed"),
+               stages={t["stage"]: t["seconds"] for t in summary.get("timings", [])},
+               warnings=[l.split("warning: ", 1)[1] for l in stderr.splitlines()
+                         if "warning: " in l])
+    row["stats"] = afmesh_stats(afmesh, out)
+    medit = out[:-len(".msh")] + ".mesh"
+    status, _, err, _ = run_process([afmesh, "convert", out, medit], 600)
+    row["check"] = (check_volume(medit, surface) if status == 0
+                    else {"error": f"afmesh convert: {err.strip()[-200:]}"})
+    return row
+
+
+def run_thin_peer(args, tool, prefix, size, work):
+    """One peer on PREFIX.mesh in a fresh process (bench/peers.py), its mesh through
+    check_volume.py."""
+    command = ["/usr/bin/python3", os.path.join(BENCH_DIR, "peers.py"), "volume", "--surface",
+               prefix, "--size", repr(size), "--tools", tool, "--timeout",
+               repr(args.thin_timeout), "--out-dir", work, "--json"]
+    row = run_json_lines(command)[0]
+    row["tool"] = tool
+    if row.get("mesh_file"):
+        row["check"] = check_volume(row["mesh_file"], prefix + ".mesh")
+    return row
+
+
+def thin_tools(tools):
+    """The peers of THIN_PEERS that --tools asks for (tetgen stands for its three runs)."""
+    return [t for t in THIN_PEERS if t in tools or (t.startswith("tetgen") and "tetgen" in tools)]
+
+
+def run_thin(args, tools, name, surface, spec, title):
+    surface, spec = os.path.join(REPO_DIR, surface), os.path.join(REPO_DIR, spec)
+    work = os.path.join(args.work_dir, "thin", name)
+    os.makedirs(work, exist_ok=True)
+    prefix = os.path.join(work, name)  # the peers read PREFIX.mesh (a copy of the input)
+    shutil.copy(surface, prefix + ".mesh")
+    with open(spec) as f:
+        size = float(json.load(f)["maxSize"])
+    points, triangles, _ = peers.read_medit(surface)
+    print(f"\n== thin: {title}: {os.path.relpath(surface, REPO_DIR)}, {len(points)} points, "
+          f"{len(triangles)} triangles ==", flush=True)
+    print(f"   afmesh: --spec {os.path.relpath(spec, REPO_DIR)}; peers: h = its maxSize {size:g} "
+          f"(netgen maxh, tetgen -a {peers.TETGEN_VOLUME_FACTOR} h^3; gmsh sizes from the "
+          f"surface); timeout {args.thin_timeout:g} s each", flush=True)
+    print(f"   start: {load_line()}", flush=True)
+    rows = []
+    if "afmesh" in tools:
+        rows += [run_thin_afmesh(args, surface, spec, envs, work) for envs in THIN_AFMESH_ENVS]
+    rows += [run_thin_peer(args, tool, prefix, size, work) for tool in thin_tools(tools)]
+    print_thin_table(rows)
+    return {"input": os.path.relpath(surface, REPO_DIR), "spec": os.path.relpath(spec, REPO_DIR),
+            "surface_points": len(points), "surface_triangles": len(triangles),
+            "peer_size": size, "rows": rows}
+
+
+# ---------------------------------------------------------------------------------------------
 # Printing.
 
 VOLUME_COLUMNS = (
@@ -295,6 +466,74 @@ def print_sizing_table(rows):
     sys.stdout.flush()
 
 
+def thin_outcome(row):
+    """(short outcome, full reason or None) of one row of a thin input's table."""
+    if row.get("timed_out"):
+        return "TIMED OUT", row["error"]
+    if "error" in row:
+        reason = row.get("last_line") or row["error"]
+        first = row.get("first_problem")
+        if first and reason.split(": ", 1)[-1].strip() not in first:
+            reason += f" [first problem line: {first}]"
+        if row.get("intersecting_pairs"):
+            reason += f" [{row['intersecting_pairs']} distinct intersecting element pairs warned]"
+        crash = re.search(r"exit status (\d+) \((SIG\w+)\)", reason)
+        if crash:
+            return f"CRASHED ({crash.group(2)}, exit {crash.group(1)})", reason
+        if row.get("exit_status") is not None:
+            return f"FAILED (exit {row['exit_status']})", reason
+        return "FAILED (exception)" if "Exception" in reason or "Error" in reason else "FAILED", reason
+    if row["tool"] == "tetgen-d":
+        return f"found {row['intersecting_pairs']} crossing pairs", row.get("verdict")
+    if row.get("tets", 0) == 0:
+        return "surface only: no tets", row.get("first_problem")
+    verdicts = []
+    for key, label in (("stats", "afmesh stats"), ("check", "check_volume")):
+        result = row.get(key)
+        if result is None:
+            continue
+        if "error" in result:
+            verdicts.append(f"{label}: {result['error']}")
+        elif not result.get("valid", result.get("pass")):
+            verdicts.append(f"{label} fails {', '.join(result['failed']) or '?'}")
+    if verdicts:
+        return "INVALID", "; ".join(verdicts)
+    checked = " + ".join(label for key, label in (("stats", "stats"), ("check", "check"))
+                         if key in row)
+    return f"valid ({checked})", None
+
+
+def thin_gap_cell(row):
+    """Tets across a gap: afmesh stats / check_volume.py ('-': not run or no mesh)."""
+    values = [row.get(key, {}).get("gap_tets") for key in ("stats", "check")]
+    if all(v is None for v in values):
+        return "-"
+    return " / ".join("-" if v is None else str(v) for v in values)
+
+
+def print_thin_table(rows):
+    print(f"   {'tool':20s} {'outcome':30s} {'tets':>7s} {'min dih':>7s} {'%<20°':>7s} "
+          f"{'gap tets':>9s} {'time s':>7s}")
+    notes = []
+    for row in rows:
+        outcome, reason = thin_outcome(row)
+        share = row.get("share_below_20")
+        seconds = row.get("process_seconds")
+        print(f"   {row['tool']:20s} {outcome:30s} {_cell(row.get('tets'), 7, ',')} "
+              f"{_cell(row.get('min_dihedral'), 7, '.2f')} "
+              f"{_cell(None if share is None else 100 * share, 7, '.3f')} "
+              f"{thin_gap_cell(row):>9s} {_cell(seconds, 7, '.2f')}")
+        if reason:
+            notes.append(f"   {row['tool']}: {reason}")
+        for warning in row.get("warnings", []):
+            notes.append(f"   {row['tool']}: {warning}")
+    print("\n".join(notes))
+    print("   (gap tets: tets joining two different positive environments, by afmesh stats --envs "
+          "tags / tools/check_volume.py --envs; time: wall seconds of the whole process, afmesh "
+          "with its private server, a peer in a fresh Python process with its imports)")
+    sys.stdout.flush()
+
+
 def print_growth(shape, cases):
     """Time per tet of afmesh at the largest target over the smallest."""
     rows = {t: r[0] for t, r in cases.items() if "error" not in r[0]}
@@ -325,17 +564,21 @@ def main(argv):
     print("   every figure from a fresh process, one at a time, one thread each "
           "(OMP_NUM_THREADS=1; gmsh General.NumThreads=1, Mesh.MaxNumThreads3D=1)")
     results = {}
-    if not (args.io_only or args.sizing_only):
+    only = args.io_only or args.sizing_only or args.thin_only
+    if not only:
         for shape in args.shapes.split(","):
             cases = {}
             for target in args.targets.split(","):
                 cases[target] = run_case(args, tools, shape, target)
             print_growth(shape, cases)
             results[shape] = cases
-    if args.io_only or (args.io and not args.sizing_only):
+    if args.io_only or (args.io and not only):
         results["io"] = run_io(args)
-    if args.sizing_only or (args.sizing and not args.io_only):
+    if args.sizing_only or (args.sizing and not only):
         results["sizing"] = run_sizing(args)
+    if args.thin_only or (args.thin and not only):
+        results["thin"] = {name: run_thin(args, tools, name, *rest)
+                           for name, *rest in THIN_INPUTS}
     with open(os.path.join(args.work_dir, "results.json"), "w") as f:
         json.dump(results, f, indent=1)
     print(f"\n{load_line()}\nfigures saved in {os.path.join(args.work_dir, 'results.json')}")

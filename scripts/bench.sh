@@ -1,18 +1,24 @@
 #!/usr/bin/env bash
 # The benchmarks: afmesh's volume mesher against gmsh (Delaunay, HXT), netgen and tetgen on the
 # same sphere and torus surfaces at about 50k, 500k and 2M tets, core/io converting a
-# ~1M-triangle STL to MSH 4.1 against gmsh, and the size field's evaluations per second with 1 to
-# 1000 sources (afmesh alone: the peers have no source fields). Prints one table per case; see
-# bench/run_bench.py.
+# ~1M-triangle STL to MSH 4.1 against gmsh, the size field's evaluations per second with 1 to
+# 1000 sources (afmesh alone: the peers have no source fields), and the thin examples
+# (examples/dome, examples/sails: thin shells whose two sides' triangulations cross, environment
+# tags as triangle refs) given as they are to afmesh (its CLI, --envs tags and --envs auto) and to
+# each peer (tetgen also as plain -p and as -d, which counts the intersecting face pairs), every
+# volume mesh checked by afmesh stats and tools/check_volume.py --envs (tets across a gap). Prints
+# one table per case; see bench/run_bench.py.
 #
 # Usage: scripts/bench.sh [bench/run_bench.py options]
 #   scripts/bench.sh                                   everything (netgen at 2M takes tens of minutes)
 #   scripts/bench.sh --netgen-max-target 500k          skip netgen at 2M (the tables say so)
 #   scripts/bench.sh --targets 50k,500k --no-io        the quick cases only
 #   scripts/bench.sh --sizing-only                     the size-field throughput alone
+#   scripts/bench.sh --thin-only                       the thin inputs alone (seconds); --no-thin skips them
 #   scripts/bench.sh --shapes sphere --tools afmesh,tetgen --size sphere:2M=0.031
 # Environment: AFMESH_BENCH_BUILD_DIR (default build/release, the release preset),
-#              AFMESH_BENCH_JOBS (build parallelism, default 2).
+#              AFMESH_BENCH_JOBS (build parallelism, default 2),
+#              AFMESH_CHECK_VOLUME (the independent checker, default ../shared/tools/check_volume.py).
 # Run it on an otherwise idle machine: each measurement is one thread, one process at a time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -25,7 +31,7 @@ else
   cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 fi
 cmake --build "$build_dir" --target afmesh-bench-volume afmesh-bench-io \
-  afmesh-bench-sizing -j "${AFMESH_BENCH_JOBS:-2}"
+  afmesh-bench-sizing afmesh afmesh-server -j "${AFMESH_BENCH_JOBS:-2}"
 
 exec /usr/bin/python3 bench/run_bench.py --build-dir "$build_dir" \
   --work-dir "$build_dir/bench-work" "$@"
