@@ -66,6 +66,8 @@ THIN_INPUTS = (
      "quarter dome, shell 1/1000 of the radius thick (paper §5 (a))"),
     ("sails", "examples/sails/sails.mesh", "examples/sails/sails-sizes.json",
      "two sails 1 mm thick in a 70 m box (paper §5 (b))"),
+    ("crossing", "examples/crossing/crossing.mesh", "examples/crossing/crossing-sizes.json",
+     "an X of two plates 1/1000 thick crossing each other (paper §2, Figures 3 and 4)"),
 )
 # What meshes a thin input: afmesh with each --envs mode, then the peers (tetgen three ways: the
 # benchmark's -pYq1.2 -a, plain -p, and -d which only counts intersecting face pairs).
