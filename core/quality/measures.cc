@@ -31,23 +31,47 @@ double angle_between(const Vec& u, const Vec& v) {
   return std::atan2(sine, cosine);
 }
 
-// The 6 dihedral angles (radians) of tet (p0, p1, p2, p3). n[i] is the normal of the face
-// opposite p[i], all four pointing out of a positive tet (into an inverted one, which gives the
-// same angles). The dihedral angle along the edge shared by faces i and j is pi minus the angle
-// between their normals; it is taken as 0 when a face has no normal (coincident points).
-std::array<double, 6> dihedral_angles(const Vec& p0, const Vec& p1, const Vec& p2,
-                                      const Vec& p3) {
-  const std::array<Vec, 4> n = {(p2 - p1).cross(p3 - p1), (p3 - p0).cross(p2 - p0),
-                                (p1 - p0).cross(p3 - p0), (p2 - p0).cross(p1 - p0)};
-  std::array<double, 6> angles{};
-  int e = 0;
+// The outward face normals of tet (p0, p1, p2, p3): n[i] is the normal of the face opposite p[i],
+// twice its area long, pointing out of a positive tet (into an inverted one, which gives the same
+// angles).
+std::array<Vec, 4> face_normals(const Vec& p0, const Vec& p1, const Vec& p2, const Vec& p3) {
+  return {(p2 - p1).cross(p3 - p1), (p3 - p0).cross(p2 - p0), (p1 - p0).cross(p3 - p0),
+          (p2 - p0).cross(p1 - p0)};
+}
+
+// tan(theta / 2) for the angle theta in [0, pi] whose sine and cosine are `sine` / `scale` and
+// `cosine` / `scale` (scale > 0): increasing in theta and, unlike either alone, accurate to a
+// few ulps over the whole range, so it orders angles as atan2 would without calling it.
+double half_angle_tangent(double sine, double cosine, double scale) {
+  return cosine >= 0.0 ? sine / (scale + cosine) : (scale - cosine) / sine;
+}
+
+// The smallest and largest of the 6 dihedral angles (radians) of the tet with face normals `n`.
+// The dihedral angle along the edge shared by faces i and j is pi minus the angle between their
+// normals; it is taken as 0 when a face has no normal (coincident points). The pairs are ranked
+// by half_angle_tangent and only the two extremes go through atan2 (angle_between), which gives
+// them exactly the values of the full computation.
+std::array<double, 2> dihedral_extremes(const std::array<Vec, 4>& n,
+                                        const std::array<double, 4>& length) {
+  std::array<int, 2> low{-1, -1}, high{-1, -1};  // face pairs (i, j) of the extremes
+  double low_key = 0.0, high_key = 0.0;
+  bool undefined = false;
   for (int i = 0; i < 4; ++i) {
     for (int j = i + 1; j < 4; ++j) {
-      const bool defined = n[i].squaredNorm() > 0.0 && n[j].squaredNorm() > 0.0;
-      angles[e++] = defined ? angle_between(n[i], -n[j]) : 0.0;
+      if (!(length[i] > 0.0 && length[j] > 0.0)) {
+        undefined = true;
+        continue;
+      }
+      const double key =
+          half_angle_tangent(n[i].cross(n[j]).norm(), -n[i].dot(n[j]), length[i] * length[j]);
+      if (low[0] < 0 || key < low_key) low_key = key, low = {i, j};
+      if (high[0] < 0 || key > high_key) high_key = key, high = {i, j};
     }
   }
-  return angles;
+  auto angle = [&](const std::array<int, 2>& pair) {
+    return pair[0] < 0 ? 0.0 : angle_between(n[pair[0]], -n[pair[1]]);
+  };
+  return {undefined ? 0.0 : angle(low), angle(high)};
 }
 
 // 3 r_in / r_circ = 108 V^2 / (A |m|), where A is the total face area and m the numerator of the
@@ -55,12 +79,12 @@ std::array<double, 6> dihedral_angles(const Vec& p0, const Vec& p1, const Vec& p
 // m = |b|^2 (c x d) + |c|^2 (d x b) + |d|^2 (b x c), (b, c, d) = (p1, p2, p3) - p0.
 // So r_circ = |m| / (12 |V|) and r_in = 3 |V| / A. Zero for a flat tet.
 double tet_radius_ratio(const Vec& p0, const Vec& p1, const Vec& p2, const Vec& p3,
+                        const std::array<Vec, 4>& n, const std::array<double, 4>& length,
                         double volume) {
   const Vec b = p1 - p0, c = p2 - p0, d = p3 - p0;
-  const double area = 0.5 * ((p2 - p1).cross(p3 - p1).norm() + c.cross(d).norm() +
-                             b.cross(d).norm() + b.cross(c).norm());
-  const Vec m = b.squaredNorm() * c.cross(d) + c.squaredNorm() * d.cross(b) +
-                d.squaredNorm() * b.cross(c);
+  const double area = 0.5 * (length[0] + length[1] + length[2] + length[3]);
+  // c x d = -n[1], d x b = -n[2], b x c = -n[3], exactly (the same products, negated).
+  const Vec m = -(b.squaredNorm() * n[1] + c.squaredNorm() * n[2] + d.squaredNorm() * n[3]);
   const double denominator = area * m.norm();
   if (volume == 0.0 || !(denominator > 0.0)) return 0.0;
   return 108.0 * volume * volume / denominator;
@@ -158,12 +182,14 @@ double tet_signed_volume(const Point& a, const Point& b, const Point& c, const P
 
 TetQuality tet_quality(const Point& a, const Point& b, const Point& c, const Point& d) {
   const Vec p0 = vec(a), p1 = vec(b), p2 = vec(c), p3 = vec(d);
+  const std::array<Vec, 4> n = face_normals(p0, p1, p2, p3);
+  const std::array<double, 4> length = {n[0].norm(), n[1].norm(), n[2].norm(), n[3].norm()};
   TetQuality q;
   q.volume = tet_signed_volume(a, b, c, d);
-  const std::array<double, 6> angles = dihedral_angles(p0, p1, p2, p3);
-  q.min_dihedral_deg = degrees(*std::min_element(angles.begin(), angles.end()));
-  q.max_dihedral_deg = degrees(*std::max_element(angles.begin(), angles.end()));
-  q.radius_ratio = tet_radius_ratio(p0, p1, p2, p3, q.volume);
+  const std::array<double, 2> extremes = dihedral_extremes(n, length);
+  q.min_dihedral_deg = degrees(extremes[0]);
+  q.max_dihedral_deg = degrees(extremes[1]);
+  q.radius_ratio = tet_radius_ratio(p0, p1, p2, p3, n, length, q.volume);
   return q;
 }
 

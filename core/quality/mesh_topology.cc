@@ -120,6 +120,84 @@ std::vector<VertexFans> split_vertices(const std::vector<Triangle>& triangles,
   return result;
 }
 
+// How many filed tets ahead for_each_tet_face asks the cache for.
+constexpr Index kPrefetchDistance = 16;
+
+// Tets filed under vertices: bucket v is tets[offsets[v] .. offsets[v + 1]).
+struct TetsByVertex {
+  std::vector<Index> offsets;  // N + 1
+  std::vector<Index> tets;
+};
+
+// Corner of the smallest index of `tet`.
+int smallest_corner(const Tet& tet) {
+  int low = 0;
+  for (int k = 1; k < 4; ++k) {
+    if (tet[k] < tet[low]) low = k;
+  }
+  return low;
+}
+
+// Each listed tet under its smallest and second smallest vertex, by a counting sort: every face
+// of a tet has one of these two as its smallest vertex.
+TetsByVertex file_by_two_smallest_vertices(const std::vector<Tet>& tets,
+                                           const std::vector<Index>& tet_ids) {
+  Index point_count = 0;
+  for (Index id : tet_ids) {
+    for (Index v : tets[id]) point_count = std::max(point_count, v + 1);
+  }
+  auto two_smallest = [&](Index id) {
+    const Tet& t = tets[id];
+    const Index low01 = std::min(t[0], t[1]), high01 = std::max(t[0], t[1]);
+    const Index low23 = std::min(t[2], t[3]), high23 = std::max(t[2], t[3]);
+    return low01 < low23 ? std::array<Index, 2>{low01, std::min(high01, low23)}
+                         : std::array<Index, 2>{low23, std::min(high23, low01)};
+  };
+  TetsByVertex filed{std::vector<Index>(point_count + 1, 0),
+                     std::vector<Index>(2 * tet_ids.size())};
+  for (Index id : tet_ids) {
+    for (Index v : two_smallest(id)) ++filed.offsets[v + 1];
+  }
+  std::partial_sum(filed.offsets.begin(), filed.offsets.end(), filed.offsets.begin());
+  std::vector<Index> next(filed.offsets.begin(), filed.offsets.end() - 1);
+  for (Index id : tet_ids) {
+    for (Index v : two_smallest(id)) filed.tets[next[v]++] = id;
+  }
+  return filed;
+}
+
+// A face whose smallest vertex is known (the bucket being grouped), ordered as FaceUse is by
+// (key, tet) with the other two vertices b < c packed into one number for a cheap comparison.
+struct FaceAtVertex {
+  std::uint64_t other_two = 0;  // b * 2^32 + c
+  Index tet = 0;
+  std::int8_t corner = 0;
+  bool even = false;
+
+  Index b() const { return static_cast<Index>(other_two >> 32); }
+  Index c() const { return static_cast<Index>(other_two & 0xffffffffu); }
+};
+
+bool operator<(const FaceAtVertex& x, const FaceAtVertex& y) {
+  return x.other_two != y.other_two ? x.other_two < y.other_two : x.tet < y.tet;
+}
+
+// Appends to `faces` the faces of tet `id` whose smallest vertex is `v` (one of its two
+// smallest): the three faces at v when v is the tet's smallest vertex, else the face opposite
+// the smallest.
+void add_faces_with_smallest_vertex(const std::vector<Tet>& tets, Index id, Index v,
+                                    std::vector<FaceAtVertex>& faces) {
+  const Tet& tet = tets[id];
+  const int low = smallest_corner(tet);
+  for (int corner = 0; corner < 4; ++corner) {
+    if ((tet[low] == v) == (corner == low)) continue;
+    const Triangle face = tet_face(tet, corner);
+    const Triangle key = sorted_triangle(face);
+    faces.push_back({(static_cast<std::uint64_t>(key[1]) << 32) | static_cast<std::uint32_t>(key[2]),
+                     id, static_cast<std::int8_t>(corner), canonical_rotation(face) == key});
+  }
+}
+
 }  // namespace
 
 Triangle canonical_rotation(const Triangle& t) {
@@ -128,10 +206,13 @@ Triangle canonical_rotation(const Triangle& t) {
   return t;
 }
 
+// Three compare-exchanges: called for every face of every tet, so no general sort.
 Triangle sorted_triangle(const Triangle& t) {
-  Triangle s = t;
-  std::sort(s.begin(), s.end());
-  return s;
+  Index a = t[0], b = t[1], c = t[2];
+  if (b < a) std::swap(a, b);
+  if (c < b) std::swap(b, c);
+  if (b < a) std::swap(a, b);
+  return {a, b, c};
 }
 
 Triangle tet_face(const Tet& tet, int corner) {
@@ -156,19 +237,42 @@ bool has_distinct_indices(const Tet& t) {
          t[2] != t[3];
 }
 
+void for_each_tet_face(const std::vector<Tet>& tets, const std::vector<Index>& tet_ids,
+                       absl::FunctionRef<void(std::span<const FaceUse>)> visit) {
+  const TetsByVertex filed = file_by_two_smallest_vertices(tets, tet_ids);
+  // The faces whose smallest vertex is v, and one group of them as FaceUse; both reused.
+  std::vector<FaceAtVertex> faces;
+  std::vector<FaceUse> group;
+  for (Index v = 0; v + 1 < static_cast<Index>(filed.offsets.size()); ++v) {
+    faces.clear();
+    for (Index i = filed.offsets[v]; i < filed.offsets[v + 1]; ++i) {
+      // The filed tets are scattered over the tet array: fetch a few entries ahead so that
+      // the loads overlap instead of waiting one by one.
+      if (i + kPrefetchDistance < static_cast<Index>(filed.tets.size())) {
+        __builtin_prefetch(&tets[filed.tets[i + kPrefetchDistance]]);
+      }
+      add_faces_with_smallest_vertex(tets, filed.tets[i], v, faces);
+    }
+    std::sort(faces.begin(), faces.end());
+    for (std::size_t first = 0; first < faces.size();) {
+      group.clear();
+      std::size_t last = first;
+      for (; last < faces.size() && faces[last].other_two == faces[first].other_two; ++last) {
+        const FaceAtVertex& f = faces[last];
+        group.push_back({{v, f.b(), f.c()}, f.tet, f.corner, f.even});
+      }
+      visit(group);
+      first = last;
+    }
+  }
+}
+
 std::vector<FaceUse> sorted_face_uses(const std::vector<Tet>& tets,
                                       const std::vector<Index>& tet_ids) {
   std::vector<FaceUse> uses;
   uses.reserve(4 * tet_ids.size());
-  for (Index id : tet_ids) {
-    for (int corner = 0; corner < 4; ++corner) {
-      const Triangle face = tet_face(tets[id], corner);
-      const Triangle key = sorted_triangle(face);
-      uses.push_back({key, id, static_cast<std::int8_t>(corner), canonical_rotation(face) == key});
-    }
-  }
-  std::sort(uses.begin(), uses.end(), [](const FaceUse& x, const FaceUse& y) {
-    return std::tie(x.key, x.tet, x.corner) < std::tie(y.key, y.tet, y.corner);
+  for_each_tet_face(tets, tet_ids, [&](std::span<const FaceUse> group) {
+    uses.insert(uses.end(), group.begin(), group.end());
   });
   return uses;
 }

@@ -8,8 +8,10 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
+#include "absl/functional/function_ref.h"
 #include "core/mesh/mesh.h"
 
 namespace afmesh {
@@ -37,7 +39,17 @@ struct FaceUse {
   bool even = false;    // tet_face(...) is an even permutation of key (same orientation)
 };
 
-// All faces of the tets whose ids are listed in `tet_ids` (indices into `tets`, K×4), sorted by
+// Calls visit(uses) once per distinct face of the tets whose ids are listed in `tet_ids`
+// (indices into `tets`, K×4; each listed tet has distinct, non-negative indices), in ascending
+// key order; `uses` are that face's uses, ordered by (tet, corner). The same order as
+// sorted_face_uses, without building the whole list: each tet is filed under its two smallest
+// vertices (a counting sort; a face's smallest vertex is one of them), and only the faces whose
+// smallest vertex is v are sorted together. Cost O(K + N) plus sorts of a vertex's few faces;
+// memory two indices per tet and N + 1 offsets, N the largest index + 1.
+void for_each_tet_face(const std::vector<Tet>& tets, const std::vector<Index>& tet_ids,
+                       absl::FunctionRef<void(std::span<const FaceUse>)> visit);
+
+// All faces of the tets whose ids are listed in `tet_ids` (as for for_each_tet_face), sorted by
 // (key, tet, corner): uses of the same face are adjacent.
 std::vector<FaceUse> sorted_face_uses(const std::vector<Tet>& tets,
                                       const std::vector<Index>& tet_ids);

@@ -11,8 +11,9 @@
 // core/geometry (predicates.h, intersect.h); topology checks compare indices only. The one
 // measurement is the volume balance, compared with a relative tolerance.
 //
-// Cost: O(n log n) in the number of elements (sorting face and edge keys; an AABB tree for
-// self-intersection), never all pairs. Findings are ordered by their elements' indices, so a
+// Cost: O(n log n) in the number of elements (tet faces bucketed by their smallest vertex and
+// sorted within a bucket, edge keys sorted; an AABB tree for self-intersection), never all
+// pairs. Findings are ordered by their elements' indices, so a
 // report is deterministic.
 #pragma once
 

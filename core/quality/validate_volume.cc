@@ -1,9 +1,10 @@
 // validate_volume_mesh: the checks of a tetrahedral mesh, in the order validate.h lists them.
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
-#include <vector>
 #include <utility>
+#include <vector>
 
 #include "absl/strings/str_format.h"
 #include "core/geometry/predicates.h"
@@ -62,27 +63,37 @@ Check check_positive_volumes(const Mesh& mesh, const ValidationParams& params) {
                       plural(builder.count(), "tet has", "tets have")));
 }
 
-// face_sharing: a face in more than two tets, or in two with the same orientation.
-Check check_face_sharing(const std::vector<FaceUse>& faces, const ValidationParams& params) {
+// Tet ids of face uses, in their order.
+std::vector<Index> tets_of(std::span<const FaceUse> uses) {
+  std::vector<Index> tets;
+  for (const FaceUse& use : uses) tets.push_back(use.tet);
+  return tets;
+}
+
+// face_sharing: a face in more than two tets, or in two with the same orientation. Collects in
+// `boundary` the faces of exactly one tet on the way (the tets' boundary, in key order).
+Check check_face_sharing(const std::vector<Tet>& tets, const std::vector<Index>& tet_ids,
+                         const ValidationParams& params, BoundaryFaces& boundary) {
   CheckBuilder builder(check::kFaceSharing, params);
-  std::int64_t interior = 0, boundary = 0;
-  for_each_face_group(faces, [&](std::size_t first, std::size_t last) {
-    const Triangle& key = faces[first].key;
-    std::vector<Index> tets;
-    for (std::size_t i = first; i < last; ++i) tets.push_back(faces[i].tet);
-    if (tets.size() == 1) {
-      ++boundary;
-    } else if (tets.size() > 2) {
+  std::int64_t interior = 0;
+  for_each_tet_face(tets, tet_ids, [&](std::span<const FaceUse> uses) {
+    const Triangle& key = uses[0].key;
+    if (uses.size() == 1) {
+      boundary.triangles.push_back(tet_face(tets[uses[0].tet], uses[0].corner));
+      boundary.tets.push_back(uses[0].tet);
+    } else if (uses.size() > 2) {
       builder.add([&] {
+        const std::vector<Index> sharing = tets_of(uses);
         return Finding{absl::StrFormat("face %s shared by tets %s", format_triple(key),
-                                       join_indices(tets)),
-                       {key.begin(), key.end()}, {}, tets};
+                                       join_indices(sharing)),
+                       {key.begin(), key.end()}, {}, sharing};
       });
-    } else if (faces[first].even == faces[first + 1].even) {
+    } else if (uses[0].even == uses[1].even) {
       builder.add([&] {
+        const std::vector<Index> sharing = tets_of(uses);
         return Finding{absl::StrFormat("face %s of tets %s with the same orientation",
-                                       format_triple(key), join_indices(tets)),
-                       {key.begin(), key.end()}, {}, tets};
+                                       format_triple(key), join_indices(sharing)),
+                       {key.begin(), key.end()}, {}, sharing};
       });
     } else {
       ++interior;
@@ -91,7 +102,7 @@ Check check_face_sharing(const std::vector<FaceUse>& faces, const ValidationPara
   return builder.finish(
       absl::StrFormat("%d interior faces each shared by two tets with opposite orientations, "
                       "%d boundary faces",
-                      interior, boundary),
+                      interior, boundary.triangles.size()),
       absl::StrFormat("%d %s shared by more than two tets or with the same orientation",
                       builder.count(), plural(builder.count(), "face", "faces")));
 }
@@ -204,10 +215,9 @@ ValidationReport validate_volume_mesh(const Mesh& mesh, const Mesh* boundary,
 
   report.checks.push_back(finite ? check_positive_volumes(mesh, params)
                                  : not_run(check::kPositiveVolumes, kNeedsFinite));
-  const std::vector<FaceUse> faces =
-      sorted_face_uses(mesh.tets, tets_with_distinct_indices(mesh.tets));
-  report.checks.push_back(check_face_sharing(faces, params));
-  const BoundaryFaces boundary_faces = collect_boundary_faces(mesh.tets, faces);
+  BoundaryFaces boundary_faces;
+  report.checks.push_back(check_face_sharing(mesh.tets, tets_with_distinct_indices(mesh.tets),
+                                             params, boundary_faces));
   report.checks.push_back(check_boundary_surface(boundary_faces, params));
   report.checks.push_back(boundary != nullptr
                               ? check_boundary_match(mesh, boundary_faces, *boundary, params)

@@ -3,8 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "tests/quality/test_meshes.h"
 
@@ -78,6 +81,62 @@ TEST(TetQuality, IndexedOverloadEqualsPointOverload) {
   EXPECT_EQ(a.volume, b.volume);
   EXPECT_NEAR(tet_signed_volume(points[0], points[1], points[2], points[3]), 2 * 1.5 * 0.9 / 6,
               kTol);
+}
+
+// Dihedral angle (degrees) at edge (a, b) of a tet whose other corners are c and d: the angle
+// between c and d seen along the edge, computed apart from tet_quality's face normals.
+double dihedral_at_edge(const Point& a, const Point& b, const Point& c, const Point& d) {
+  auto sub = [](const Point& x, const Point& y) {
+    return std::array<double, 3>{x[0] - y[0], x[1] - y[1], x[2] - y[2]};
+  };
+  auto dot = [](const std::array<double, 3>& x, const std::array<double, 3>& y) {
+    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+  };
+  const std::array<double, 3> e = sub(b, a);
+  auto across = [&](const Point& p) {  // p - a without its component along the edge
+    std::array<double, 3> v = sub(p, a);
+    const double t = dot(v, e) / dot(e, e);
+    for (int k = 0; k < 3; ++k) v[k] -= t * e[k];
+    return v;
+  };
+  const std::array<double, 3> u = across(c), w = across(d);
+  const std::array<double, 3> cross = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2],
+                                       u[0] * w[1] - u[1] * w[0]};
+  return deg(std::atan2(std::sqrt(dot(cross, cross)), dot(u, w)));
+}
+
+// tet_quality ranks the six dihedral angles and evaluates only the extremes: they must be the
+// smallest and largest of all six, wherever they sit, also for slivers and caps whose extremes
+// are close to 0 and 180 degrees and close to each other.
+TEST(TetQuality, ExtremeDihedralsAreTheSmallestAndLargestOfAllSix) {
+  const std::vector<std::array<Point, 4>> shapes = {
+      {Point{0, 0, 0}, Point{1, 0, 0}, Point{0, 1, 0}, Point{0.2, 0.3, 1}},
+      {Point{0, 0, 0}, Point{1, 0, 0}, Point{0, 1, 0}, Point{1, 1, 1e-5}},      // sliver
+      {Point{0, 0, 0}, Point{1, 0, 0}, Point{0, 1, 0}, Point{1, 1.001, 2e-5}},  // near-tie sliver
+      {Point{0, 0, 0}, Point{1, 0, 0}, Point{0.5, 1, 0}, Point{0.5, 0.3, 1e-4}},  // cap
+      {Point{0, 0, 0}, Point{1e-3, 0, 0}, Point{0, 1e-3, 0}, Point{0, 0, 10}},    // needle
+      {Point{0, 0, 0}, Point{3, 0.1, 0}, Point{0.2, 2, 0.1}, Point{0.1, 0.3, 0.7}},
+  };
+  // Every order of the corners, so that each extreme is met at every edge position.
+  std::array<int, 4> order = {0, 1, 2, 3};
+  for (const std::array<Point, 4>& shape : shapes) {
+    do {
+      const Point& a = shape[order[0]];
+      const Point& b = shape[order[1]];
+      const Point& c = shape[order[2]];
+      const Point& d = shape[order[3]];
+      const std::array<double, 6> all = {
+          dihedral_at_edge(a, b, c, d), dihedral_at_edge(a, c, b, d), dihedral_at_edge(a, d, b, c),
+          dihedral_at_edge(b, c, a, d), dihedral_at_edge(b, d, a, c), dihedral_at_edge(c, d, a, b)};
+      const double lowest = *std::min_element(all.begin(), all.end());
+      const double highest = *std::max_element(all.begin(), all.end());
+      const TetQuality q = tet_quality(a, b, c, d);
+      EXPECT_NEAR(q.min_dihedral_deg, lowest, 1e-7 * lowest + 1e-12)
+          << order[0] << order[1] << order[2] << order[3];
+      EXPECT_NEAR(q.max_dihedral_deg, highest, 1e-9 * highest)
+          << order[0] << order[1] << order[2] << order[3];
+    } while (std::next_permutation(order.begin(), order.end()));
+  }
 }
 
 TEST(TriangleQuality, EquilateralTriangleHasSixtyDegreesAndUnitRatio) {

@@ -3,7 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <span>
+#include <tuple>
+
 #include "core/quality/measures.h"
+#include "tests/quality/test_meshes.h"
 
 namespace afmesh {
 namespace {
@@ -38,6 +43,65 @@ TEST(MeshTopology, FaceUsesOfTwoAdjacentTetsHaveOppositeParity) {
   EXPECT_EQ(uses[1].key, (Triangle{0, 1, 2}));
   EXPECT_NE(uses[0].even, uses[1].even);
   for (std::size_t i = 1; i < uses.size(); ++i) EXPECT_LE(uses[i - 1].key, uses[i].key);
+}
+
+// Every face use of the listed tets, sorted by (key, tet, corner), with the parity found by
+// counting inversions: the reference for for_each_tet_face.
+std::vector<FaceUse> face_uses_by_brute_force(const std::vector<Tet>& tets,
+                                              const std::vector<Index>& ids) {
+  std::vector<FaceUse> uses;
+  for (Index id : ids) {
+    for (int corner = 0; corner < 4; ++corner) {
+      const Triangle face = tet_face(tets[id], corner);
+      Triangle key = face;
+      std::sort(key.begin(), key.end());
+      const int inversions = (face[0] > face[1]) + (face[0] > face[2]) + (face[1] > face[2]);
+      uses.push_back({key, id, static_cast<std::int8_t>(corner), inversions % 2 == 0});
+    }
+  }
+  std::sort(uses.begin(), uses.end(), [](const FaceUse& x, const FaceUse& y) {
+    return std::tie(x.key, x.tet, x.corner) < std::tie(y.key, y.tet, y.corner);
+  });
+  return uses;
+}
+
+TEST(MeshTopology, ForEachTetFaceVisitsFacesLikeABruteForceSort) {
+  const Mesh grid = testing::cube_grid(4);
+  std::vector<Index> ids;  // every tet but each seventh, so that some faces lose a use
+  for (Index t = 0; t < static_cast<Index>(grid.tets.size()); ++t) {
+    if (t % 7 != 3) ids.push_back(t);
+  }
+  std::vector<FaceUse> visited;
+  std::size_t groups = 0;
+  for_each_tet_face(grid.tets, ids, [&](std::span<const FaceUse> uses) {
+    ASSERT_FALSE(uses.empty());
+    for (const FaceUse& use : uses) EXPECT_EQ(use.key, uses[0].key);
+    if (!visited.empty()) EXPECT_LT(visited.back().key, uses[0].key);
+    visited.insert(visited.end(), uses.begin(), uses.end());
+    ++groups;
+  });
+  const std::vector<FaceUse> expected = face_uses_by_brute_force(grid.tets, ids);
+  ASSERT_EQ(visited.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(visited[i].key, expected[i].key) << i;
+    EXPECT_EQ(visited[i].tet, expected[i].tet) << i;
+    EXPECT_EQ(visited[i].corner, expected[i].corner) << i;
+    EXPECT_EQ(visited[i].even, expected[i].even) << i;
+  }
+  EXPECT_LT(groups, expected.size());  // interior faces come as groups of two
+  const std::vector<FaceUse> sorted = sorted_face_uses(grid.tets, ids);
+  ASSERT_EQ(sorted.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(std::tie(sorted[i].key, sorted[i].tet, sorted[i].corner),
+              std::tie(expected[i].key, expected[i].tet, expected[i].corner))
+        << i;
+  }
+}
+
+TEST(MeshTopology, ForEachTetFaceOfNoTetsVisitsNothing) {
+  int visits = 0;
+  for_each_tet_face({}, {}, [&](std::span<const FaceUse>) { ++visits; });
+  EXPECT_EQ(visits, 0);
 }
 
 TEST(MeshTopology, ClosedOrientedSurfaceHasNoDefects) {

@@ -1,6 +1,12 @@
 #include "tests/quality/test_meshes.h"
 
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <numeric>
 #include <utility>
+
+#include "core/quality/mesh_topology.h"
 
 namespace afmesh::testing {
 namespace {
@@ -130,6 +136,72 @@ Mesh translated(Mesh m, const Point& offset) {
     for (int k = 0; k < 3; ++k) p[k] += offset[k];
   }
   return m;
+}
+
+Mesh cube_grid(int n, std::array<int, 3> hole) {
+  const int side = n + 1;
+  const Index point_count = side * side * side;
+  // Point (x, y, z) gets number scramble(x + side (y + side z)): multiplying by a number coprime
+  // to the count permutes the numbers.
+  Index multiplier = 7919;
+  while (std::gcd(multiplier, point_count) != 1) ++multiplier;
+  auto scramble = [&](Index i) {
+    return static_cast<Index>((static_cast<std::int64_t>(i) * multiplier) % point_count);
+  };
+  std::vector<Point> points(point_count);
+  for (int z = 0; z < side; ++z) {
+    for (int y = 0; y < side; ++y) {
+      for (int x = 0; x < side; ++x) {
+        points[scramble(x + side * (y + side * z))] = {static_cast<double>(x),
+                                                      static_cast<double>(y),
+                                                      static_cast<double>(z)};
+      }
+    }
+  }
+  const Mesh unit = six_tet_cube();
+  std::vector<Tet> tets;
+  for (int z = 0; z < n; ++z) {
+    for (int y = 0; y < n; ++y) {
+      for (int x = 0; x < n; ++x) {
+        if (std::array<int, 3>{x, y, z} == hole) continue;
+        for (const Tet& local : unit.tets) {
+          Tet tet;
+          for (int k = 0; k < 4; ++k) {
+            const Index c = local[k];  // unit cube corner c = dx + 2 dy + 4 dz
+            tet[k] = scramble((x + (c & 1)) + side * ((y + ((c >> 1) & 1)) + side * (z + (c >> 2))));
+          }
+          tets.push_back(tet);
+        }
+      }
+    }
+  }
+  // Scramble the tet order the same way, and rotate corners 1..3 (an even permutation).
+  std::vector<Tet> scrambled(tets.size());
+  Index tet_multiplier = 104729;
+  while (std::gcd(tet_multiplier, static_cast<Index>(tets.size())) != 1) ++tet_multiplier;
+  for (std::size_t i = 0; i < tets.size(); ++i) {
+    Tet t = tets[i];
+    for (std::size_t r = 0; r < i % 3; ++r) t = {t[0], t[2], t[3], t[1]};
+    scrambled[(static_cast<std::int64_t>(i) * tet_multiplier) % tets.size()] = t;
+  }
+  return tet_mesh(std::move(points), std::move(scrambled));
+}
+
+Mesh boundary_by_brute_force(const Mesh& mesh) {
+  std::map<Triangle, std::vector<Triangle>> faces;  // sorted triple -> oriented uses
+  for (const Tet& tet : mesh.tets) {
+    for (int corner = 0; corner < 4; ++corner) {
+      const Triangle face = tet_face(tet, corner);
+      Triangle key = face;
+      std::sort(key.begin(), key.end());
+      faces[key].push_back(face);
+    }
+  }
+  std::vector<Triangle> triangles;
+  for (const auto& [key, uses] : faces) {
+    if (uses.size() == 1) triangles.push_back(uses[0]);
+  }
+  return surface_mesh(mesh.points, std::move(triangles));
 }
 
 }  // namespace afmesh::testing

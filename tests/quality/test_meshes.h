@@ -3,6 +3,7 @@
 // Unit cube points are numbered i = x + 2y + 4z for the corner (x, y, z) in {0, 1}^3.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "core/mesh/mesh.h"
@@ -38,6 +39,16 @@ Mesh two_tet_mesh();
 // The octahedron with vertices ±x, ±y, ±z (points 0..5 = +x, -x, +y, -y, +z, -z), 8 outward
 // triangles; triangles 0-3 touch +z, 4-7 touch -z.
 Mesh octahedron();
+
+// The cube [0, n]^3 as n^3 unit cubes of 6 tets each (six_tet_cube's split, which conforms
+// across cubes), with its points and tets in a scrambled but fixed order and each tet's corners
+// rotated (orientation kept), so that neighbours are far apart in both arrays. Cube (i, j, k)
+// is left out when `hole` is {i, j, k} (a cavity when it is an inner cube).
+Mesh cube_grid(int n, std::array<int, 3> hole = {-1, -1, -1});
+
+// The faces of exactly one tet of `mesh`, oriented out of it, as a surface over mesh.points (found
+// by brute force: a map from sorted vertex triples to their uses).
+Mesh boundary_by_brute_force(const Mesh& mesh);
 
 // Concatenates two meshes' points and elements (indices of `b` shifted).
 Mesh merge(const Mesh& a, const Mesh& b);

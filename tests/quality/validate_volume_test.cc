@@ -2,9 +2,11 @@
 // mesh fails the right check with the right elements named.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <utility>
 
+#include "core/quality/mesh_topology.h"
 #include "core/quality/validate.h"
 #include "tests/quality/report_helpers.h"
 #include "tests/quality/test_meshes.h"
@@ -286,6 +288,95 @@ TEST(ValidateVolume, FindingsBeyondTheLimitAreCountedAndAnnounced) {
   EXPECT_EQ(volumes.findings.back().tets, std::vector<Index>{19});
   EXPECT_NE(volumes.summary.find("and 10 more"), std::string::npos) << volumes.summary;
   EXPECT_NE(report.to_string().find("... and 10 more"), std::string::npos);
+}
+
+// A grid of 4^3 cubes with scrambled point and tet numbers: many tets per vertex, neighbours far
+// apart in the arrays.
+TEST(ValidateVolume, ScrambledCubeGridWithItsBoundaryIsValid) {
+  const Mesh grid = testing::cube_grid(4);
+  const Mesh boundary = testing::boundary_by_brute_force(grid);
+  ASSERT_EQ(boundary.triangles.size(), 6u * 4 * 4 * 2);
+  const ValidationReport report = validate_volume_mesh(grid, &boundary);
+  expect_all_passed(report);
+  EXPECT_EQ(check_of(report, check::kFaceSharing).summary,
+            "672 interior faces each shared by two tets with opposite orientations, 192 boundary "
+            "faces");
+  EXPECT_NE(check_of(report, check::kBoundaryMatch).summary.find("matched by index"),
+            std::string::npos);
+}
+
+TEST(ValidateVolume, TriangleMissingFromTheBoundaryMeshLeavesAnExtraTetFace) {
+  const Mesh grid = testing::cube_grid(3);
+  Mesh boundary = testing::boundary_by_brute_force(grid);
+  const Triangle dropped = boundary.triangles[40];
+  boundary.triangles.erase(boundary.triangles.begin() + 40);
+  boundary.triangle_tags.pop_back();
+  const ValidationReport report = validate_volume_mesh(grid, &boundary);
+  EXPECT_FALSE(report.valid());
+  const Check match = check_of(report, check::kBoundaryMatch);
+  ASSERT_EQ(match.finding_count, 1);
+  EXPECT_EQ(findings_mentioning(match, "is on the tets' boundary but not in the boundary mesh"),
+            1);
+  const Triangle named = canonical_rotation(dropped);
+  EXPECT_EQ(match.findings[0].points, std::vector<Index>(named.begin(), named.end()));
+  ASSERT_EQ(match.findings[0].tets.size(), 1u);
+  const Tet& owner = grid.tets[match.findings[0].tets[0]];
+  for (Index v : dropped) EXPECT_NE(std::find(owner.begin(), owner.end(), v), owner.end());
+}
+
+TEST(ValidateVolume, DuplicatedBoundaryTriangleIsCountedWithMultiplicity) {
+  const Mesh grid = testing::cube_grid(3);
+  Mesh boundary = testing::boundary_by_brute_force(grid);
+  boundary.triangles.push_back(boundary.triangles[17]);
+  boundary.triangle_tags.push_back(0);
+  const ValidationReport report = validate_volume_mesh(grid, &boundary);
+  EXPECT_FALSE(report.valid());
+  const Check match = check_of(report, check::kBoundaryMatch);
+  ASSERT_EQ(match.finding_count, 1);
+  EXPECT_EQ(findings_mentioning(match, "is not a boundary face of the tets"), 1);
+  // Either copy may be the one left over; both are the same triangle.
+  ASSERT_EQ(match.findings[0].triangles.size(), 1u);
+  const Index left = match.findings[0].triangles[0];
+  EXPECT_TRUE(left == 17 || left == static_cast<Index>(boundary.triangles.size()) - 1) << left;
+  EXPECT_EQ(outcome_of(report, check::kVolumeBalance), CheckOutcome::kFailed);
+}
+
+// The centre cube of a 3^3 grid left out: the tets' boundary has a second, inner component that
+// the outer boundary mesh does not have.
+TEST(ValidateVolume, CavityIsAnExtraInnerBoundary) {
+  const Mesh outer = testing::boundary_by_brute_force(testing::cube_grid(3));
+  const Mesh holed = testing::cube_grid(3, {1, 1, 1});
+  ASSERT_EQ(holed.points, outer.points);
+  const ValidationReport report = validate_volume_mesh(holed, &outer);
+  EXPECT_FALSE(report.valid());
+  EXPECT_EQ(outcome_of(report, check::kFaceSharing), CheckOutcome::kPassed);
+  EXPECT_EQ(outcome_of(report, check::kBoundarySurface), CheckOutcome::kPassed);
+  const Check match = check_of(report, check::kBoundaryMatch);
+  EXPECT_EQ(match.finding_count, 12);
+  EXPECT_EQ(findings_mentioning(match, "is on the tets' boundary but not in the boundary mesh"),
+            12);
+  for (const Finding& f : match.findings) {
+    for (Index v : f.points) {
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_TRUE(holed.points[v][k] == 1.0 || holed.points[v][k] == 2.0) << f.message;
+      }
+    }
+  }
+  const Check volume = check_of(report, check::kVolumeBalance);
+  EXPECT_EQ(volume.outcome, CheckOutcome::kFailed);
+  EXPECT_EQ(volume.finding_count, 1);
+}
+
+TEST(ValidateVolume, DuplicatedTetInAScrambledGridIsNamed) {
+  Mesh grid = testing::cube_grid(3);
+  grid.tets.push_back(grid.tets[100]);
+  grid.tet_tags.push_back(0);
+  const Check sharing = check_of(validate_volume_mesh(grid), check::kFaceSharing);
+  EXPECT_EQ(sharing.finding_count, 4);  // each face of tet 100 now has one use too many
+  for (const Finding& f : sharing.findings) {
+    EXPECT_NE(std::find(f.tets.begin(), f.tets.end(), 100), f.tets.end()) << f.message;
+    EXPECT_EQ(f.tets.back(), static_cast<Index>(grid.tets.size()) - 1) << f.message;
+  }
 }
 
 TEST(ValidateVolume, ReportIsDeterministic) {
