@@ -76,7 +76,9 @@ TEST(MeshTopology, ForEachTetFaceVisitsFacesLikeABruteForceSort) {
   for_each_tet_face(grid.tets, ids, [&](std::span<const FaceUse> uses) {
     ASSERT_FALSE(uses.empty());
     for (const FaceUse& use : uses) EXPECT_EQ(use.key, uses[0].key);
-    if (!visited.empty()) EXPECT_LT(visited.back().key, uses[0].key);
+    if (!visited.empty()) {
+      EXPECT_LT(visited.back().key, uses[0].key);
+    }
     visited.insert(visited.end(), uses.begin(), uses.end());
     ++groups;
   });
