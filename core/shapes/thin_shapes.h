@@ -100,11 +100,10 @@ Mesh sails_surface(const SailsParams& params = {});
 // ---------------------------------------------------------------------------------------------
 struct CrossingPlatesParams {
   double thickness = 0.001;
-  // Bulge of each plate's mid-surface; 0: flat plates, whose sides are `thickness` apart and
-  // do not cross. With a bulge (0.005 and more at the default divisions) the sides' chords
-  // cross, as on the sails; the front does not yet mesh that X reliably (it passes through
-  // itself near the corners of the plates' rims), so the default is flat.
-  double camber = 0.0;
+  // Bulge of each plate's mid-surface (0: flat plates, whose sides are `thickness` apart and do
+  // not cross). At 0.02 the chord sag of the bulge is several times the thickness, so the two
+  // sides of each half plate cross, as on the dome and the sails.
+  double camber = 0.02;
   int divisions = 4;  // grid cells across a half plate (rim to crossing); 2 × this in z
   double box_size = 1.0;  // edge length of the box's grid
 };

@@ -61,6 +61,7 @@ struct MesherState {
   std::vector<Index> near_faces;
   std::vector<Candidate> candidates;
   std::vector<Index> cavity;
+  std::vector<Index> tets_around;  // element_crosses_front's look at the tets on a point
 };
 
 }  // namespace afmesh::volume

@@ -109,6 +109,26 @@ TEST(ThinVolume, CrossingPlatesMeshValid) {
                       found->environments.face);
 }
 
+// Other bulges and grids. Where a plate's rim turns a corner, a quadrant's sheet has a triangle
+// on three rim points (ridge points, seen from both sides); before the front refused elements
+// on such a face already meshed over by the other side (crossing_check.cc), most of these
+// overlapped: a second layer of elements grew from it into the air.
+TEST(ThinVolume, CrossingPlatesOfOtherShapesMeshValid) {
+  for (const double camber : {0.0, 0.005, 0.01, 0.04}) {
+    for (const int divisions : {4, 8}) {
+      CrossingPlatesParams params;
+      params.camber = camber;
+      params.divisions = divisions;
+      params.box_size = 0.5;
+      const Mesh plates = crossing_plates_surface(params);
+      const std::string name = "crossing plates, camber " + std::to_string(camber) +
+                               ", divisions " + std::to_string(divisions);
+      SCOPED_TRACE(name);
+      expect_meshes_valid(name.c_str(), plates, std::nullopt, 0.5, 1.3, plates.triangle_tags);
+    }
+  }
+}
+
 // With environments off the dome cannot be meshed. The input check refuses it first (its
 // sides cross); with that rule skipped, the loop itself shows the paper's failure (§2, Figure 1):
 // faces of one side see the other side's points and faces, every element near the shell is
