@@ -112,17 +112,15 @@ bool element_crosses_front(MesherState& s, Index face, Index p) {
   }
 
   const bool positive = planes.positive();
-  s.near_points.clear();
-  s.front.bins().points_near(box, s.near_points);
-  for (Index q : s.near_points) {
-    if (is_corner(tet, q) || !point_visible(s, env, q)) continue;
+  bool contains_point = false;
+  s.front.bins().for_each_point_near(box, [&](Index q) {
+    if (contains_point || is_corner(tet, q) || !point_visible(s, env, q)) return;
     // In the closed positive element: on no face plane's outer side (the barycentric signs of
     // point_in_tet are the face planes' sides, negated).
-    if (positive ? (planes.code(q) & 0x0F) == 0
-                 : point_in_tet(x[q], x[v[0]], x[v[1]], x[v[2]], x[p]) >= 0)
-      return true;
-  }
-  return false;
+    contains_point = positive ? (planes.code(q) & 0x0F) == 0
+                              : point_in_tet(x[q], x[v[0]], x[v[1]], x[v[2]], x[p]) >= 0;
+  });
+  return contains_point;
 }
 
 }  // namespace afmesh::volume

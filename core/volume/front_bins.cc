@@ -37,13 +37,6 @@ FrontBins::CellRange FrontBins::cells_of(const Box& box) const {
   return r;
 }
 
-template <typename Fn>
-void FrontBins::for_each_cell(const CellRange& r, Fn&& fn) const {
-  for (std::int64_t k = r[2][0]; k <= r[2][1]; ++k)
-    for (std::int64_t j = r[1][0]; j <= r[1][1]; ++j)
-      for (std::int64_t i = r[0][0]; i <= r[0][1]; ++i) fn(cell_index(i, j, k), i, j, k);
-}
-
 FrontBins::CellBox FrontBins::range_ends(const Box& box, const CellRange& r) const {
   CellBox out;
   for (int a = 0; a < 3; ++a) {
@@ -58,15 +51,20 @@ FrontBins::CellBox FrontBins::range_ends(const Box& box, const CellRange& r) con
   return out;
 }
 
-FrontBins::CellBox FrontBins::cell_box(const CellBox& ends, const CellRange& r, std::int64_t i,
-                                       std::int64_t j, std::int64_t k) {
+std::array<std::uint32_t, 2> FrontBins::cell_words(const CellBox& ends, const CellRange& r,
+                                                   std::int64_t i, std::int64_t j,
+                                                   std::int64_t k) {
   const std::int64_t ijk[3] = {i, j, k};
-  CellBox out;
+  std::uint32_t lo = 0, hi = 0;
   for (int a = 0; a < 3; ++a) {
-    out[a][0] = ijk[a] == r[a][0] ? ends[a][0] : std::uint8_t{0};
-    out[a][1] = ijk[a] == r[a][1] ? ends[a][1] : std::uint8_t{255};
+    const bool first = ijk[a] == r[a][0];
+    const std::uint32_t l = first ? ends[a][0] : 0u;
+    const std::uint32_t h = ijk[a] == r[a][1] ? ends[a][1] : 255u;
+    lo |= l << (9 * a);
+    hi |= (h | 256u) << (9 * a);
+    if (!first) lo |= kStartsBefore << a;
   }
-  return out;
+  return {lo, hi};
 }
 
 void FrontBins::erase_from(std::vector<Index>& cell, Index item) {
@@ -92,8 +90,8 @@ void FrontBins::insert_face(Index f, const Box& box) {
   const CellRange r = cells_of(box);
   const CellBox ends = range_ends(box, r);
   for_each_cell(r, [&](std::int64_t c, std::int64_t i, std::int64_t j, std::int64_t k) {
-    const CellBox q = cell_box(ends, r, i, j, k);
-    face_cells_[c].push_back({f, {q[0][0], q[1][0], q[2][0]}, {q[0][1], q[1][1], q[2][1]}});
+    const auto [lo, hi] = cell_words(ends, r, i, j, k);
+    face_cells_[c].push_back({lo, hi, f});
   });
 }
 
@@ -109,33 +107,33 @@ void FrontBins::erase_face(Index f, const Box& box) {
 }
 
 void FrontBins::points_near(const Box& box, std::vector<Index>& out) const {
-  for_each_cell(cells_of(box), [&](std::int64_t c, std::int64_t, std::int64_t, std::int64_t) {
-    out.insert(out.end(), point_cells_[c].begin(), point_cells_[c].end());
-  });
+  for_each_point_near(box, [&](Index p) { out.push_back(p); });
 }
 
+// A face's entry passes in cell (i, j, k) of the query's range when, on each axis, the query's
+// part of the cell (q) and the face's (e) overlap: q.hi - e.lo >= 0 and e.hi - q.lo >= 0, read
+// from the lanes' top bits; and the cell is the lowest of both ranges: no axis along which both
+// the face's range and the query's start before this cell. Branch-free: every entry is written
+// and the count advances by the test's outcome.
 void FrontBins::faces_near(const Box& box, std::vector<Index>& out) const {
-  if (++epoch_ == 0) {  // wrapped: forget every old mark
-    std::fill(mark_.begin(), mark_.end(), 0);
-    epoch_ = 1;
-  }
   const CellRange r = cells_of(box);
   const CellBox ends = range_ends(box, r);
+  std::size_t n = out.size();
   for_each_cell(r, [&](std::int64_t c, std::int64_t i, std::int64_t j, std::int64_t k) {
     const std::vector<FaceEntry>& cell = face_cells_[c];
     if (cell.empty()) return;
-    const CellBox q = cell_box(ends, r, i, j, k);
+    const auto [q_lo, q_hi] = cell_words(ends, r, i, j, k);
+    const std::uint32_t query_before = q_lo & ~kLanes;  // axes along which the query starts before
+    const std::uint32_t q_low_ends = q_lo & kLanes;
+    out.resize(n + cell.size());
+    Index* const o = out.data();
     for (const FaceEntry& e : cell) {
-      if (e.lo[0] > q[0][1] || e.hi[0] < q[0][0] || e.lo[1] > q[1][1] || e.hi[1] < q[1][0] ||
-          e.lo[2] > q[2][1] || e.hi[2] < q[2][0])
-        continue;
-      const Index f = e.face;
-      if (mark_.size() <= static_cast<std::size_t>(f)) mark_.resize(f + 1, 0);
-      if (mark_[f] == epoch_) continue;
-      mark_[f] = epoch_;
-      out.push_back(f);
+      const std::uint32_t overlap = (q_hi - (e.lo & kLanes)) & (e.hi - q_low_ends) & kTops;
+      o[n] = e.face;
+      n += (overlap | (e.lo & query_before)) == kTops;
     }
   });
+  out.resize(n);
 }
 
 }  // namespace afmesh

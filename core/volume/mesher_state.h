@@ -57,7 +57,6 @@ struct MesherState {
   Front front;
 
   // Scratch buffers reused for every face: no allocation per element in the loop.
-  std::vector<Index> near_points;
   std::vector<Index> near_faces;
   std::vector<Candidate> candidates;
   std::vector<Index> cavity;

@@ -74,6 +74,38 @@ TEST(FrontBins, FaceQueriesFindEveryOverlappingFace) {
   }
 }
 
+// Faces and queries reaching past the bins' domain (clamped into the border cells), spanning
+// many cells or lying in one: each overlapping face is listed exactly once.
+TEST(FrontBins, FaceQueriesListEachFaceOnceAlsoPastTheDomain) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-2.0, 6.0), s(0.0, 3.0);
+  std::vector<Box> boxes(600);
+  FrontBins bins(Box{{0, 0, 0}, {4, 4, 4}}, 0.5);
+  for (Index i = 0; i < 600; ++i) {
+    const Point lo{u(rng), u(rng), u(rng)};
+    boxes[i] = Box{lo, {lo[0] + s(rng), lo[1] + s(rng), lo[2] + s(rng)}};
+    bins.insert_face(i, boxes[i]);
+  }
+  for (Index i = 0; i < 600; i += 3) bins.erase_face(i, boxes[i]);
+  for (int q = 0; q < 200; ++q) {
+    const Point lo{u(rng), u(rng), u(rng)};
+    const double e = q % 2 == 0 ? 0.1 : 2.5;
+    const Box box{lo, {lo[0] + e, lo[1] + e, lo[2] + e}};
+    std::vector<Index> found;
+    bins.faces_near(box, found);
+    std::sort(found.begin(), found.end());
+    EXPECT_EQ(std::adjacent_find(found.begin(), found.end()), found.end());
+    for (Index i = 0; i < 600; ++i) {
+      const bool listed = std::binary_search(found.begin(), found.end(), i);
+      if (i % 3 == 0) {
+        EXPECT_FALSE(listed) << "erased face " << i;
+      } else if (boxes_overlap(box, boxes[i])) {
+        EXPECT_TRUE(listed) << "face " << i;
+      }
+    }
+  }
+}
+
 TEST(Front, LookupFindsFacesInAnyVertexOrder) {
   std::vector<Point> pts = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   Front front(pts, Box{{0, 0, 0}, {1, 1, 1}}, 0.5);
