@@ -62,16 +62,13 @@ bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictne
               (point_visible(s, env, q) && squared_norm(sub(s.points[q], x)) < spacing * spacing);
   });
   if (crowded) return false;
-  s.near_faces.clear();
-  s.front.bins().faces_near(cube_around(x, clearance), s.near_faces);
-  for (Index g : s.near_faces) {
-    if (!face_visible(s, env, g)) continue;
+  const bool near_a_face = s.front.bins().find_face_near(cube_around(x, clearance), [&](Index g) {
+    if (!face_visible(s, env, g)) return false;
     const Triangle& w = s.front.face(g).v;
-    if (squared_distance_to_triangle(x, s.points[w[0]], s.points[w[1]], s.points[w[2]]) <
-        clearance * clearance)
-      return false;
-  }
-  return true;
+    return squared_distance_to_triangle(x, s.points[w[0]], s.points[w[1]], s.points[w[2]]) <
+           clearance * clearance;
+  });
+  return !near_a_face;
 }
 
 Strictness strictness_for(int attempts) {

@@ -82,10 +82,9 @@ bool element_crosses_front(MesherState& s, Index face, Index p) {
   const Index opposite[3] = {v[2], v[0], v[1]};
 
   TetPlanes planes(s, tet);
-  s.near_faces.clear();
-  s.front.bins().faces_near(box, s.near_faces);
-  for (Index g : s.near_faces) {
-    if (g == face || !face_visible(s, env, g)) continue;
+  // Does the element meet front face g improperly?
+  const auto crosses_face = [&](Index g) {
+    if (g == face || !face_visible(s, env, g)) return false;
     const Triangle& w = s.front.face(g).v;
     // A front face on p and two corners of `face` is the face one side of the element closes
     // (the front holds no other face on the same three points).
@@ -95,21 +94,22 @@ bool element_crosses_front(MesherState& s, Index face, Index p) {
       int i = 0;  // the side on w's corners leaves out the corner of `face` that w lacks
       while (is_corner(w, opposite[i])) ++i;
       // The front face this side closes must look at the element (F10).
-      if (orient3d(x[w[0]], x[w[1]], x[w[2]], x[opposite[i]]) <= 0) return true;
-      continue;
+      return orient3d(x[w[0]], x[w[1]], x[w[2]], x[opposite[i]]) <= 0;
     }
     const std::uint8_t all = planes.code(w[0]) & planes.code(w[1]) & planes.code(w[2]);
     // Separating plane: for one face of the element, every corner of w is a corner of that face
     // or strictly outside it. Then w meets the closed element only in the hull of the corners it
     // shares with that face: a proper contact.
-    if (all & 0x0F) continue;
+    if (all & 0x0F) return false;
     for (int i = 0; i < 3; ++i) {
       // Every corner of w is a corner of side i or strictly inside its plane: w meets the side
       // only in the hull of the corners they share.
       if (all & (32u << i)) continue;
       if (triangles_intersect_improperly(x, sides[i], w)) return true;
     }
-  }
+    return false;
+  };
+  if (s.front.bins().find_face_near(box, crosses_face)) return true;
 
   const bool positive = planes.positive();
   bool contains_point = false;

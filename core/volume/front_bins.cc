@@ -110,30 +110,11 @@ void FrontBins::points_near(const Box& box, std::vector<Index>& out) const {
   for_each_point_near(box, [&](Index p) { out.push_back(p); });
 }
 
-// A face's entry passes in cell (i, j, k) of the query's range when, on each axis, the query's
-// part of the cell (q) and the face's (e) overlap: q.hi - e.lo >= 0 and e.hi - q.lo >= 0, read
-// from the lanes' top bits; and the cell is the lowest of both ranges: no axis along which both
-// the face's range and the query's start before this cell. Branch-free: every entry is written
-// and the count advances by the test's outcome.
 void FrontBins::faces_near(const Box& box, std::vector<Index>& out) const {
-  const CellRange r = cells_of(box);
-  const CellBox ends = range_ends(box, r);
-  std::size_t n = out.size();
-  for_each_cell(r, [&](std::int64_t c, std::int64_t i, std::int64_t j, std::int64_t k) {
-    const std::vector<FaceEntry>& cell = face_cells_[c];
-    if (cell.empty()) return;
-    const auto [q_lo, q_hi] = cell_words(ends, r, i, j, k);
-    const std::uint32_t query_before = q_lo & ~kLanes;  // axes along which the query starts before
-    const std::uint32_t q_low_ends = q_lo & kLanes;
-    out.resize(n + cell.size());
-    Index* const o = out.data();
-    for (const FaceEntry& e : cell) {
-      const std::uint32_t overlap = (q_hi - (e.lo & kLanes)) & (e.hi - q_low_ends) & kTops;
-      o[n] = e.face;
-      n += (overlap | (e.lo & query_before)) == kTops;
-    }
+  find_face_near(box, [&](Index f) {
+    out.push_back(f);
+    return false;
   });
-  out.resize(n);
 }
 
 }  // namespace afmesh

@@ -12,6 +12,7 @@
 // so it lists each face once without marking what it listed.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -51,8 +52,12 @@ class FrontBins {
   }
   // Appends the points of for_each_point_near to `out`.
   void points_near(const Box& box, std::vector<Index>& out) const;
-  // Appends to `out` every face whose bounding box overlaps `box` (and a few whose box misses it
-  // by less than 1/255 of a cell), each once, in a deterministic order (not sorted).
+  // Calls fn(f) for every face whose bounding box overlaps `box` (and a few whose box misses it
+  // by less than 1/255 of a cell), each once, in a deterministic order (not sorted), until fn
+  // returns true; returns whether it did. fn must not change the bins.
+  template <typename Fn>
+  bool find_face_near(const Box& box, Fn&& fn) const;
+  // Appends to `out` the faces find_face_near visits.
   void faces_near(const Box& box, std::vector<Index>& out) const;
 
   double cell_size() const { return cell_; }
@@ -104,5 +109,44 @@ class FrontBins {
                                                  std::int64_t i, std::int64_t j, std::int64_t k);
   std::vector<std::vector<FaceEntry>> face_cells_;
 };
+
+// A face's entry passes in cell (i, j, k) of the query's range when, on each axis, the query's
+// part of the cell (q) and the face's (e) overlap: q.hi - e.lo >= 0 and e.hi - q.lo >= 0, read
+// from the lanes' top bits; and the cell is the lowest of both ranges: no axis along which both
+// the face's range and the query's start before this cell. The entries of a cell are filtered
+// branch-free into a buffer (every entry is written, the count advances by the test's outcome)
+// before fn sees them.
+template <typename Fn>
+bool FrontBins::find_face_near(const Box& box, Fn&& fn) const {
+  const CellRange r = cells_of(box);
+  const CellBox ends = range_ends(box, r);
+  constexpr std::size_t kChunk = 64;
+  Index passed[kChunk];
+  for (std::int64_t k = r[2][0]; k <= r[2][1]; ++k) {
+    for (std::int64_t j = r[1][0]; j <= r[1][1]; ++j) {
+      for (std::int64_t i = r[0][0]; i <= r[0][1]; ++i) {
+        const std::vector<FaceEntry>& cell = face_cells_[cell_index(i, j, k)];
+        if (cell.empty()) continue;
+        const auto [q_lo, q_hi] = cell_words(ends, r, i, j, k);
+        const std::uint32_t query_before = q_lo & ~kLanes;  // axes where the query starts before
+        const std::uint32_t q_low_ends = q_lo & kLanes;
+        for (std::size_t start = 0; start < cell.size(); start += kChunk) {
+          const std::size_t end = std::min(cell.size(), start + kChunk);
+          std::size_t n = 0;
+          for (std::size_t e = start; e < end; ++e) {
+            const FaceEntry& entry = cell[e];
+            const std::uint32_t overlap =
+                (q_hi - (entry.lo & kLanes)) & (entry.hi - q_low_ends) & kTops;
+            passed[n] = entry.face;
+            n += (overlap | (entry.lo & query_before)) == kTops;
+          }
+          for (std::size_t m = 0; m < n; ++m)
+            if (fn(passed[m])) return true;
+        }
+      }
+    }
+  }
+  return false;
+}
 
 }  // namespace afmesh
