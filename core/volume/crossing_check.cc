@@ -18,6 +18,8 @@ bool is_corner(const Triangle& t, Index q) { return q == t[0] || q == t[1] || q 
 // Faces of the positive tet (a, b, c, d), oriented out of it: (a, c, b), then the element's sides
 // (a, b, d), (b, c, d), (c, a, d) in the order of element_crosses_front's `sides`.
 constexpr int kFaces[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+// The corners of the element's sides (kFaces 1, 2, 3), as bits of tet corners.
+constexpr unsigned kSideCorners[3] = {0b1011, 0b1110, 0b1101};
 // The faces each corner of the tet lies on, as bits of kFaces.
 constexpr std::uint8_t kFacesOfCorner[4] = {0b1011, 0b0111, 0b1101, 0b1110};
 
@@ -101,10 +103,27 @@ bool element_crosses_front(MesherState& s, Index face, Index p) {
     // or strictly outside it. Then w meets the closed element only in the hull of the corners it
     // shares with that face: a proper contact.
     if (all & 0x0F) return false;
+    // The other way round: the element's corners against w's plane. Bit k of `above` (`below`):
+    // corner k is a corner of w or strictly above (below) that plane.
+    const Orient3dPlane w_plane(x[w[0]], x[w[1]], x[w[2]]);
+    unsigned above = 0, below = 0;
+    for (int k = 0; k < 4; ++k) {
+      if (is_corner(w, tet[k])) {
+        above |= 1u << k;
+        below |= 1u << k;
+        continue;
+      }
+      const int side = w_plane.side(x[tet[k]]);
+      if (side > 0) above |= 1u << k;
+      if (side < 0) below |= 1u << k;
+    }
     for (int i = 0; i < 3; ++i) {
-      // Every corner of w is a corner of side i or strictly inside its plane: w meets the side
-      // only in the hull of the corners they share.
+      // Every corner of w is a corner of side i or strictly inside its plane, or every corner of
+      // side i is a corner of w or strictly on one side of w's plane: they meet only in the
+      // hull of the corners they share.
       if (all & (32u << i)) continue;
+      if ((above & kSideCorners[i]) == kSideCorners[i]) continue;
+      if ((below & kSideCorners[i]) == kSideCorners[i]) continue;
       if (triangles_intersect_improperly(x, sides[i], w)) return true;
     }
     return false;
