@@ -25,32 +25,6 @@ FrontBins::FrontBins(const Box& domain, double cell_size, std::int64_t max_cells
   face_cells_.resize(n);
 }
 
-std::int64_t FrontBins::cell_coord(double x, int axis) const {
-  const double c = std::floor((x - origin_[axis]) * inverse_cell_);  // monotone in x
-  if (!(c > 0)) return 0;  // also catches NaN
-  return std::min(static_cast<std::int64_t>(c), dims_[axis] - 1);
-}
-
-FrontBins::CellRange FrontBins::cells_of(const Box& box) const {
-  CellRange r{};
-  for (int a = 0; a < 3; ++a) r[a] = {cell_coord(box.lo[a], a), cell_coord(box.hi[a], a)};
-  return r;
-}
-
-FrontBins::CellBox FrontBins::range_ends(const Box& box, const CellRange& r) const {
-  CellBox out;
-  for (int a = 0; a < 3; ++a) {
-    const double first = origin_[a] + static_cast<double>(r[a][0]) * cell_;
-    const double last = origin_[a] + static_cast<double>(r[a][1]) * cell_;
-    // Half a unit of slack each way covers the rounding of this arithmetic.
-    const double lo = std::floor((box.lo[a] - first) * inverse_cell_ * 255.0 - 0.5);
-    const double hi = std::ceil((box.hi[a] - last) * inverse_cell_ * 255.0 + 0.5);
-    out[a][0] = static_cast<std::uint8_t>(std::clamp(lo, 0.0, 255.0));  // NaN-free: boxes
-    out[a][1] = static_cast<std::uint8_t>(std::clamp(hi, 0.0, 255.0));  // hold finite points
-  }
-  return out;
-}
-
 std::array<std::uint32_t, 2> FrontBins::cell_words(const CellBox& ends, const CellRange& r,
                                                    std::int64_t i, std::int64_t j,
                                                    std::int64_t k) {
@@ -87,8 +61,9 @@ void FrontBins::erase_point(Index p, const Point& x) {
 }
 
 void FrontBins::insert_face(Index f, const Box& box) {
-  const CellRange r = cells_of(box);
-  const CellBox ends = range_ends(box, r);
+  CellRange r;
+  CellBox ends;
+  span_of(box, r, ends);
   for_each_cell(r, [&](std::int64_t c, std::int64_t i, std::int64_t j, std::int64_t k) {
     const auto [lo, hi] = cell_words(ends, r, i, j, k);
     face_cells_[c].push_back({lo, hi, f});

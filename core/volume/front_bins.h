@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -64,8 +65,20 @@ class FrontBins {
 
  private:
   using CellRange = std::array<std::array<std::int64_t, 2>, 3>;  // [axis][lo, hi] inclusive
-  std::int64_t cell_coord(double x, int axis) const;
-  CellRange cells_of(const Box& box) const;
+  // x along `axis` in cells from the grid's origin (monotone in x).
+  double scaled(double x, int axis) const { return (x - origin_[axis]) * inverse_cell_; }
+  // The cell holding scaled coordinate t: floor(t), clamped into the grid.
+  std::int64_t cell_of_scaled(double t, int axis) const {
+    const double c = std::floor(t);
+    if (!(c > 0)) return 0;  // also catches NaN
+    return std::min(static_cast<std::int64_t>(c), dims_[axis] - 1);
+  }
+  std::int64_t cell_coord(double x, int axis) const { return cell_of_scaled(scaled(x, axis), axis); }
+  CellRange cells_of(const Box& box) const {
+    CellRange r;
+    for (int a = 0; a < 3; ++a) r[a] = {cell_coord(box.lo[a], a), cell_coord(box.hi[a], a)};
+    return r;
+  }
   std::int64_t cell_index(std::int64_t i, std::int64_t j, std::int64_t k) const {
     return (k * dims_[1] + j) * dims_[0] + i;
   }
@@ -99,9 +112,20 @@ class FrontBins {
   static constexpr std::uint32_t kTops = (1u << 8) | (1u << 17) | (1u << 26);
   static constexpr std::uint32_t kStartsBefore = 1u << 27;  // shifted by the axis
   using CellBox = std::array<std::array<std::uint8_t, 2>, 3>;  // [axis][lo, hi]
-  // The box's bounds in the first and last cells of its range r along each axis: [a][0] its low
-  // end within cell r[a][0], [a][1] its high end within cell r[a][1].
-  CellBox range_ends(const Box& box, const CellRange& r) const;
+  // The box's cell range r and its bounds in the first and last cells of r along each axis:
+  // ends[a][0] its low end within cell r[a][0], ends[a][1] its high end within cell r[a][1], in
+  // 1/255ths of the cell from the scaled coordinate's fraction, rounded outward with half a unit
+  // of slack (monotone in the coordinate, so two boxes that overlap overlap in these units too).
+  void span_of(const Box& box, CellRange& r, CellBox& ends) const {
+    for (int a = 0; a < 3; ++a) {
+      const double t_lo = scaled(box.lo[a], a), t_hi = scaled(box.hi[a], a);
+      r[a] = {cell_of_scaled(t_lo, a), cell_of_scaled(t_hi, a)};
+      const double lo = std::floor((t_lo - static_cast<double>(r[a][0])) * 255.0 - 0.5);
+      const double hi = std::ceil((t_hi - static_cast<double>(r[a][1])) * 255.0 + 0.5);
+      ends[a][0] = static_cast<std::uint8_t>(std::clamp(lo, 0.0, 255.0));  // NaN-free: boxes
+      ends[a][1] = static_cast<std::uint8_t>(std::clamp(hi, 0.0, 255.0));  // hold finite points
+    }
+  }
   // The part of the box inside cell (i, j, k) of its range, packed as FaceEntry::lo and ::hi (the
   // ends in the first and last cells, the whole cell 0..255 between them), and the cell's
   // starts-before bits.
@@ -118,8 +142,9 @@ class FrontBins {
 // before fn sees them.
 template <typename Fn>
 bool FrontBins::find_face_near(const Box& box, Fn&& fn) const {
-  const CellRange r = cells_of(box);
-  const CellBox ends = range_ends(box, r);
+  CellRange r;
+  CellBox ends;
+  span_of(box, r, ends);
   constexpr std::size_t kChunk = 64;
   Index passed[kChunk];
   for (std::int64_t k = r[2][0]; k <= r[2][1]; ++k) {
