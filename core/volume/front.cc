@@ -7,12 +7,47 @@ namespace afmesh {
 Front::Front(const std::vector<Point>& points, const Box& domain, double cell_size)
     : points_(points), bins_(domain, cell_size) {}
 
-absl::uint128 Front::key_of(Index a, Index b, Index c) {
-  std::array<Index, 3> s{a, b, c};
-  std::sort(s.begin(), s.end());
-  return (absl::uint128(static_cast<std::uint32_t>(s[0])) << 64) |
-         (absl::uint128(static_cast<std::uint32_t>(s[1])) << 32) |
-         absl::uint128(static_cast<std::uint32_t>(s[2]));
+void FaceLookup::assign(const Triangle& k, Index f) {
+  if (2 * (count_ + 1) > slots_.size()) grow();
+  std::size_t i = home(k);
+  for (; slots_[i].face != kInvalidIndex; i = (i + 1) & mask_) {
+    if (slots_[i].key == k) {
+      slots_[i].face = f;
+      return;
+    }
+  }
+  slots_[i] = {k, f};
+  ++count_;
+}
+
+void FaceLookup::erase(const Triangle& k) {
+  std::size_t i = home(k);
+  for (; slots_[i].key != k; i = (i + 1) & mask_)
+    if (slots_[i].face == kInvalidIndex) return;  // absent
+  if (slots_[i].face == kInvalidIndex) return;  // absent (k is the empty slots' key)
+  // Backward shift: move each later slot of the probe run whose home does not lie cyclically
+  // in (i, j] into the hole, so every key stays reachable from its home without tombstones.
+  for (std::size_t j = (i + 1) & mask_; slots_[j].face != kInvalidIndex; j = (j + 1) & mask_) {
+    const std::size_t h = home(slots_[j].key);
+    const bool stays = i <= j ? (i < h && h <= j) : (i < h || h <= j);
+    if (stays) continue;
+    slots_[i] = slots_[j];
+    i = j;
+  }
+  slots_[i] = Slot{};
+  --count_;
+}
+
+void FaceLookup::grow() {
+  std::vector<Slot> old = std::move(slots_);
+  slots_.assign(old.size() * 2, Slot{});
+  mask_ = slots_.size() - 1;
+  for (const Slot& s : old) {
+    if (s.face == kInvalidIndex) continue;
+    std::size_t i = home(s.key);
+    while (slots_[i].face != kInvalidIndex) i = (i + 1) & mask_;
+    slots_[i] = s;
+  }
 }
 
 Box Front::box_of_face(const Triangle& v) const { return triangle_box(points_, v); }
@@ -43,7 +78,7 @@ Index Front::add(const Triangle& v, double size, Index env) {
   face.alive = true;
   ++face.stamp;
   ++live_;
-  lookup_[key_of(v[0], v[1], v[2])] = f;
+  lookup_.assign(key_of(v[0], v[1], v[2]), f);
   queue_.push({0, env == 0, size, f, face.stamp});
   boxes_[f] = box_of_face(v);
   bins_.insert_face(f, boxes_[f]);
@@ -75,9 +110,9 @@ void Front::requeue(Index f, double size) {
 }
 
 std::optional<Index> Front::find(Index a, Index b, Index c) const {
-  auto it = lookup_.find(key_of(a, b, c));
-  if (it == lookup_.end()) return std::nullopt;
-  return it->second;
+  const Index f = lookup_.find(key_of(a, b, c));
+  if (f == kInvalidIndex) return std::nullopt;
+  return f;
 }
 
 std::optional<Index> Front::pop() {

@@ -9,14 +9,13 @@
 // element built on it with a point p on that side is the positive tet (a, b, c, p).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
 #include <queue>
 #include <vector>
 
-#include "absl/container/flat_hash_map.h"
-#include "absl/numeric/int128.h"
 #include "core/mesh/mesh.h"
 #include "core/volume/front_bins.h"
 
@@ -28,6 +27,45 @@ struct FrontFace {
   std::uint32_t stamp = 0;   // bumped when the slot is reused, invalidates old queue entries
   std::uint8_t attempts = 0; // failed attempts to delete this face (raises its queue class)
   bool alive = false;
+};
+
+// The face lookup table of the front: open addressing with linear probing and backward-shift
+// deletion, from a face's sorted vertex triple to its id. 16-byte slots, no tombstones; grows
+// to keep at most half its slots full. Lookups depend only on the keys, never on addresses.
+class FaceLookup {
+ public:
+  FaceLookup() : slots_(kInitialSlots), mask_(kInitialSlots - 1) {}
+  // The id stored under sorted triple k, or kInvalidIndex.
+  Index find(const Triangle& k) const {
+    for (std::size_t i = home(k);; i = (i + 1) & mask_) {
+      const Slot& s = slots_[i];
+      if (s.face == kInvalidIndex) return kInvalidIndex;
+      if (s.key == k) return s.face;
+    }
+  }
+  // Stores f under sorted triple k (replacing what was stored under k).
+  void assign(const Triangle& k, Index f);
+  // Removes sorted triple k if present.
+  void erase(const Triangle& k);
+
+ private:
+  static constexpr std::size_t kInitialSlots = 64;
+  struct Slot {
+    Triangle key{};
+    Index face = kInvalidIndex;  // kInvalidIndex: empty
+  };
+  std::size_t home(const Triangle& k) const {
+    std::uint64_t h = ((std::uint64_t(std::uint32_t(k[0])) << 32) | std::uint32_t(k[1])) *
+                      0x9E3779B97F4A7C15ull;
+    h ^= (std::uint64_t(std::uint32_t(k[2])) + 0x632BE59BD9B4E019ull) * 0xC2B2AE3D27D4EB4Full;
+    h ^= h >> 31;
+    return static_cast<std::size_t>(h) & mask_;
+  }
+  void grow();
+
+  std::vector<Slot> slots_;
+  std::size_t mask_;
+  std::size_t count_ = 0;
 };
 
 class Front {
@@ -77,7 +115,11 @@ class Front {
       return face > o.face;
     }
   };
-  static absl::uint128 key_of(Index a, Index b, Index c);
+  // The vertex triple sorted ascending: the lookup key of the face on a, b, c in any order.
+  static Triangle key_of(Index a, Index b, Index c) {
+    const Index lo = std::min({a, b, c}), hi = std::max({a, b, c});
+    return {lo, a ^ b ^ c ^ lo ^ hi, hi};
+  }
   Box box_of_face(const Triangle& v) const;
   void point_joins(Index p);
   void point_leaves(Index p);
@@ -87,7 +129,7 @@ class Front {
   std::vector<Box> boxes_;  // per face slot
   std::vector<Index> free_;
   std::int64_t live_ = 0;
-  absl::flat_hash_map<absl::uint128, Index> lookup_;
+  FaceLookup lookup_;
   std::priority_queue<QueueEntry> queue_;
   std::vector<std::int32_t> point_faces_;  // per point: number of live front faces using it
   FrontBins bins_;

@@ -2,6 +2,7 @@
 // end-game pocket fill.
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <random>
 
@@ -104,6 +105,33 @@ TEST(FrontBins, FaceQueriesListEachFaceOnceAlsoPastTheDomain) {
       }
     }
   }
+}
+
+// The open-addressing table against std::map under random assigns (new and existing keys) and
+// erases (present and absent keys), through several growths and many backward shifts.
+TEST(FaceLookup, AgreesWithAMapUnderRandomAssignsAndErases) {
+  std::mt19937 rng(17);
+  std::uniform_int_distribution<Index> vertex(0, 60);
+  std::uniform_int_distribution<int> op(0, 2);
+  FaceLookup table;
+  std::map<Triangle, Index> reference;
+  for (Index step = 0; step < 200000; ++step) {
+    Triangle k{vertex(rng), vertex(rng), vertex(rng)};
+    std::sort(k.begin(), k.end());
+    if (op(rng) == 0) {
+      table.erase(k);
+      reference.erase(k);
+    } else {
+      table.assign(k, step);
+      reference[k] = step;
+    }
+    Triangle probe{vertex(rng), vertex(rng), vertex(rng)};
+    std::sort(probe.begin(), probe.end());
+    const auto it = reference.find(probe);
+    ASSERT_EQ(table.find(probe), it == reference.end() ? kInvalidIndex : it->second)
+        << "step " << step;
+  }
+  for (const auto& [k, f] : reference) ASSERT_EQ(table.find(k), f);
 }
 
 TEST(Front, LookupFindsFacesInAnyVertexOrder) {
