@@ -50,6 +50,40 @@ void FaceLookup::grow() {
   }
 }
 
+void Front::Queue::push(const QueueEntry& e) {
+  std::size_t i = heap_.size();
+  heap_.push_back(e);
+  while (i > 0) {  // sift up
+    const std::size_t parent = (i - 1) / 4;
+    if (!e.before(heap_[parent])) break;
+    heap_[i] = heap_[parent];
+    i = parent;
+  }
+  heap_[i] = e;
+}
+
+Front::QueueEntry Front::Queue::pop() {
+  const QueueEntry top = heap_.front();
+  const QueueEntry last = heap_.back();
+  heap_.pop_back();
+  const std::size_t n = heap_.size();
+  if (n == 0) return top;
+  std::size_t i = 0;
+  for (;;) {  // sift `last` down from the root
+    const std::size_t first = 4 * i + 1;
+    if (first >= n) break;
+    std::size_t best = first;
+    const std::size_t end = std::min(first + 4, n);
+    for (std::size_t c = first + 1; c < end; ++c)
+      if (heap_[c].before(heap_[best])) best = c;
+    if (!heap_[best].before(last)) break;
+    heap_[i] = heap_[best];
+    i = best;
+  }
+  heap_[i] = last;
+  return top;
+}
+
 Box Front::box_of_face(const Triangle& v) const { return triangle_box(points_, v); }
 
 void Front::point_joins(Index p) {
@@ -110,6 +144,9 @@ void Front::requeue(Index f, double size) {
 }
 
 std::optional<Index> Front::find(Index a, Index b, Index c) const {
+  // A live face's corners are on the front; most calls ask about a new point, which is not, and
+  // skip the table (a cache miss on a large front).
+  if (!on_front(a) || !on_front(b) || !on_front(c)) return std::nullopt;
   const Index f = lookup_.find(key_of(a, b, c));
   if (f == kInvalidIndex) return std::nullopt;
   return f;
@@ -117,8 +154,7 @@ std::optional<Index> Front::find(Index a, Index b, Index c) const {
 
 std::optional<Index> Front::pop() {
   while (!queue_.empty()) {
-    const QueueEntry e = queue_.top();
-    queue_.pop();
+    const QueueEntry e = queue_.pop();
     const FrontFace& face = faces_[e.face];
     if (face.alive && face.stamp == e.stamp && face.attempts == e.cls) return e.face;
   }
