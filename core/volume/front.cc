@@ -7,49 +7,6 @@ namespace afmesh {
 Front::Front(const std::vector<Point>& points, const Box& domain, double cell_size)
     : points_(points), bins_(domain, cell_size) {}
 
-void FaceLookup::assign(const Triangle& k, Index f) {
-  if (2 * (count_ + 1) > slots_.size()) grow();
-  std::size_t i = home(k);
-  for (; slots_[i].face != kInvalidIndex; i = (i + 1) & mask_) {
-    if (slots_[i].key == k) {
-      slots_[i].face = f;
-      return;
-    }
-  }
-  slots_[i] = {k, f};
-  ++count_;
-}
-
-void FaceLookup::erase(const Triangle& k) {
-  std::size_t i = home(k);
-  for (; slots_[i].key != k; i = (i + 1) & mask_)
-    if (slots_[i].face == kInvalidIndex) return;  // absent
-  if (slots_[i].face == kInvalidIndex) return;  // absent (k is the empty slots' key)
-  // Backward shift: move each later slot of the probe run whose home does not lie cyclically
-  // in (i, j] into the hole, so every key stays reachable from its home without tombstones.
-  for (std::size_t j = (i + 1) & mask_; slots_[j].face != kInvalidIndex; j = (j + 1) & mask_) {
-    const std::size_t h = home(slots_[j].key);
-    const bool stays = i <= j ? (i < h && h <= j) : (i < h || h <= j);
-    if (stays) continue;
-    slots_[i] = slots_[j];
-    i = j;
-  }
-  slots_[i] = Slot{};
-  --count_;
-}
-
-void FaceLookup::grow() {
-  std::vector<Slot> old = std::move(slots_);
-  slots_.assign(old.size() * 2, Slot{});
-  mask_ = slots_.size() - 1;
-  for (const Slot& s : old) {
-    if (s.face == kInvalidIndex) continue;
-    std::size_t i = home(s.key);
-    while (slots_[i].face != kInvalidIndex) i = (i + 1) & mask_;
-    slots_[i] = s;
-  }
-}
-
 void Front::Queue::push(const QueueEntry& e) {
   std::size_t i = heap_.size();
   heap_.push_back(e);
@@ -86,13 +43,29 @@ Front::QueueEntry Front::Queue::pop() {
 
 Box Front::box_of_face(const Triangle& v) const { return triangle_box(points_, v); }
 
-void Front::point_joins(Index p) {
-  if (p >= static_cast<Index>(point_faces_.size())) point_faces_.resize(p + 1, 0);
-  if (point_faces_[p]++ == 0) bins_.insert_point(p, points_[p]);
+namespace {
+
+int corner_of(const Triangle& v, Index p) { return v[0] == p ? 0 : v[1] == p ? 1 : 2; }
+
+}  // namespace
+
+void Front::point_joins(Index f, int k) {
+  const Index p = faces_[f].v[k];
+  if (p >= static_cast<Index>(first_face_.size())) first_face_.resize(p + 1, kInvalidIndex);
+  if (first_face_[p] == kInvalidIndex) bins_.insert_point(p, points_[p]);
+  faces_[f].next[k] = first_face_[p];
+  first_face_[p] = f;
 }
 
-void Front::point_leaves(Index p) {
-  if (--point_faces_[p] == 0) bins_.erase_point(p, points_[p]);
+void Front::point_leaves(Index f, int k) {
+  const Index p = faces_[f].v[k];
+  Index* link = &first_face_[p];
+  while (*link != f) {
+    FrontFace& g = faces_[*link];
+    link = &g.next[corner_of(g.v, p)];
+  }
+  *link = faces_[f].next[k];
+  if (first_face_[p] == kInvalidIndex) bins_.erase_point(p, points_[p]);
 }
 
 Index Front::add(const Triangle& v, double size, Index env) {
@@ -103,7 +76,6 @@ Index Front::add(const Triangle& v, double size, Index env) {
   } else {
     f = static_cast<Index>(faces_.size());
     faces_.emplace_back();
-    boxes_.emplace_back();
   }
   FrontFace& face = faces_[f];
   face.v = v;
@@ -112,11 +84,9 @@ Index Front::add(const Triangle& v, double size, Index env) {
   face.alive = true;
   ++face.stamp;
   ++live_;
-  lookup_.assign(key_of(v[0], v[1], v[2]), f);
   queue_.push({0, env == 0, size, f, face.stamp});
-  boxes_[f] = box_of_face(v);
-  bins_.insert_face(f, boxes_[f]);
-  for (Index p : v) point_joins(p);
+  bins_.insert_face(f, box_of_face(v));
+  for (int k = 0; k < 3; ++k) point_joins(f, k);
   return f;
 }
 
@@ -124,9 +94,8 @@ void Front::remove(Index f) {
   FrontFace& face = faces_[f];
   face.alive = false;
   --live_;
-  lookup_.erase(key_of(face.v[0], face.v[1], face.v[2]));
-  bins_.erase_face(f, boxes_[f]);
-  for (Index p : face.v) point_leaves(p);
+  bins_.erase_face(f, box_of_face(face.v));  // the points never move: the box it went in with
+  for (int k = 0; k < 3; ++k) point_leaves(f, k);
   free_.push_back(f);
 }
 
@@ -144,12 +113,16 @@ void Front::requeue(Index f, double size) {
 }
 
 std::optional<Index> Front::find(Index a, Index b, Index c) const {
-  // A live face's corners are on the front; most calls ask about a new point, which is not, and
-  // skip the table (a cache miss on a large front).
   if (!on_front(a) || !on_front(b) || !on_front(c)) return std::nullopt;
-  const Index f = lookup_.find(key_of(a, b, c));
-  if (f == kInvalidIndex) return std::nullopt;
-  return f;
+  for (Index g = first_face_[a]; g != kInvalidIndex;) {
+    const FrontFace& face = faces_[g];
+    const Triangle& w = face.v;
+    const int k = corner_of(w, a);
+    if ((w[0] == b || w[1] == b || w[2] == b) && (w[0] == c || w[1] == c || w[2] == c))
+      return g;
+    g = face.next[k];
+  }
+  return std::nullopt;
 }
 
 std::optional<Index> Front::pop() {

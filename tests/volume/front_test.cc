@@ -2,7 +2,6 @@
 // end-game pocket fill.
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numbers>
 #include <random>
 
@@ -107,33 +106,6 @@ TEST(FrontBins, FaceQueriesListEachFaceOnceAlsoPastTheDomain) {
   }
 }
 
-// The open-addressing table against std::map under random assigns (new and existing keys) and
-// erases (present and absent keys), through several growths and many backward shifts.
-TEST(FaceLookup, AgreesWithAMapUnderRandomAssignsAndErases) {
-  std::mt19937 rng(17);
-  std::uniform_int_distribution<Index> vertex(0, 60);
-  std::uniform_int_distribution<int> op(0, 2);
-  FaceLookup table;
-  std::map<Triangle, Index> reference;
-  for (Index step = 0; step < 200000; ++step) {
-    Triangle k{vertex(rng), vertex(rng), vertex(rng)};
-    std::sort(k.begin(), k.end());
-    if (op(rng) == 0) {
-      table.erase(k);
-      reference.erase(k);
-    } else {
-      table.assign(k, step);
-      reference[k] = step;
-    }
-    Triangle probe{vertex(rng), vertex(rng), vertex(rng)};
-    std::sort(probe.begin(), probe.end());
-    const auto it = reference.find(probe);
-    ASSERT_EQ(table.find(probe), it == reference.end() ? kInvalidIndex : it->second)
-        << "step " << step;
-  }
-  for (const auto& [k, f] : reference) ASSERT_EQ(table.find(k), f);
-}
-
 TEST(Front, LookupFindsFacesInAnyVertexOrder) {
   std::vector<Point> pts = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   Front front(pts, Box{{0, 0, 0}, {1, 1, 1}}, 0.5);
@@ -144,6 +116,43 @@ TEST(Front, LookupFindsFacesInAnyVertexOrder) {
   front.remove(f);
   EXPECT_FALSE(front.find(0, 1, 2).has_value());
   EXPECT_EQ(front.size(), 0);
+}
+
+// Faces sharing points (a fan around point 0 and faces off it), added and removed in a mixed
+// order: find answers from the points' face lists exactly as a set of vertex triples would.
+TEST(Front, LookupFollowsAddsAndRemovesOfFacesSharingPoints) {
+  std::vector<Point> pts(12);
+  for (int i = 0; i < 12; ++i) pts[i] = {std::cos(i * 0.5), std::sin(i * 0.5), 0.1 * i};
+  Front front(pts, Box{{-1, -1, 0}, {1, 1, 1.2}}, 0.3);
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<Index> vertex(0, 11);
+  std::vector<std::pair<Triangle, Index>> live;
+  for (int step = 0; step < 3000; ++step) {
+    Triangle t{step % 3 == 0 ? 0 : vertex(rng), vertex(rng), vertex(rng)};
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+    const auto found = front.find(t[2], t[0], t[1]);
+    auto it = std::find_if(live.begin(), live.end(), [&](const auto& e) {
+      Triangle a = e.first, b = t;
+      std::sort(a.begin(), a.end());
+      std::sort(b.begin(), b.end());
+      return a == b;
+    });
+    ASSERT_EQ(found.has_value(), it != live.end()) << "step " << step;
+    if (found) {
+      ASSERT_EQ(*found, it->second);
+      front.remove(*found);
+      live.erase(it);
+    } else {
+      live.push_back({t, front.add(t, 1.0)});
+    }
+    for (Index p = 0; p < 12; ++p) {
+      const bool used = std::any_of(live.begin(), live.end(), [&](const auto& e) {
+        return e.first[0] == p || e.first[1] == p || e.first[2] == p;
+      });
+      ASSERT_EQ(front.on_front(p), used) << "step " << step << " point " << p;
+    }
+  }
+  EXPECT_EQ(front.size(), static_cast<std::int64_t>(live.size()));
 }
 
 TEST(Front, QueuePopsSmallestFirstAndDeferredLast) {
