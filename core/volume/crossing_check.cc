@@ -28,24 +28,24 @@ constexpr std::uint8_t kFacesOfCorner[4] = {0b1011, 0b0111, 0b1101, 0b1110};
 // face f or strictly outside its plane, and bit f + 4 when it is a corner of face f or strictly
 // inside.
 class TetPlanes {
+  static constexpr std::uint32_t kEpochs = 1u << 24;
+
  public:
   TetPlanes(MesherState& s, const Tet& tet) : s_(s), tet_(tet) {
     for (int f = 0; f < 4; ++f) {
       const int* c = kFaces[f];
       planes_[f] = Orient3dPlane(s.points[tet[c[0]]], s.points[tet[c[1]]], s.points[tet[c[2]]]);
     }
-    if (s.side_epoch.size() < s.points.size()) {
-      s.side_epoch.resize(s.points.size(), 0);
-      s.side_code.resize(s.points.size(), 0);
-    }
-    if (++s.side_epoch_now == 0) {  // wrapped: forget every old code
-      std::fill(s.side_epoch.begin(), s.side_epoch.end(), 0);
-      s.side_epoch_now = 1;
+    if (s.side_codes.size() < s.points.size()) s.side_codes.resize(s.points.size(), 0);
+    if (++s.side_epoch == kEpochs) {  // wrapped: forget every old code
+      std::fill(s.side_codes.begin(), s.side_codes.end(), 0);
+      s.side_epoch = 1;
     }
   }
 
   std::uint8_t code(Index q) {
-    if (s_.side_epoch[q] == s_.side_epoch_now) return s_.side_code[q];
+    std::uint32_t& cached = s_.side_codes[q];
+    if (cached >> 8 == s_.side_epoch) return static_cast<std::uint8_t>(cached);
     std::uint8_t corner = 0;
     for (int k = 0; k < 4; ++k)
       if (q == tet_[k]) corner = kFacesOfCorner[k];
@@ -57,8 +57,7 @@ class TetPlanes {
       if (side > 0) bits |= std::uint8_t(1u << f);
       if (side < 0) bits |= std::uint8_t(16u << f);
     }
-    s_.side_epoch[q] = s_.side_epoch_now;
-    s_.side_code[q] = bits;
+    cached = s_.side_epoch << 8 | bits;
     return bits;
   }
 

@@ -70,24 +70,30 @@ class Front {
     double size;
     Index face;
     std::uint32_t stamp;
-    // True when this entry is popped before o.
-    bool before(const QueueEntry& o) const {
-      if (cls != o.cls) return cls < o.cls;
-      if (unmarked != o.unmarked) return !unmarked;
-      if (size != o.size) return size < o.size;
-      return face < o.face;
-    }
   };
-  // The queue of F6: a 4-ary heap (half the depth of a binary one: fewer cache misses on a large
-  // front), entry 0 popped first. Entries of removed or re-queued faces stay until popped.
+  // The queue of F6: entries are popped by class, then faces of a crossing environment first,
+  // then smallest size, then lowest id. One 4-ary heap of 16-byte items per (class, marked)
+  // group, so a heap node's children share a cache line and the heaps stay shallow on a large
+  // front. Entries of removed or re-queued faces stay until popped.
   class Queue {
    public:
-    bool empty() const { return heap_.empty(); }
+    bool empty() const { return count_ == 0; }
     void push(const QueueEntry& e);
-    QueueEntry pop();
+    QueueEntry pop();  // the queue must not be empty
 
    private:
-    std::vector<QueueEntry> heap_;
+    struct Item {
+      double size;
+      Index face;
+      std::uint32_t stamp;
+      bool before(const Item& o) const {
+        if (size != o.size) return size < o.size;
+        return face < o.face;
+      }
+    };
+    std::vector<std::vector<Item>> groups_;  // by 2·class + unmarked
+    std::size_t lowest_ = 0;  // no group below this one holds items
+    std::size_t count_ = 0;
   };
   Box box_of_face(const Triangle& v) const;
   // Face f joins (leaves) the list of its corner k's point; the point enters (leaves) the bins

@@ -60,11 +60,10 @@ struct MesherState {
   std::vector<Index> near_faces;
   std::vector<Candidate> candidates;
   std::vector<Index> cavity;
-  // Per point, where it lies against the faces of the element being checked (F7.3), valid when
-  // side_epoch[p] == side_epoch_now.
-  std::vector<std::uint32_t> side_epoch;
-  std::vector<std::uint8_t> side_code;
-  std::uint32_t side_epoch_now = 0;
+  // Per point, where it lies against the faces of the element being checked (F7.3): the code in
+  // the low 8 bits, valid when the high 24 bits equal side_epoch.
+  std::vector<std::uint32_t> side_codes;
+  std::uint32_t side_epoch = 0;
 };
 
 }  // namespace afmesh::volume
