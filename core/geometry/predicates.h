@@ -76,6 +76,48 @@ inline int orient3d(const Point& a, const Point& b, const Point& c, const Point&
 }
 
 // -----------------------------------------------------------------------------------------------
+// Orient3dPlane(a, b, c).side(d) == orient3d(a, b, c, d), exactly, for many points d against one
+// plane: the cross product n = (b-a)x(c-a) of the filter and its absolute terms are computed once,
+// so each side(d) costs a dot product. The filter evaluates det[b-a, c-a, d-a] expanded along
+// w = d-a, w · n, which has the same rounding structure as orient3d's expansion along b-a (a
+// rounded coordinate difference times a rounded difference of products of rounded differences),
+// so the same bound holds with the roles of u and w exchanged; when it does not prove the sign,
+// side(d) calls the exact orient3d(a, b, c, d). a, b, c are copied (the object owns its plane).
+// -----------------------------------------------------------------------------------------------
+class Orient3dPlane {
+ public:
+  Orient3dPlane() = default;
+  Orient3dPlane(const Point& a, const Point& b, const Point& c) : a_(a), b_(b), c_(c) {
+    const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+    const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+    const double uyvz = uy * vz, uzvy = uz * vy;
+    const double uzvx = uz * vx, uxvz = ux * vz;
+    const double uxvy = ux * vy, uyvx = uy * vx;
+    n_ = {uyvz - uzvy, uzvx - uxvz, uxvy - uyvx};
+    abs_n_ = {std::fabs(uyvz) + std::fabs(uzvy), std::fabs(uzvx) + std::fabs(uxvz),
+              std::fabs(uxvy) + std::fabs(uyvx)};
+  }
+
+  int side(const Point& d) const {
+    const double wx = d[0] - a_[0], wy = d[1] - a_[1], wz = d[2] - a_[2];
+    const double det = wx * n_[0] + wy * n_[1] + wz * n_[2];
+    const double awx = std::fabs(wx), awy = std::fabs(wy), awz = std::fabs(wz);
+    const double permanent = awx * abs_n_[0] + awy * abs_n_[1] + awz * abs_n_[2];
+    const double bound = predicates_internal::kOrient3dErrorFactor * permanent +
+                         predicates_internal::kUnderflowGuard * (awx + awy + awz + 1.0);
+    if (std::fabs(det) > bound) [[likely]] {
+      return (det > 0.0) - (det < 0.0);
+    }
+    return predicates_internal::orient3d_exact(a_, b_, c_, d);
+  }
+
+ private:
+  Point a_{}, b_{}, c_{};
+  Point n_{};      // (b-a)x(c-a), rounded as orient3d's filter rounds its minors
+  Point abs_n_{};  // per component, the sum of the absolute values of its two products
+};
+
+// -----------------------------------------------------------------------------------------------
 // orient3d_fast(a, b, c, d): det[b-a, c-a, d-a] in plain double arithmetic (6 × signed volume),
 // same formula as orient3d's filter. NOT exact and its sign may be wrong for nearly coplanar
 // points: for volumes, quality measures and other non-predicate uses only.

@@ -56,21 +56,19 @@ bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictne
   const double spacing = std::max(rules.point_spacing * d, min_spacing);
   const double clearance = rules.face_clearance * d;
   const double reach = std::max(spacing, clearance);
-  s.near_points.clear();
-  s.front.bins().points_near(cube_around(x, reach), s.near_points);
-  for (Index q : s.near_points)
-    if (point_visible(s, env, q) && squared_norm(sub(s.points[q], x)) < spacing * spacing)
-      return false;
-  s.near_faces.clear();
-  s.front.bins().faces_near(cube_around(x, clearance), s.near_faces);
-  for (Index g : s.near_faces) {
-    if (!face_visible(s, env, g)) continue;
+  bool crowded = false;
+  s.front.bins().for_each_point_near(cube_around(x, reach), [&](Index q) {
+    crowded = crowded ||
+              (point_visible(s, env, q) && squared_norm(sub(s.points[q], x)) < spacing * spacing);
+  });
+  if (crowded) return false;
+  const bool near_a_face = s.front.bins().find_face_near(cube_around(x, clearance), [&](Index g) {
+    if (!face_visible(s, env, g)) return false;
     const Triangle& w = s.front.face(g).v;
-    if (squared_distance_to_triangle(x, s.points[w[0]], s.points[w[1]], s.points[w[2]]) <
-        clearance * clearance)
-      return false;
-  }
-  return true;
+    return squared_distance_to_triangle(x, s.points[w[0]], s.points[w[1]], s.points[w[2]]) <
+           clearance * clearance;
+  });
+  return !near_a_face;
 }
 
 Strictness strictness_for(int attempts) {
@@ -131,17 +129,15 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
 
   // Existing front points near the ideal point that form a positive, well-shaped element.
   const double reach = rules.reach * d;
-  s.near_points.clear();
-  s.front.bins().points_near(cube_around(ideal, reach), s.near_points);
-  for (Index q : s.near_points) {
-    if (q == v[0] || q == v[1] || q == v[2] || !point_visible(s, env, q)) continue;
+  s.front.bins().for_each_point_near(cube_around(ideal, reach), [&](Index q) {
+    if (q == v[0] || q == v[1] || q == v[2] || !point_visible(s, env, q)) return;
     const Point& x = s.points[q];
     const double dist = norm(sub(x, ideal));
-    if (dist > reach || orient3d(a, b, c, x) <= 0) continue;
+    if (dist > reach || orient3d(a, b, c, x) <= 0) return;
     const double quality = tet_shape_quality(a, b, c, x);
-    if (quality < rules.min_quality) continue;
+    if (quality < rules.min_quality) return;
     s.candidates.push_back({q, x, dist / d + 0.5 * (1.0 - quality)});
-  }
+  });
 
   // The new point, and new points closer to the face, where the front leaves room for them.
   const Point centroid = scale(add(a, add(b, c)), 1.0 / 3.0);

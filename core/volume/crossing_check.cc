@@ -1,5 +1,6 @@
 // F7.3 of the volume front: does the new element cross the front?
 #include <algorithm>
+#include <cstdint>
 
 #include "core/geometry/intersect.h"
 #include "core/geometry/predicates.h"
@@ -14,26 +15,60 @@ bool is_corner(const Tet& tet, Index q) {
 
 bool is_corner(const Triangle& t, Index q) { return q == t[0] || q == t[1] || q == t[2]; }
 
-// Exact separating-plane test: true when, for one face of `tet` (corners `x`), every corner of
-// triangle w is either a corner of that face or strictly outside its plane. Then w meets the
-// closed tet only in the hull of the corners it shares with that face: a proper contact.
-bool separated_by_a_face_plane(const std::vector<Point>& x, const Tet& tet, const Triangle& w) {
-  // Faces of the positive tet (a, b, c, d), oriented out of it.
-  static constexpr int kFaces[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
-  for (const auto& f : kFaces) {
-    const Index i = tet[f[0]], j = tet[f[1]], k = tet[f[2]];
-    bool outside = true;
-    for (Index q : w) {
-      if (q == i || q == j || q == k) continue;
-      if (orient3d(x[i], x[j], x[k], x[q]) <= 0) {
-        outside = false;
-        break;
-      }
+// Faces of the positive tet (a, b, c, d), oriented out of it: (a, c, b), then the element's sides
+// (a, b, d), (b, c, d), (c, a, d) in the order of element_crosses_front's `sides`.
+constexpr int kFaces[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+// The corners of the element's sides (kFaces 1, 2, 3), as bits of tet corners.
+constexpr unsigned kSideCorners[3] = {0b1011, 0b1110, 0b1101};
+// The faces each corner of the tet lies on, as bits of kFaces.
+constexpr std::uint8_t kFacesOfCorner[4] = {0b1011, 0b0111, 0b1101, 0b1110};
+
+// Where points lie against the element's four face planes (exact, Orient3dPlane), each point
+// evaluated once per element. A point's code has, for face f, bit f when the point is a corner of
+// face f or strictly outside its plane, and bit f + 4 when it is a corner of face f or strictly
+// inside.
+class TetPlanes {
+  static constexpr std::uint32_t kEpochs = 1u << 24;
+
+ public:
+  TetPlanes(MesherState& s, const Tet& tet) : s_(s), tet_(tet) {
+    for (int f = 0; f < 4; ++f) {
+      const int* c = kFaces[f];
+      planes_[f] = Orient3dPlane(s.points[tet[c[0]]], s.points[tet[c[1]]], s.points[tet[c[2]]]);
     }
-    if (outside) return true;
+    if (s.side_codes.size() < s.points.size()) s.side_codes.resize(s.points.size(), 0);
+    if (++s.side_epoch == kEpochs) {  // wrapped: forget every old code
+      std::fill(s.side_codes.begin(), s.side_codes.end(), 0);
+      s.side_epoch = 1;
+    }
   }
-  return false;
-}
+
+  std::uint8_t code(Index q) {
+    std::uint32_t& cached = s_.side_codes[q];
+    if (cached >> 8 == s_.side_epoch) return static_cast<std::uint8_t>(cached);
+    std::uint8_t corner = 0;
+    for (int k = 0; k < 4; ++k)
+      if (q == tet_[k]) corner = kFacesOfCorner[k];
+    std::uint8_t bits = corner | std::uint8_t(corner << 4);
+    const Point& x = s_.points[q];
+    for (int f = 0; f < 4; ++f) {
+      if (corner & (1u << f)) continue;
+      const int side = planes_[f].side(x);
+      if (side > 0) bits |= std::uint8_t(1u << f);
+      if (side < 0) bits |= std::uint8_t(16u << f);
+    }
+    cached = s_.side_epoch << 8 | bits;
+    return bits;
+  }
+
+  // orient3d(tet) > 0: the element is positive.
+  bool positive() const { return planes_[0].side(s_.points[tet_[3]]) < 0; }
+
+ private:
+  MesherState& s_;
+  const Tet& tet_;
+  Orient3dPlane planes_[4];
+};
 
 // With crossing environments (paper §2): true when a side of the element (oriented out of it)
 // lies on three points that already bound a live tet while the front holds no face on them
@@ -71,10 +106,10 @@ bool element_crosses_front(MesherState& s, Index face, Index p) {
 
   if (!s.point_env.empty() && side_is_a_meshed_face(s, sides, p)) return true;
 
-  s.near_faces.clear();
-  s.front.bins().faces_near(box, s.near_faces);
-  for (Index g : s.near_faces) {
-    if (g == face) continue;
+  TetPlanes planes(s, tet);
+  // Does the element meet front face g improperly?
+  const auto crosses_face = [&](Index g) {
+    if (g == face) return false;
     const Triangle& w = s.front.face(g).v;
     // A front face on p and two corners of `face` is the face one side of the element closes.
     // It must look at the element (F10), whatever its environment: a face of another
@@ -86,22 +121,51 @@ bool element_crosses_front(MesherState& s, Index face, Index p) {
     if (has_p && on_face == 2) {
       int i = 0;  // the side on w's corners leaves out the corner of `face` that w lacks
       while (is_corner(w, opposite[i])) ++i;
-      if (orient3d(x[w[0]], x[w[1]], x[w[2]], x[opposite[i]]) <= 0) return true;
-      continue;
+      return orient3d(x[w[0]], x[w[1]], x[w[2]], x[opposite[i]]) <= 0;
     }
-    if (!face_visible(s, env, g)) continue;
-    if (separated_by_a_face_plane(x, tet, w)) continue;
-    for (const Triangle& side : sides)
-      if (triangles_intersect_improperly(x, side, w)) return true;
-  }
+    if (!face_visible(s, env, g)) return false;
+    const std::uint8_t all = planes.code(w[0]) & planes.code(w[1]) & planes.code(w[2]);
+    // Separating plane: for one face of the element, every corner of w is a corner of that face
+    // or strictly outside it. Then w meets the closed element only in the hull of the corners it
+    // shares with that face: a proper contact.
+    if (all & 0x0F) return false;
+    // The other way round: the element's corners against w's plane. Bit k of `above` (`below`):
+    // corner k is a corner of w or strictly above (below) that plane.
+    const Orient3dPlane w_plane(x[w[0]], x[w[1]], x[w[2]]);
+    unsigned above = 0, below = 0;
+    for (int k = 0; k < 4; ++k) {
+      if (is_corner(w, tet[k])) {
+        above |= 1u << k;
+        below |= 1u << k;
+        continue;
+      }
+      const int side = w_plane.side(x[tet[k]]);
+      if (side > 0) above |= 1u << k;
+      if (side < 0) below |= 1u << k;
+    }
+    for (int i = 0; i < 3; ++i) {
+      // Every corner of w is a corner of side i or strictly inside its plane, or every corner of
+      // side i is a corner of w or strictly on one side of w's plane: they meet only in the
+      // hull of the corners they share.
+      if (all & (32u << i)) continue;
+      if ((above & kSideCorners[i]) == kSideCorners[i]) continue;
+      if ((below & kSideCorners[i]) == kSideCorners[i]) continue;
+      if (triangles_intersect_improperly(x, sides[i], w)) return true;
+    }
+    return false;
+  };
+  if (s.front.bins().find_face_near(box, crosses_face)) return true;
 
-  s.near_points.clear();
-  s.front.bins().points_near(box, s.near_points);
-  for (Index q : s.near_points) {
-    if (is_corner(tet, q) || !point_visible(s, env, q)) continue;
-    if (point_in_tet(x[q], x[v[0]], x[v[1]], x[v[2]], x[p]) >= 0) return true;
-  }
-  return false;
+  const bool positive = planes.positive();
+  bool contains_point = false;
+  s.front.bins().for_each_point_near(box, [&](Index q) {
+    if (contains_point || is_corner(tet, q) || !point_visible(s, env, q)) return;
+    // In the closed positive element: on no face plane's outer side (the barycentric signs of
+    // point_in_tet are the face planes' sides, negated).
+    contains_point = positive ? (planes.code(q) & 0x0F) == 0
+                              : point_in_tet(x[q], x[v[0]], x[v[1]], x[v[2]], x[p]) >= 0;
+  });
+  return contains_point;
 }
 
 }  // namespace afmesh::volume

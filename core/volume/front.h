@@ -1,22 +1,20 @@
 // The 3-D front of the advancing-front loop (paper §1): the faces that separate the meshed region
 // from the space still to be meshed, with
 //  - the priority queue of step F6 (smallest element first, failed faces later),
-//  - the face lookup table keyed by the sorted vertex triple, which tells in O(1) whether a new
-//    element face closes a face already on the front (F10),
+//  - per front point, the list of its live faces, which tells in O(1) (a point has a handful of
+//    front faces) whether a new element face closes a face already on the front (F10),
 //  - the bins over front points and faces for the close-point and crossing searches (F7.2, F7.3).
 //
 // A front face (a, b, c) is oriented with (b-a)x(c-a) pointing into the unmeshed space, so the
 // element built on it with a point p on that side is the positive tet (a, b, c, p).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
-#include <queue>
 #include <vector>
 
-#include "absl/container/flat_hash_map.h"
-#include "absl/numeric/int128.h"
 #include "core/mesh/mesh.h"
 #include "core/volume/front_bins.h"
 
@@ -28,6 +26,8 @@ struct FrontFace {
   std::uint32_t stamp = 0;   // bumped when the slot is reused, invalidates old queue entries
   std::uint8_t attempts = 0; // failed attempts to delete this face (raises its queue class)
   bool alive = false;
+  // next[k]: the next live face in the list of the point v[k] (kInvalidIndex ends it).
+  std::array<Index, 3> next{kInvalidIndex, kInvalidIndex, kInvalidIndex};
 };
 
 class Front {
@@ -58,10 +58,10 @@ class Front {
   std::optional<Index> pop();
 
   const FrontFace& face(Index f) const { return faces_[f]; }
-  // The bounding box of live face f (kept so the crossing check need not recompute it).
-  const Box& box(Index f) const { return boxes_[f]; }
   std::int64_t size() const { return live_; }
-  bool on_front(Index p) const { return p < static_cast<Index>(point_faces_.size()) && point_faces_[p] > 0; }
+  bool on_front(Index p) const {
+    return p < static_cast<Index>(first_face_.size()) && first_face_[p] != kInvalidIndex;
+  }
   const FrontBins& bins() const { return bins_; }
 
  private:
@@ -71,27 +71,43 @@ class Front {
     double size;
     Index face;
     std::uint32_t stamp;
-    // std::priority_queue is a max-heap: "greater" means popped later.
-    bool operator<(const QueueEntry& o) const {
-      if (cls != o.cls) return cls > o.cls;
-      if (unmarked != o.unmarked) return unmarked;
-      if (size != o.size) return size > o.size;
-      return face > o.face;
-    }
   };
-  static absl::uint128 key_of(Index a, Index b, Index c);
+  // The queue of F6: entries are popped by class, then faces of a crossing environment first,
+  // then smallest size, then lowest id. One 4-ary heap of 16-byte items per (class, marked)
+  // group, so a heap node's children share a cache line and the heaps stay shallow on a large
+  // front. Entries of removed or re-queued faces stay until popped.
+  class Queue {
+   public:
+    bool empty() const { return count_ == 0; }
+    void push(const QueueEntry& e);
+    QueueEntry pop();  // the queue must not be empty
+
+   private:
+    struct Item {
+      double size;
+      Index face;
+      std::uint32_t stamp;
+      bool before(const Item& o) const {
+        if (size != o.size) return size < o.size;
+        return face < o.face;
+      }
+    };
+    std::vector<std::vector<Item>> groups_;  // by 2·class + unmarked
+    std::size_t lowest_ = 0;  // no group below this one holds items
+    std::size_t count_ = 0;
+  };
   Box box_of_face(const Triangle& v) const;
-  void point_joins(Index p);
-  void point_leaves(Index p);
+  // Face f joins (leaves) the list of its corner k's point; the point enters (leaves) the bins
+  // with its first (last) face.
+  void point_joins(Index f, int k);
+  void point_leaves(Index f, int k);
 
   const std::vector<Point>& points_;
   std::vector<FrontFace> faces_;
-  std::vector<Box> boxes_;  // per face slot
   std::vector<Index> free_;
   std::int64_t live_ = 0;
-  absl::flat_hash_map<absl::uint128, Index> lookup_;
-  std::priority_queue<QueueEntry> queue_;
-  std::vector<std::int32_t> point_faces_;  // per point: number of live front faces using it
+  Queue queue_;
+  std::vector<Index> first_face_;  // per point: the first live face of its list, or kInvalidIndex
   FrontBins bins_;
 };
 

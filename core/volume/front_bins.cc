@@ -25,48 +25,20 @@ FrontBins::FrontBins(const Box& domain, double cell_size, std::int64_t max_cells
   face_cells_.resize(n);
 }
 
-std::int64_t FrontBins::cell_coord(double x, int axis) const {
-  const double c = std::floor((x - origin_[axis]) * inverse_cell_);  // monotone in x
-  if (!(c > 0)) return 0;  // also catches NaN
-  return std::min(static_cast<std::int64_t>(c), dims_[axis] - 1);
-}
-
-FrontBins::CellRange FrontBins::cells_of(const Box& box) const {
-  CellRange r{};
-  for (int a = 0; a < 3; ++a) r[a] = {cell_coord(box.lo[a], a), cell_coord(box.hi[a], a)};
-  return r;
-}
-
-template <typename Fn>
-void FrontBins::for_each_cell(const CellRange& r, Fn&& fn) const {
-  for (std::int64_t k = r[2][0]; k <= r[2][1]; ++k)
-    for (std::int64_t j = r[1][0]; j <= r[1][1]; ++j)
-      for (std::int64_t i = r[0][0]; i <= r[0][1]; ++i) fn(cell_index(i, j, k), i, j, k);
-}
-
-FrontBins::CellBox FrontBins::range_ends(const Box& box, const CellRange& r) const {
-  CellBox out;
-  for (int a = 0; a < 3; ++a) {
-    const double first = origin_[a] + static_cast<double>(r[a][0]) * cell_;
-    const double last = origin_[a] + static_cast<double>(r[a][1]) * cell_;
-    // Half a unit of slack each way covers the rounding of this arithmetic.
-    const double lo = std::floor((box.lo[a] - first) * inverse_cell_ * 255.0 - 0.5);
-    const double hi = std::ceil((box.hi[a] - last) * inverse_cell_ * 255.0 + 0.5);
-    out[a][0] = static_cast<std::uint8_t>(std::clamp(lo, 0.0, 255.0));  // NaN-free: boxes
-    out[a][1] = static_cast<std::uint8_t>(std::clamp(hi, 0.0, 255.0));  // hold finite points
-  }
-  return out;
-}
-
-FrontBins::CellBox FrontBins::cell_box(const CellBox& ends, const CellRange& r, std::int64_t i,
-                                       std::int64_t j, std::int64_t k) {
+std::array<std::uint32_t, 2> FrontBins::cell_words(const CellBox& ends, const CellRange& r,
+                                                   std::int64_t i, std::int64_t j,
+                                                   std::int64_t k) {
   const std::int64_t ijk[3] = {i, j, k};
-  CellBox out;
+  std::uint32_t lo = 0, hi = 0;
   for (int a = 0; a < 3; ++a) {
-    out[a][0] = ijk[a] == r[a][0] ? ends[a][0] : std::uint8_t{0};
-    out[a][1] = ijk[a] == r[a][1] ? ends[a][1] : std::uint8_t{255};
+    const bool first = ijk[a] == r[a][0];
+    const std::uint32_t l = first ? ends[a][0] : 0u;
+    const std::uint32_t h = ijk[a] == r[a][1] ? ends[a][1] : 255u;
+    lo |= l << (9 * a);
+    hi |= (h | 256u) << (9 * a);
+    if (!first) lo |= kStartsBefore << a;
   }
-  return out;
+  return {lo, hi};
 }
 
 void FrontBins::erase_from(std::vector<Index>& cell, Index item) {
@@ -89,11 +61,12 @@ void FrontBins::erase_point(Index p, const Point& x) {
 }
 
 void FrontBins::insert_face(Index f, const Box& box) {
-  const CellRange r = cells_of(box);
-  const CellBox ends = range_ends(box, r);
+  CellRange r;
+  CellBox ends;
+  span_of(box, r, ends);
   for_each_cell(r, [&](std::int64_t c, std::int64_t i, std::int64_t j, std::int64_t k) {
-    const CellBox q = cell_box(ends, r, i, j, k);
-    face_cells_[c].push_back({f, {q[0][0], q[1][0], q[2][0]}, {q[0][1], q[1][1], q[2][1]}});
+    const auto [lo, hi] = cell_words(ends, r, i, j, k);
+    face_cells_[c].push_back({lo, hi, f});
   });
 }
 
@@ -109,32 +82,13 @@ void FrontBins::erase_face(Index f, const Box& box) {
 }
 
 void FrontBins::points_near(const Box& box, std::vector<Index>& out) const {
-  for_each_cell(cells_of(box), [&](std::int64_t c, std::int64_t, std::int64_t, std::int64_t) {
-    out.insert(out.end(), point_cells_[c].begin(), point_cells_[c].end());
-  });
+  for_each_point_near(box, [&](Index p) { out.push_back(p); });
 }
 
 void FrontBins::faces_near(const Box& box, std::vector<Index>& out) const {
-  if (++epoch_ == 0) {  // wrapped: forget every old mark
-    std::fill(mark_.begin(), mark_.end(), 0);
-    epoch_ = 1;
-  }
-  const CellRange r = cells_of(box);
-  const CellBox ends = range_ends(box, r);
-  for_each_cell(r, [&](std::int64_t c, std::int64_t i, std::int64_t j, std::int64_t k) {
-    const std::vector<FaceEntry>& cell = face_cells_[c];
-    if (cell.empty()) return;
-    const CellBox q = cell_box(ends, r, i, j, k);
-    for (const FaceEntry& e : cell) {
-      if (e.lo[0] > q[0][1] || e.hi[0] < q[0][0] || e.lo[1] > q[1][1] || e.hi[1] < q[1][0] ||
-          e.lo[2] > q[2][1] || e.hi[2] < q[2][0])
-        continue;
-      const Index f = e.face;
-      if (mark_.size() <= static_cast<std::size_t>(f)) mark_.resize(f + 1, 0);
-      if (mark_[f] == epoch_) continue;
-      mark_[f] = epoch_;
-      out.push_back(f);
-    }
+  find_face_near(box, [&](Index f) {
+    out.push_back(f);
+    return false;
   });
 }
 

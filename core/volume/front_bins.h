@@ -6,11 +6,15 @@
 // sits in the one cell containing it, a face in every cell its bounding box overlaps, so a box
 // query finds every face whose bounding box meets the query box (never a false negative). Each cell
 // keeps, beside each face id, the part of the face's box inside the cell in 1/255ths of the cell
-// (rounded outward, 6 bytes), so a face query filters by box overlap while it walks the cell's
-// memory in order and returns few faces that miss the box.
+// (rounded outward), so a face query filters by box overlap while it walks the cell's memory in
+// order and returns few faces that miss the box. A query lists a face only in the lowest cell
+// (per axis) shared by the face's and the query's cell ranges, where their boxes' overlap begins,
+// so it lists each face once without marking what it listed.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -38,26 +42,53 @@ class FrontBins {
   void insert_face(Index f, const Box& box);
   void erase_face(Index f, const Box& box);
 
-  // Appends to `out` every point in cells overlapping `box` (a superset of the points inside
+  // Calls fn(p) for every point in cells overlapping `box` (a superset of the points inside
   // `box`; callers test exact containment), each once, in an order fixed by the history of
-  // insertions and removals (deterministic, not sorted).
+  // insertions and removals (deterministic, not sorted). fn must not change the bins.
+  template <typename Fn>
+  void for_each_point_near(const Box& box, Fn&& fn) const {
+    for_each_cell(cells_of(box), [&](std::int64_t c, std::int64_t, std::int64_t, std::int64_t) {
+      for (Index p : point_cells_[c]) fn(p);
+    });
+  }
+  // Appends the points of for_each_point_near to `out`.
   void points_near(const Box& box, std::vector<Index>& out) const;
-  // Appends to `out` every face whose bounding box overlaps `box` (and a few whose box misses it
-  // by less than 1/255 of a cell), each once, in a deterministic order (not sorted).
+  // Calls fn(f) for every face whose bounding box overlaps `box` (and a few whose box misses it
+  // by less than 1/255 of a cell), each once, in a deterministic order (not sorted), until fn
+  // returns true; returns whether it did. fn must not change the bins.
+  template <typename Fn>
+  bool find_face_near(const Box& box, Fn&& fn) const;
+  // Appends to `out` the faces find_face_near visits.
   void faces_near(const Box& box, std::vector<Index>& out) const;
 
   double cell_size() const { return cell_; }
 
  private:
   using CellRange = std::array<std::array<std::int64_t, 2>, 3>;  // [axis][lo, hi] inclusive
-  std::int64_t cell_coord(double x, int axis) const;
-  CellRange cells_of(const Box& box) const;
+  // x along `axis` in cells from the grid's origin (monotone in x).
+  double scaled(double x, int axis) const { return (x - origin_[axis]) * inverse_cell_; }
+  // The cell holding scaled coordinate t: floor(t), clamped into the grid.
+  std::int64_t cell_of_scaled(double t, int axis) const {
+    const double c = std::floor(t);
+    if (!(c > 0)) return 0;  // also catches NaN
+    return std::min(static_cast<std::int64_t>(c), dims_[axis] - 1);
+  }
+  std::int64_t cell_coord(double x, int axis) const { return cell_of_scaled(scaled(x, axis), axis); }
+  CellRange cells_of(const Box& box) const {
+    CellRange r;
+    for (int a = 0; a < 3; ++a) r[a] = {cell_coord(box.lo[a], a), cell_coord(box.hi[a], a)};
+    return r;
+  }
   std::int64_t cell_index(std::int64_t i, std::int64_t j, std::int64_t k) const {
     return (k * dims_[1] + j) * dims_[0] + i;
   }
   // Calls fn(cell index, i, j, k) for each cell of the range.
   template <typename Fn>
-  void for_each_cell(const CellRange& r, Fn&& fn) const;
+  void for_each_cell(const CellRange& r, Fn&& fn) const {
+    for (std::int64_t k = r[2][0]; k <= r[2][1]; ++k)
+      for (std::int64_t j = r[1][0]; j <= r[1][1]; ++j)
+        for (std::int64_t i = r[0][0]; i <= r[0][1]; ++i) fn(cell_index(i, j, k), i, j, k);
+  }
   static void erase_from(std::vector<Index>& cell, Index item);
 
   Point origin_{};
@@ -66,23 +97,81 @@ class FrontBins {
   std::array<std::int64_t, 3> dims_{1, 1, 1};
   std::vector<std::vector<Index>> point_cells_;
   // A face's entry in a cell: its id and the part of its bounding box inside the cell, in units
-  // of 1/255 of the cell from the cell's low corner, rounded outward.
+  // of 1/255 of the cell from the cell's low corner, rounded outward, packed for a branch-free
+  // overlap test: three 9-bit lanes (x, y, z) per word,
+  //   lo: the low ends, and in bits 27..29 whether the face's cell range starts before this cell
+  //       along x, y, z;
+  //   hi: the high ends, each with its lane's top bit (256) set.
+  // Subtracting a lane of one word from that of the other leaves the top bit set exactly when
+  // the difference is >= 0 (see faces_near).
   struct FaceEntry {
+    std::uint32_t lo, hi;
     Index face;
-    std::array<std::uint8_t, 3> lo, hi;
   };
+  static constexpr std::uint32_t kLanes = 0x07FFFFFF;  // the three 9-bit lanes
+  static constexpr std::uint32_t kTops = (1u << 8) | (1u << 17) | (1u << 26);
+  static constexpr std::uint32_t kStartsBefore = 1u << 27;  // shifted by the axis
   using CellBox = std::array<std::array<std::uint8_t, 2>, 3>;  // [axis][lo, hi]
-  // The box's bounds in the first and last cells of its range r along each axis: [a][0] its low
-  // end within cell r[a][0], [a][1] its high end within cell r[a][1].
-  CellBox range_ends(const Box& box, const CellRange& r) const;
-  // The part of the box inside cell (i, j, k) of its range: the ends in the first and last
-  // cells, the whole cell (0..255) between them.
-  static CellBox cell_box(const CellBox& ends, const CellRange& r, std::int64_t i,
-                          std::int64_t j, std::int64_t k);
+  // The box's cell range r and its bounds in the first and last cells of r along each axis:
+  // ends[a][0] its low end within cell r[a][0], ends[a][1] its high end within cell r[a][1], in
+  // 1/255ths of the cell from the scaled coordinate's fraction, rounded outward with half a unit
+  // of slack (monotone in the coordinate, so two boxes that overlap overlap in these units too).
+  void span_of(const Box& box, CellRange& r, CellBox& ends) const {
+    for (int a = 0; a < 3; ++a) {
+      const double t_lo = scaled(box.lo[a], a), t_hi = scaled(box.hi[a], a);
+      r[a] = {cell_of_scaled(t_lo, a), cell_of_scaled(t_hi, a)};
+      const double lo = std::floor((t_lo - static_cast<double>(r[a][0])) * 255.0 - 0.5);
+      const double hi = std::ceil((t_hi - static_cast<double>(r[a][1])) * 255.0 + 0.5);
+      ends[a][0] = static_cast<std::uint8_t>(std::clamp(lo, 0.0, 255.0));  // NaN-free: boxes
+      ends[a][1] = static_cast<std::uint8_t>(std::clamp(hi, 0.0, 255.0));  // hold finite points
+    }
+  }
+  // The part of the box inside cell (i, j, k) of its range, packed as FaceEntry::lo and ::hi (the
+  // ends in the first and last cells, the whole cell 0..255 between them), and the cell's
+  // starts-before bits.
+  static std::array<std::uint32_t, 2> cell_words(const CellBox& ends, const CellRange& r,
+                                                 std::int64_t i, std::int64_t j, std::int64_t k);
   std::vector<std::vector<FaceEntry>> face_cells_;
-  // Query scratch for faces_near: face f was listed in this query when mark_[f] == epoch_.
-  mutable std::vector<std::uint32_t> mark_;
-  mutable std::uint32_t epoch_ = 0;
 };
+
+// A face's entry passes in cell (i, j, k) of the query's range when, on each axis, the query's
+// part of the cell (q) and the face's (e) overlap: q.hi - e.lo >= 0 and e.hi - q.lo >= 0, read
+// from the lanes' top bits; and the cell is the lowest of both ranges: no axis along which both
+// the face's range and the query's start before this cell. The entries of a cell are filtered
+// branch-free into a buffer (every entry is written, the count advances by the test's outcome)
+// before fn sees them.
+template <typename Fn>
+bool FrontBins::find_face_near(const Box& box, Fn&& fn) const {
+  CellRange r;
+  CellBox ends;
+  span_of(box, r, ends);
+  constexpr std::size_t kChunk = 64;
+  Index passed[kChunk];
+  for (std::int64_t k = r[2][0]; k <= r[2][1]; ++k) {
+    for (std::int64_t j = r[1][0]; j <= r[1][1]; ++j) {
+      for (std::int64_t i = r[0][0]; i <= r[0][1]; ++i) {
+        const std::vector<FaceEntry>& cell = face_cells_[cell_index(i, j, k)];
+        if (cell.empty()) continue;
+        const auto [q_lo, q_hi] = cell_words(ends, r, i, j, k);
+        const std::uint32_t query_before = q_lo & ~kLanes;  // axes where the query starts before
+        const std::uint32_t q_low_ends = q_lo & kLanes;
+        for (std::size_t start = 0; start < cell.size(); start += kChunk) {
+          const std::size_t end = std::min(cell.size(), start + kChunk);
+          std::size_t n = 0;
+          for (std::size_t e = start; e < end; ++e) {
+            const FaceEntry& entry = cell[e];
+            const std::uint32_t overlap =
+                (q_hi - (entry.lo & kLanes)) & (entry.hi - q_low_ends) & kTops;
+            passed[n] = entry.face;
+            n += (overlap | (entry.lo & query_before)) == kTops;
+          }
+          for (std::size_t m = 0; m < n; ++m)
+            if (fn(passed[m])) return true;
+        }
+      }
+    }
+  }
+  return false;
+}
 
 }  // namespace afmesh

@@ -57,11 +57,14 @@ struct MesherState {
   Front front;
 
   // Scratch buffers reused for every face: no allocation per element in the loop.
-  std::vector<Index> near_points;
   std::vector<Index> near_faces;
   std::vector<Candidate> candidates;
   std::vector<Index> cavity;
   std::vector<Index> tets_around;  // element_crosses_front's look at the tets on a point
+  // Per point, where it lies against the faces of the element being checked (F7.3): the code in
+  // the low 8 bits, valid when the high 24 bits equal side_epoch.
+  std::vector<std::uint32_t> side_codes;
+  std::uint32_t side_epoch = 0;
 };
 
 }  // namespace afmesh::volume

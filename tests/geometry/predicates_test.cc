@@ -241,6 +241,57 @@ TEST(Orient3d, ExactForTinyHugeAndMixedMagnitudes) {
             -1);
 }
 
+// Orient3dPlane must be orient3d itself, only cheaper: same sign on random, exactly coplanar,
+// one-ulp-off and tiny/huge configurations (where its own filter cannot decide).
+TEST(Orient3dPlane, EqualsOrient3dOnNearDegenerateInputsOfAllScales) {
+  std::mt19937_64 rng(18);
+  std::uniform_real_distribution<double> weight(-3.0, 3.0);
+  std::uniform_int_distribution<int> exponent(-200, 200);
+  int naive_wrong = 0;  // cases the double determinant gets wrong: the exact path decides
+  for (int trial = 0; trial < 30000; ++trial) {
+    const double scale = std::ldexp(1.0, exponent(rng));
+    const Point a = random_point(rng, -scale, scale), b = random_point(rng, -scale, scale);
+    const Point c = random_point(rng, -scale, scale);
+    const Orient3dPlane plane(a, b, c);
+    for (int k = 0; k < 4; ++k) {
+      Point d = k == 0 ? random_point(rng, -scale, scale)
+                       : near_plane_point(a, b, c, weight(rng), weight(rng));
+      if (k == 2) d[trial % 3] = std::nextafter(d[trial % 3], 0.0);
+      const int expected = orient3d(a, b, c, d);
+      naive_wrong += naive_orient3d(a, b, c, d) != expected;
+      ASSERT_EQ(plane.side(d), expected) << "trial " << trial << " point " << k;
+    }
+  }
+  EXPECT_GT(naive_wrong, 100);
+}
+
+TEST(Orient3dPlane, MatchesInt128ReferenceOnNearCoplanarAndScaledIntegerPoints) {
+  std::mt19937_64 rng(19);
+  std::uniform_int_distribution<std::int64_t> weight(-2, 2);
+  std::uniform_int_distribution<int> offset(-1, 1);
+  for (int trial = 0; trial < 20000; ++trial) {
+    const std::int64_t bound = std::int64_t(1) << (trial % 2 == 0 ? 36 : 9);
+    const IntPoint a = random_int_point(rng, bound), b = random_int_point(rng, bound);
+    const IntPoint c = random_int_point(rng, bound);
+    const std::int64_t alpha = weight(rng), beta = weight(rng);
+    IntPoint d;
+    for (int k = 0; k < 3; ++k) d[k] = a[k] + alpha * (b[k] - a[k]) + beta * (c[k] - a[k]);
+    d[trial % 3] += offset(rng);
+    const int expected = orient3d_reference(a, b, c, d);
+    const double scale = trial % 2 == 0 ? 1.0 : (trial % 4 == 1 ? 0x1p-1064 : 0x1p1000);
+    const Orient3dPlane plane(to_point(a, scale), to_point(b, scale), to_point(c, scale));
+    ASSERT_EQ(plane.side(to_point(d, scale)), expected) << "trial " << trial;
+  }
+  // The ulp grid of NaiveDeterminantFailsOnUlpGridWhereExactIsRight.
+  const Orient3dPlane plane(Point{0.25, 0.25, 0.25}, Point{3.25, 5.25, 7.25},
+                            Point{9.25, 11.25, 13.25});
+  for (int i = 0; i < 16; ++i)
+    for (int j = 0; j < 16; ++j)
+      for (int k = 0; k < 16; ++k)
+        ASSERT_EQ(plane.side(Point{0.5 + i * kUnit, 0.5 + j * kUnit, 0.5 + k * kUnit}),
+                  testing::sign_of(Int128(-12 * i + 24 * j - 12 * k)));
+}
+
 // ----- orient2d and relatives ------------------------------------------------------------------
 
 TEST(Orient2d, CounterClockwiseIsPositive) {

@@ -74,6 +74,38 @@ TEST(FrontBins, FaceQueriesFindEveryOverlappingFace) {
   }
 }
 
+// Faces and queries reaching past the bins' domain (clamped into the border cells), spanning
+// many cells or lying in one: each overlapping face is listed exactly once.
+TEST(FrontBins, FaceQueriesListEachFaceOnceAlsoPastTheDomain) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(-2.0, 6.0), s(0.0, 3.0);
+  std::vector<Box> boxes(600);
+  FrontBins bins(Box{{0, 0, 0}, {4, 4, 4}}, 0.5);
+  for (Index i = 0; i < 600; ++i) {
+    const Point lo{u(rng), u(rng), u(rng)};
+    boxes[i] = Box{lo, {lo[0] + s(rng), lo[1] + s(rng), lo[2] + s(rng)}};
+    bins.insert_face(i, boxes[i]);
+  }
+  for (Index i = 0; i < 600; i += 3) bins.erase_face(i, boxes[i]);
+  for (int q = 0; q < 200; ++q) {
+    const Point lo{u(rng), u(rng), u(rng)};
+    const double e = q % 2 == 0 ? 0.1 : 2.5;
+    const Box box{lo, {lo[0] + e, lo[1] + e, lo[2] + e}};
+    std::vector<Index> found;
+    bins.faces_near(box, found);
+    std::sort(found.begin(), found.end());
+    EXPECT_EQ(std::adjacent_find(found.begin(), found.end()), found.end());
+    for (Index i = 0; i < 600; ++i) {
+      const bool listed = std::binary_search(found.begin(), found.end(), i);
+      if (i % 3 == 0) {
+        EXPECT_FALSE(listed) << "erased face " << i;
+      } else if (boxes_overlap(box, boxes[i])) {
+        EXPECT_TRUE(listed) << "face " << i;
+      }
+    }
+  }
+}
+
 TEST(Front, LookupFindsFacesByOrientation) {
   std::vector<Point> pts = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   Front front(pts, Box{{0, 0, 0}, {1, 1, 1}}, 0.5);
@@ -93,6 +125,45 @@ TEST(Front, LookupFindsFacesByOrientation) {
   EXPECT_EQ(front.find(1, 0, 2), g);
   front.remove(g);
   EXPECT_EQ(front.size(), 0);
+}
+
+// Faces sharing points (a fan around point 0 and faces off it), added and removed in a mixed
+// order, in both orientations: find answers from the points' face lists exactly as a set of
+// oriented triangles would.
+TEST(Front, LookupFollowsAddsAndRemovesOfFacesSharingPoints) {
+  std::vector<Point> pts(12);
+  for (int i = 0; i < 12; ++i) pts[i] = {std::cos(i * 0.5), std::sin(i * 0.5), 0.1 * i};
+  Front front(pts, Box{{-1, -1, 0}, {1, 1, 1.2}}, 0.3);
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<Index> vertex(0, 11);
+  std::vector<std::pair<Triangle, Index>> live;
+  for (int step = 0; step < 3000; ++step) {
+    Triangle t{step % 3 == 0 ? 0 : vertex(rng), vertex(rng), vertex(rng)};
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+    const auto found = front.find(t[2], t[0], t[1]);
+    auto it = std::find_if(live.begin(), live.end(), [&](const auto& e) {
+      const Triangle& a = e.first;  // the same oriented triangle: a rotation of t
+      for (int r = 0; r < 3; ++r) {
+        if (a[r] == t[0] && a[(r + 1) % 3] == t[1] && a[(r + 2) % 3] == t[2]) return true;
+      }
+      return false;
+    });
+    ASSERT_EQ(found.has_value(), it != live.end()) << "step " << step;
+    if (found) {
+      ASSERT_EQ(*found, it->second);
+      front.remove(*found);
+      live.erase(it);
+    } else {
+      live.push_back({t, front.add(t, 1.0)});
+    }
+    for (Index p = 0; p < 12; ++p) {
+      const bool used = std::any_of(live.begin(), live.end(), [&](const auto& e) {
+        return e.first[0] == p || e.first[1] == p || e.first[2] == p;
+      });
+      ASSERT_EQ(front.on_front(p), used) << "step " << step << " point " << p;
+    }
+  }
+  EXPECT_EQ(front.size(), static_cast<std::int64_t>(live.size()));
 }
 
 TEST(Front, QueuePopsSmallestFirstAndDeferredLast) {
