@@ -106,6 +106,13 @@ double element_size_for_face(const MesherState& s, const Triangle& v) {
   return std::clamp(target_size_for_face(s, v), 0.55 * edge, 1.6 * edge);
 }
 
+double queue_size_for_face(const MesherState& s, const Triangle& v) {
+  const double target = target_size_for_face(s, v);
+  const double edge = mean_edge(s.points[v[0]], s.points[v[1]], s.points[v[2]]);
+  const double d = std::clamp(target, 0.55 * edge, 1.6 * edge);
+  return d <= target ? d : target * target / d;
+}
+
 Point ideal_point(const MesherState& s, const Triangle& v, double d) {
   const Point& a = s.points[v[0]];
   const Point& b = s.points[v[1]];

@@ -75,7 +75,7 @@ absl::Status load_initial_front(MesherState& s, const Mesh& input,
   for (std::size_t t = 0; t < input.triangles.size(); ++t) {
     const Triangle& u = input.triangles[t];
     const Triangle inward{u[0], u[2], u[1]};
-    s.front.add(inward, volume::element_size_for_face(s, inward),
+    s.front.add(inward, volume::queue_size_for_face(s, inward),
                 face_env.empty() ? 0 : face_env[t]);
   }
   return absl::OkStatus();
@@ -156,7 +156,7 @@ absl::Status back_off(MesherState& s, Index face, RepairCounts& repairs) {
   const std::uint32_t stamp = s.front.face(face).stamp;
   if (volume::fill_pocket(s, face, kMaxPocketFaces) > 0) {
     const FrontFace& f = s.front.face(face);
-    if (f.alive && f.stamp == stamp) s.front.requeue(face, volume::element_size_for_face(s, v));
+    if (f.alive && f.stamp == stamp) s.front.requeue(face, volume::queue_size_for_face(s, v));
     return absl::OkStatus();
   }
   const Point centroid =
@@ -173,7 +173,7 @@ absl::Status back_off(MesherState& s, Index face, RepairCounts& repairs) {
   ++count;
   volume::open_cavity(s, face, rings);
   const FrontFace& f = s.front.face(face);
-  if (f.alive && f.stamp == stamp) s.front.requeue(face, volume::element_size_for_face(s, v));
+  if (f.alive && f.stamp == stamp) s.front.requeue(face, volume::queue_size_for_face(s, v));
   return absl::OkStatus();
 }
 
@@ -271,7 +271,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
     if (delete_face(s, *face)) continue;
     const FrontFace& f = s.front.face(*face);
     if (f.attempts + 1 < kAttemptsBeforeBackOff) {
-      s.front.defer(*face, volume::element_size_for_face(s, f.v));
+      s.front.defer(*face, volume::queue_size_for_face(s, f.v));
       continue;
     }
     if (absl::Status st = back_off(s, *face, repairs); !st.ok()) return st;

@@ -1,0 +1,39 @@
+// A target size well below the input surface's edge lengths (paper §1, F5/F9 with eq. 15): the
+// front must shrink its elements from the coarse boundary down to the size wanted inside and
+// still close, also along the solid's edges, where two boundary faces meet at 90°.
+#include <string>
+
+#include "core/io/mesh_io.h"
+#include "core/quality/validate.h"
+#include "core/shapes/shapes.h"
+#include "core/volume/generate_volume_mesh.h"
+#include "gtest/gtest.h"
+
+namespace afmesh {
+namespace {
+
+void expect_valid_volume_mesh(const Mesh& surface, double size) {
+  VolumeParams params;
+  params.size = size;
+  absl::StatusOr<VolumeResult> result = generate_volume_mesh(surface, params, no_progress());
+  ASSERT_TRUE(result.ok()) << "size " << size << ": " << result.status();
+  const ValidationReport report = validate_volume_mesh(result->mesh, &surface);
+  EXPECT_TRUE(report.valid()) << "size " << size << ": " << report.to_string();
+}
+
+// The shipped cube (unstructured triangles with edges 0.12–0.20) at about 0.4 × its edges.
+TEST(CoarseSurface, CubeExampleMeshesAtSizeWellBelowItsEdges) {
+  absl::StatusOr<Mesh> cube = read_mesh(std::string(AFMESH_SOURCE_DIR) + "/examples/cube/cube.msh");
+  ASSERT_TRUE(cube.ok()) << cube.status();
+  cube->tets.clear();
+  cube->tet_tags.clear();
+  expect_valid_volume_mesh(*cube, 0.07);
+}
+
+// A structured box surface with edges 0.25 (right triangles) at 0.4 × its edges.
+TEST(CoarseSurface, BoxMeshesAtSizeWellBelowItsEdges) {
+  expect_valid_volume_mesh(box_surface({0, 0, 0}, {1, 1, 1}, 0.25), 0.1);
+}
+
+}  // namespace
+}  // namespace afmesh
