@@ -84,9 +84,7 @@ bool side_is_a_meshed_face(MesherState& s, const Triangle (&sides)[3], Index p) 
     around.clear();
     s.incidence.tets_of(s.tets, p, around);
     for (const Index t : around) {
-      const Tet& k = s.tets[t];
-      const auto has = [&](Index q) { return k[0] == q || k[1] == q || k[2] == q || k[3] == q; };
-      if (has(side[0]) && has(side[1])) return true;
+      if (is_corner(s.tets[t], side[0]) && is_corner(s.tets[t], side[1])) return true;
     }
   }
   return false;
