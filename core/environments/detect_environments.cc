@@ -43,7 +43,10 @@ struct ThinPair {
 // result depends only on which unions happen, not on their order.
 class SmallestIdSets {
  public:
-  explicit SmallestIdSets(std::size_t n) : parent_(n) {
+  explicit SmallestIdSets(std::size_t n) { reset(n); }
+  // n singletons again (the storage is kept).
+  void reset(std::size_t n) {
+    parent_.resize(n);
     for (std::size_t i = 0; i < n; ++i) parent_[i] = static_cast<Index>(i);
   }
   Index find(Index i) {
@@ -215,12 +218,8 @@ std::vector<Index> group_sides(const Mesh& front, const FaceFrames& frames,
   const double fold_cosine = std::cos(fold_angle_deg * std::numbers::pi / 180.0);
   SmallestIdSets sides(face_count);
   std::vector<std::pair<Index, Index>> spokes;  // (other end of an edge through p, fan slot)
-  std::vector<Index> fan_parent;                // union-find over the fan's slots
+  SmallestIdSets fan(0);                        // the parts of the fan, over its slots
   std::vector<Index> part_face;
-  const auto fan_root = [&](Index i) {
-    while (fan_parent[i] != i) i = fan_parent[i] = fan_parent[fan_parent[i]];
-    return i;
-  };
   for (std::size_t p = 0; p < front.points.size(); ++p) {
     const Index first = start[p], count = start[p + 1] - first;
     if (count < 2) continue;
@@ -231,14 +230,13 @@ std::vector<Index> group_sides(const Mesh& front, const FaceFrames& frames,
       }
     }
     std::sort(spokes.begin(), spokes.end());
-    fan_parent.resize(count);
-    for (Index i = 0; i < count; ++i) fan_parent[i] = i;
+    fan.reset(count);
     for (std::size_t k = 0; k < spokes.size(); ++k) {  // faces on one edge (p, q)
       for (std::size_t l = k + 1; l < spokes.size() && spokes[l].first == spokes[k].first; ++l) {
         const Index f = faces_at[first + spokes[k].second];
         const Index g = faces_at[first + spokes[l].second];
         if (dot(frames.normal[f], frames.normal[g]) >= fold_cosine) {
-          fan_parent[fan_root(spokes[k].second)] = fan_root(spokes[l].second);
+          fan.unite(spokes[k].second, spokes[l].second);
         }
       }
     }
@@ -246,7 +244,7 @@ std::vector<Index> group_sides(const Mesh& front, const FaceFrames& frames,
     for (Index i = 0; i < count; ++i) {
       const Index f = faces_at[first + i];
       if (!marked[f]) continue;
-      Index& seen = part_face[fan_root(i)];
+      Index& seen = part_face[fan.find(i)];
       if (seen == kInvalidIndex) {
         seen = f;
       } else {
