@@ -18,6 +18,7 @@
 #include "absl/strings/str_format.h"
 #include "afmesh/v1/mesher.grpc.pb.h"
 #include "grpcpp/grpcpp.h"
+#include "core/volume/repair_front.h"
 #include "server/volume_environments.h"
 #include "server/volume_output.h"
 
@@ -224,13 +225,19 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
   }
 
   // On a worker thread: the crossing environments when asked for (paper §2), then the job.
-  void run_job(const Mesh& front, VolumeParams& params, v1::EnvironmentMode mode,
+  void run_job(Mesh& front, VolumeParams& params, v1::EnvironmentMode mode,
                Clock::time_point queued_at) {
     std::vector<StageTiming> timings = {{"receive", receive_seconds_},
                                         {"queue", seconds_since(queued_at)}};
     std::vector<std::string> notes;
     absl::StatusOr<VolumeJobOutput> output = stop_status_absl();
+    FrontRepairReport repair;
     if (!stop_requested()) {
+      // F1 for fronts as files bring them: what can be repaired without guessing is, and said.
+      const Clock::time_point repair_start = Clock::now();
+      repair = repair_front(front);
+      timings.push_back({"repair", seconds_since(repair_start)});
+      for (std::string& note : repair.notes()) notes.push_back(std::move(note));
       const Clock::time_point start = Clock::now();
       const absl::Status status = run_environments_guarded(mode, front, params, notes);
       if (mode != v1::ENVIRONMENT_MODE_NONE) {
@@ -245,6 +252,7 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
     }
     if (output.ok()) {
       output->warnings.insert(output->warnings.begin(), notes.begin(), notes.end());
+      output->repair = repair;
     }
     complete_job(std::move(output), std::move(timings));
   }

@@ -13,6 +13,7 @@
 #include "core/common/progress.h"
 #include "core/mesh/mesh.h"
 #include "core/volume/generate_volume_mesh.h"
+#include "core/volume/repair_front.h"
 
 namespace afmesh::server {
 
@@ -41,6 +42,8 @@ struct VolumeJobOutput {
   VolumeValidation validation;
   // Notes for the user that did not stop the mesh; streamed as Warning messages.
   std::vector<std::string> warnings;
+  // What the service repaired in the front before meshing it (set by the service, not the job).
+  FrontRepairReport repair;
 };
 
 // Meshes `front` (N points, M triangles with tags; already checked by the service for finite

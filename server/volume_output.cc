@@ -155,6 +155,13 @@ void VolumeOutputStream::fill_summary(v1::Summary& summary) const {
     validation.add_messages(message);
   }
 
+  const FrontRepairReport& repair = output_.repair;
+  v1::FrontRepair& repaired = *summary.mutable_repair();
+  repaired.set_triangles_dropped(static_cast<std::uint64_t>(repair.triangles_dropped));
+  repaired.set_triangles_reoriented(static_cast<std::uint64_t>(repair.triangles_reoriented));
+  repaired.set_components(static_cast<std::uint64_t>(repair.components));
+  repaired.set_cavities(static_cast<std::uint64_t>(repair.cavities));
+
   auto add_timing = [&summary](const std::string& stage, double seconds) {
     v1::StageTiming& timing = *summary.add_timings();
     timing.set_stage(stage);

@@ -305,4 +305,36 @@ TriangleTopology analyze_triangle_topology(const std::vector<Triangle>& triangle
   return topology;
 }
 
+EdgeNeighbours triangle_edge_neighbours(const std::vector<Triangle>& triangles) {
+  EdgeNeighbours result;
+  result.across.assign(triangles.size(), {kInvalidIndex, kInvalidIndex, kInvalidIndex});
+  result.same_way.assign(triangles.size(), {false, false, false});
+  const std::vector<HalfEdge> half_edges = sorted_half_edges(triangles);
+  const auto edge_slot = [&](Index t, Index a, Index b) {
+    const Triangle& v = triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      const Index from = v[k], to = v[(k + 1) % 3];
+      if (std::min(from, to) == a && std::max(from, to) == b) return k;
+    }
+    return 0;  // not reached: the half-edge came from this triangle
+  };
+  for (std::size_t first = 0; first < half_edges.size();) {
+    std::size_t last = first + 1;
+    while (last < half_edges.size() && half_edges[last].a == half_edges[first].a &&
+           half_edges[last].b == half_edges[first].b) {
+      ++last;
+    }
+    if (last - first == 2) {
+      const HalfEdge& x = half_edges[first];
+      const HalfEdge& y = half_edges[first + 1];
+      const int kx = edge_slot(x.triangle, x.a, x.b), ky = edge_slot(y.triangle, y.a, y.b);
+      result.across[x.triangle][kx] = y.triangle;
+      result.across[y.triangle][ky] = x.triangle;
+      result.same_way[x.triangle][kx] = result.same_way[y.triangle][ky] = x.forward == y.forward;
+    }
+    first = last;
+  }
+  return result;
+}
+
 }  // namespace afmesh

@@ -105,4 +105,15 @@ struct TriangleTopology {
 // A manifold vertex has one fan. Results are ascending by edge (a, b) and by vertex.
 TriangleTopology analyze_triangle_topology(const std::vector<Triangle>& triangles);
 
+// The triangles across the edges of `triangles` (M×3, distinct indices in each): across[t][k] is
+// the other triangle on edge (triangles[t][k], triangles[t][(k + 1) % 3]) when exactly two
+// triangles use that edge, else kInvalidIndex (an open or non-manifold edge); same_way[t][k] is
+// true when that triangle traverses the edge in the same direction as t (the two disagree in
+// orientation). O(M log M).
+struct EdgeNeighbours {
+  std::vector<std::array<Index, 3>> across;  // M×3
+  std::vector<std::array<bool, 3>> same_way;  // M×3
+};
+EdgeNeighbours triangle_edge_neighbours(const std::vector<Triangle>& triangles);
+
 }  // namespace afmesh

@@ -13,6 +13,8 @@
 #include <thread>
 
 #include "core/io/mesh_io.h"
+#include "core/quality/validate.h"
+#include "core/shapes/shapes.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 
@@ -124,6 +126,45 @@ TEST_F(CliVolumeTest, OpenFrontExitsWithBadInputNamingTheProblem) {
   EXPECT_THAT(stderr_text(), HasSubstr("edge"));
   EXPECT_FALSE(fs::exists(dir_ / "v.msh"));
   EXPECT_TRUE(private_folders_removed());
+}
+
+// Regression for issue 10 (a gmsh-written STL of a sphere with a cavity was refused for a few
+// flipped facets): a sphere with a box cavity whose cavity faces the same way as the outer wall
+// and five of whose outer facets are flipped meshes valid, with warnings that count the changes,
+// and the written boundary is the repaired (consistently oriented, outward) front.
+TEST_F(CliVolumeTest, FlippedFacetsAndAnOutwardCavityAreRepairedWithAWarning) {
+  Mesh front = sphere_surface({0, 0, 0}, 1.0, 0.3);
+  const std::size_t outer = front.triangles.size();
+  const Mesh cavity = box_surface({-0.3, -0.3, -0.3}, {0.3, 0.3, 0.3}, 0.2);
+  const Index offset = static_cast<Index>(front.points.size());
+  front.points.insert(front.points.end(), cavity.points.begin(), cavity.points.end());
+  for (Triangle t : cavity.triangles) {
+    for (Index& p : t) p += offset;
+    front.triangles.push_back(t);  // facing out of the cavity: wrong for a cavity
+  }
+  front.triangle_tags.assign(front.triangles.size(), 0);
+  for (std::size_t t : {0, 3, 17, 30, 31}) std::swap(front.triangles[t][1], front.triangles[t][2]);
+  ASSERT_TRUE(write_mesh(front, (dir_ / "cavity.mesh").string()).ok());
+
+  const fs::path out = dir_ / "cavity.msh";
+  ASSERT_EQ(run_volume(quoted(dir_ / "cavity.mesh") + " -o " + quoted(out) +
+                       " --size 0.3 --json"),
+            0)
+      << stderr_text();
+  EXPECT_THAT(stderr_text(), HasSubstr("re-oriented " +
+                                       std::to_string(5 + cavity.triangles.size()) +
+                                       " triangle(s)"));
+  EXPECT_THAT(stdout_text(), HasSubstr("\"trianglesReoriented\": \"" +
+                                       std::to_string(5 + cavity.triangles.size()) + "\""));
+  EXPECT_THAT(stdout_text(), HasSubstr("\"cavities\": \"1\""));
+  EXPECT_THAT(stdout_text(), HasSubstr("\"passed\": true"));
+  absl::StatusOr<Mesh> mesh = read_mesh(out.string());
+  ASSERT_TRUE(mesh.ok()) << mesh.status();
+  ASSERT_EQ(mesh->triangles.size(), front.triangles.size());
+  Mesh boundary{mesh->points, mesh->triangles, mesh->triangle_tags, {}, {}};
+  EXPECT_TRUE(validate_surface(boundary).valid()) << validate_surface(boundary).to_string();
+  EXPECT_TRUE(validate_volume_mesh(*mesh, &boundary).valid());
+  EXPECT_GT(outer, 0u);
 }
 
 TEST_F(CliVolumeTest, MissingInputFileExitsWithBadInput) {

@@ -373,7 +373,10 @@ TEST_F(MesherServiceTest, SummaryComesLastWithCountsQualityAndTimings) {
     stages.push_back(timing.stage());
     EXPECT_GE(timing.seconds(), 0.0);
   }
-  EXPECT_THAT(stages, ::testing::ElementsAre("receive", "queue", "front", "compact", "send"));
+  EXPECT_THAT(stages,
+              ::testing::ElementsAre("receive", "queue", "repair", "front", "compact", "send"));
+  EXPECT_EQ(summary.repair().triangles_reoriented(), 0u);
+  EXPECT_EQ(summary.repair().components(), 1u);
 }
 
 TEST_F(MesherServiceTest, EventsPrecedeMeshSlicesInPointTriangleTetOrder) {
