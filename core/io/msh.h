@@ -24,10 +24,15 @@
 //    (binary): wrong counts, unknown node tags, non-finite coordinates, truncation, garbage.
 //
 // Writing (MSH 4.1 ascii, readable by gmsh and meshio)
-//  - One surface entity per distinct triangle tag and one volume entity per distinct tet tag;
-//    an entity whose tag is nonzero carries that physical tag, tag 0 gets no physical group.
-//    Tags must be >= 0 (gmsh physical tags are positive). gmsh reads files that mix tagged and
-//    untagged elements; meshio 5 does not (its gmsh:physical list loses step with the blocks).
+//  - One surface entity per distinct triangle tag and one volume entity per distinct tet tag,
+//    numbered 1, 2, ... in increasing tag order. Every such entity carries exactly one physical
+//    tag, the tag of its elements, and untagged elements (tag 0) carry physical tag 0: gmsh
+//    reads them as physical group 0 (and keeps them when it saves the mesh), meshio as
+//    gmsh:physical 0, this reader as tag 0. Tags must be >= 0. (An entity without a physical
+//    tag next to tagged ones would make meshio 5 refuse the file: it keeps gmsh:physical only
+//    for blocks that have one, and the arrays lose step with the blocks.) A mesh of points
+//    only gets one empty surface entity with no physical tag; meshio 5 cannot read a file
+//    with no node at all, whatever it holds.
 //  - All nodes in one block (tags 1..N in point order, coordinates as shortest round-trip
 //    doubles); element tags 1..M for triangles in order, then M+1..M+K for tets.
 //  - write_msh_sized_grid appends one $NodeData view "size" (time 0, step 0, one component,

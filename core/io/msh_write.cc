@@ -1,5 +1,5 @@
-// write_msh: MSH 4.1 ascii with one entity per (dimension, tag); write_msh_sized_grid adds a
-// $NodeData view of sizes.
+// write_msh: MSH 4.1 ascii with one entity per (dimension, tag), each carrying exactly one
+// physical tag (0 for untagged, see msh.h); write_msh_sized_grid adds a $NodeData view of sizes.
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -68,6 +68,11 @@ absl::Status check_tags_not_negative(const std::vector<Index>& tags, std::string
   return absl::OkStatus();
 }
 
+// Every entity lists exactly one physical tag, its element tag, 0 included: meshio 5 keeps one
+// gmsh:physical array per element block only for blocks whose entity has a physical tag, so a
+// single entity without one leaves its arrays out of step with the blocks and meshio refuses
+// the file ("Incompatible cell data 'gmsh:physical'"). Physical 0 is what MSH 2 and meshio
+// use for "no physical group", and gmsh keeps such elements when it saves the mesh again.
 void write_entity_lines(const EntityPlan& plan, OutputBuffer& out) {
   for (std::size_t e = 0; e < plan.tags.size(); ++e) {
     out.put_int(static_cast<std::int64_t>(e + 1));
@@ -75,8 +80,8 @@ void write_entity_lines(const EntityPlan& plan, OutputBuffer& out) {
       out.put(' ');
       out.put_double(bound);
     }
-    out.put(plan.tags[e] == 0 ? " 0" : " 1 ");
-    if (plan.tags[e] != 0) out.put_int(plan.tags[e]);
+    out.put(" 1 ");
+    out.put_int(plan.tags[e]);
     out.put(" 0\n");  // no bounding entities
   }
 }

@@ -3,19 +3,18 @@
 
 Usage: meshio_check.py MESH_FILE EXPECTED_JSON
 
-EXPECTED_JSON holds the mesh afmesh wrote:
-  {"points": [[x, y, z], ...], "triangles": [[a, b, c], ...], "triangle_tags": [...],
-   "tets": [[a, b, c, d], ...], "tet_tags": [...],
+EXPECTED_JSON is the JSON of check_common.py with two more keys:
    "tag_key": "gmsh:physical" | "medit:ref" | "tag" | null,   # meshio cell-data name, if any
-   "match_points_by": "index" | "coordinates"}                # STL: meshio renumbers points
+   "match_points_by": "index" | "coordinates"                 # STL: meshio renumbers points
 Points must agree to 1e-12 relative (the count of bit-exact ones is printed); elements are
-compared as multisets of (corners, tag) since formats may group elements by tag.
+compared as multisets of (corners, tag) since formats may group elements by tag. meshio
+refusing the file (e.g. cell data out of step with its cell blocks) is a difference.
 Exit status: 0 when meshio reads the same mesh, 1 when it differs, 2 on usage errors,
 3 when meshio is not installed.
 """
-import collections
-import json
 import sys
+
+from check_common import element_problems, empty_elements, finish, load_expected
 
 try:
     import meshio
@@ -28,8 +27,8 @@ CELL_TYPES = {"triangle": "triangles", "tetra": "tets"}
 
 
 def read_cells(mesh, tag_key):
-    """Elements of each kind as lists of (corner tuple, tag or None)."""
-    cells = {"triangles": [], "tets": []}
+    """Elements of each kind as Counters of (corner tuple, tag or None), meshio's numbering."""
+    cells = empty_elements()
     for block_index, block in enumerate(mesh.cells):
         if block.type not in CELL_TYPES:
             raise ValueError(f"unexpected cell type {block.type!r} ({len(block.data)} cells)")
@@ -39,7 +38,7 @@ def read_cells(mesh, tag_key):
                 raise ValueError(f"no cell data {tag_key!r}; meshio has {list(mesh.cell_data)}")
             tags = [int(t) for t in mesh.cell_data[tag_key][block_index]]
         for corners, tag in zip(block.data, tags):
-            cells[CELL_TYPES[block.type]].append((tuple(int(c) for c in corners), tag))
+            cells[CELL_TYPES[block.type]][(tuple(int(c) for c in corners), tag)] += 1
     return cells
 
 
@@ -72,17 +71,13 @@ def compare_points(actual, expected, mapping):
     return problems
 
 
-def compare_elements(kind, actual, expected, tags, mapping, with_tags):
-    want = collections.Counter(
-        (tuple(e), t if with_tags else None) for e, t in zip(expected, tags))
-    have = collections.Counter(
-        (tuple(mapping[c] for c in corners), tag) for corners, tag in actual)
-    if want == have:
-        return []
-    missing = list((want - have).elements())[:5]
-    extra = list((have - want).elements())[:5]
-    return [f"{kind}: {len(actual)} read, {len(expected)} expected; "
-            f"missing {missing}, unexpected {extra}"]
+def renumbered(cells, mapping):
+    """`cells` with meshio's point indices replaced by the expected ones."""
+    result = empty_elements()
+    for kind, counter in cells.items():
+        for (corners, tag), count in counter.items():
+            result[kind][(tuple(mapping[c] for c in corners), tag)] += count
+    return result
 
 
 def main():
@@ -90,9 +85,12 @@ def main():
         print(__doc__)
         return 2
     mesh_file, expected_file = sys.argv[1], sys.argv[2]
-    with open(expected_file) as f:
-        expected = json.load(f)
-    mesh = meshio.read(mesh_file)
+    expected = load_expected(expected_file)
+    try:
+        mesh = meshio.read(mesh_file)
+    except Exception as error:  # meshio raises ValueError, ReadError, KeyError, ...
+        return finish("meshio_check", "meshio", mesh_file,
+                      [f"meshio cannot read it: {type(error).__name__}: {error}"])
     points = np.asarray(mesh.points, dtype=float)
     problems = []
     if points.shape != (len(expected["points"]), 3):
@@ -107,14 +105,9 @@ def main():
             problems.append(str(error))
         else:
             problems += compare_points(points.tolist(), expected["points"], mapping)
-            for kind, tag_name in (("triangles", "triangle_tags"), ("tets", "tet_tags")):
-                problems += compare_elements(kind, cells[kind], expected[kind],
-                                             expected[tag_name], mapping, tag_key is not None)
-    for problem in problems:
-        print(f"meshio_check: {mesh_file}: {problem}")
-    if not problems:
-        print(f"meshio_check: {mesh_file}: meshio reads the expected mesh")
-    return 1 if problems else 0
+            problems += element_problems(renumbered(cells, mapping), expected,
+                                         with_tags=tag_key is not None)
+    return finish("meshio_check", "meshio", mesh_file, problems)
 
 
 if __name__ == "__main__":

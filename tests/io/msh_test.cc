@@ -3,7 +3,9 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <vector>
 
+#include "absl/strings/str_split.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "tests/io/io_test_support.h"
@@ -15,6 +17,8 @@ using io_test::expect_same_mesh;
 using io_test::tagged_box;
 using io_test::written;
 using ::testing::Contains;
+using ::testing::ElementsAre;
+using ::testing::EndsWith;
 using ::testing::HasSubstr;
 
 std::string msh_text(const Mesh& mesh) {
@@ -30,13 +34,27 @@ TEST(Msh, RoundTripIsBitExactAndKeepsElementOrder) {
   expect_same_mesh(*read, mesh);
 }
 
-TEST(Msh, TagZeroElementsRoundTripWithoutPhysicalGroup) {
+// The lines of the $Entities section after its counts line.
+std::vector<std::string> entity_lines(const std::string& text) {
+  const std::size_t begin = text.find("$Entities\n");
+  const std::size_t end = text.find("$EndEntities\n");
+  std::vector<std::string> lines = absl::StrSplit(
+      text.substr(begin, end - begin), '\n', absl::SkipEmpty());
+  lines.erase(lines.begin(), lines.begin() + 2);  // "$Entities", the counts
+  return lines;
+}
+
+TEST(Msh, TagZeroElementsRoundTripAsPhysicalTagZero) {
   Mesh mesh = tagged_box();
   mesh.triangle_tags = {0, 3, 0, 3, 0, 3, 0, 3, 0, 3, 0, 3};
   mesh.tet_tags = {0, 0, 0, 0, 0, 0};
   const std::string text = msh_text(mesh);
   // Entities: "0 0 <surfaces> <volumes>": one surface per tag (0 and 3), one volume (tag 0).
   EXPECT_THAT(text, HasSubstr("$Entities\n0 0 2 1\n"));
+  // Each ends "<numPhysicalTags> <tag> <numBounding>": one physical tag each, 0 included, so
+  // that meshio finds a gmsh:physical array for every element block.
+  EXPECT_THAT(entity_lines(text), ElementsAre(EndsWith(" 1 0 0"), EndsWith(" 1 3 0"),
+                                              EndsWith(" 1 0 0")));
   absl::StatusOr<Mesh> read = parse_msh(text, "zero.msh");
   ASSERT_TRUE(read.ok()) << read.status();
   expect_same_mesh(*read, mesh);
