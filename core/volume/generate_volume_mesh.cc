@@ -27,6 +27,14 @@ constexpr int kMaxCavityRings = 4;
 constexpr double kMinNewPointSpacing = 0.04;  // of the wanted size; the last class allows 0.044
 constexpr std::size_t kMaxPocketFaces = 256;  // larger unmeshed regions are not pockets
 constexpr int kCancelCheckInterval = 256;  // faces between cancellation checks
+// Not in the paper: the least growth of the sizes attached to points (eq. 15). With c_i = 1 a
+// new point is never larger than the smallest point of its face, so the boundary's smallest
+// sizes spread through the whole domain behind the front that carries them: the interior never
+// reaches the size asked for (a front of edges 0.078 at size 0.08 gave interior edges of 0.059),
+// and where such a front meets a coarser one there is no room left to grade (real scans and
+// parts failed at growth 1 and meshed at 1.2). A uniform mesh follows the size field away from
+// the boundary; the boundary's finer sizes grow into it by at least this factor per element.
+constexpr double kMinAttachedGrowth = 1.2;
 
 class StageClock {
  public:
@@ -242,7 +250,8 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
                                    Progress& progress) {
   const double boundary_edge = mean_boundary_edge(front);
   const double domain_volume = enclosed_volume(front.points, front.triangles, nullptr);
-  MesherState s(front, growth, size_field, padded_bounds(front.points), boundary_edge);
+  MesherState s(front, std::max(growth, kMinAttachedGrowth), size_field,
+                padded_bounds(front.points), boundary_edge);
   const double max_size = params.spec ? params.spec->max_size : params.size;
   const double h = std::min(max_size, boundary_edge);
   const double expected_tets =

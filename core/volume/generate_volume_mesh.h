@@ -19,7 +19,9 @@ struct VolumeParams {
   // Target edge length h of the uniform size field (> 0, in the units of the points).
   double size = 0.0;
   // Growth factor c_i of eq. 15 (>= 1): a new point's size is at most c_i times the smallest
-  // size of the face being deleted. 1 gives uniform elements.
+  // size of the face being deleted. Sizes grow by at least 1.2 per element (not in the paper:
+  // with c_i = 1 the boundary's smallest sizes would spread through the whole domain), so 1 and
+  // any value up to 1.2 give elements of the size field's size away from a finer boundary.
   double growth = 1.0;
   // The full size specification (sources, background grid; paper §4, eq. 1–14). When set, its
   // max_size and growth replace `size` and `growth` above.
