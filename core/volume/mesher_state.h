@@ -43,6 +43,7 @@ struct MesherState {
 
   double growth;                // c_i of eq. 15
   const SizeField& size_field;  // delta_bg / delta_s
+  bool size_field_varies;       // false for a UniformSize: one value everywhere
   Index input_points = 0;
   std::vector<Point> points;
   std::vector<double> point_size;  // delta of each point (eq. 15)

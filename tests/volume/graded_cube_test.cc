@@ -1,7 +1,8 @@
 // Issue 4's check of the whole size chain: the unit cube with a point source at its corner
 // (0, 0, 0), its surface graded to the specification (core/shapes/graded_surface.h), meshed by
 // generate_volume_mesh with VolumeParams.spec. The mean tet edge length per bin of distance to
-// the corner must follow the law within 30% of the law's size at the bin's centre.
+// the corner must follow the law within 10% of the law's size at the bin's centre (20% in the
+// bins past r = 1.4, by the far corner).
 //
 // Parameters: delta0 = 0.03 on the source and within r0 = 0.05 of it, then the power law
 // delta0 (1 + rho), rho = (r - r0) / r1 with r1 = 0.2 (gamma = 1: a linear ramp, so the law at a
@@ -119,7 +120,10 @@ TEST(GradedCube, MeanTetEdgeLengthPerDistanceBinFollowsThePointSourceLaw) {
                 bin.edges < kMinEdges ? "  (too few edges: not tested)" : "");
     if (bin.edges < kMinEdges) continue;
     ++tested;
-    EXPECT_NEAR(ratio, 1.0, 0.30) << "bin " << i << " [" << bin.lo << ", " << bin.hi << ")";
+    // Issue 10: within 10% along the law's ramp; 20% in the last bins, where the cap and the
+    // cube's far corner meet (its elements lean on the boundary's triangles).
+    const double tolerance = bin.hi <= 1.4 + 1e-12 ? 0.10 : 0.20;
+    EXPECT_NEAR(ratio, 1.0, tolerance) << "bin " << i << " [" << bin.lo << ", " << bin.hi << ")";
   }
   EXPECT_GE(tested, 10);
 }
