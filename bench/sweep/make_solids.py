@@ -28,6 +28,7 @@ import random
 import sys
 
 import gmsh
+import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import stl_tools  # noqa: E402
@@ -429,7 +430,9 @@ def make(name, family, builder, rng, out_dir, keep_raw=False, h_override=None):
     flipped, comps_flipped = 0, 0
     gmsh_consistent, gmsh_outward = facts["consistently_oriented"], facts["outward"]
     if not (gmsh_consistent and gmsh_outward) and not keep_raw:
-        tris, flipped, comps_flipped = stl_tools.orient(points, tris, facts)
+        raw = tris
+        tris, _, comps_flipped = stl_tools.orient(points, tris, facts)
+        flipped = int(np.sum(np.any(tris != raw, axis=1)))  # triangles written the other way round
         stl_tools.write_stl(path, points, tris, header=b"gmsh OCC, components reoriented by make_solids.py")
         facts = stl_tools.check_surface(points, tris)
     lo, hi = points.min(axis=0), points.max(axis=0)
