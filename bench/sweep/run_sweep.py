@@ -79,7 +79,7 @@ def cause_of(msg, timed_out):
 
 
 def judge(args, group, name, stl, label, size, timeout, extra=None):
-    out = os.path.join(args.out, "meshes", f"{group}__{name}__{label}.msh")
+    out = os.path.join(args.out, "meshes", f"{group}__{name}__{label}.msh".replace("/", "_"))
     cmd = ["nice", "-n", "10", args.afmesh, "volume", stl, "-o", out, "--json", "--timeout", f"{timeout:g}"]
     if size is not None:
         cmd += ["--size", f"{size:.6g}"]
