@@ -4,10 +4,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
+#include <string>
 
 #include "absl/container/flat_hash_map.h"
 
+#include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "core/environments/environments.h"
 #include "core/geometry/vec.h"
@@ -35,6 +38,8 @@ constexpr int kCancelCheckInterval = 256;  // faces between cancellation checks
 // parts failed at growth 1 and meshed at 1.2). A uniform mesh follows the size field away from
 // the boundary; the boundary's finer sizes grow into it by at least this factor per element.
 constexpr double kMinAttachedGrowth = 1.2;
+// Input triangles with an angle below this are called slivers in failure messages.
+constexpr double kSliverAngleDeg = 5.0;
 
 class StageClock {
  public:
@@ -139,6 +144,45 @@ bool delete_face(MesherState& s, Index face) {
   return false;
 }
 
+// Not in the paper: what the input looks like where the front failed, so that the message names
+// a cause the user can act on. Looks at the input triangles with a corner within `radius` of x
+// (a scan of the input, made once, when the job has already failed).
+std::string describe_input_near(const Mesh& input, const Point& x, double radius, double size) {
+  double smallest_angle = 180.0, shortest = std::numeric_limits<double>::infinity(), longest = 0;
+  std::int64_t count = 0;
+  for (const Triangle& t : input.triangles) {
+    bool near = false;
+    for (const Index p : t) near = near || norm(sub(input.points[p], x)) <= radius;
+    if (!near) continue;
+    ++count;
+    for (int k = 0; k < 3; ++k) {
+      const Point& a = input.points[t[k]];
+      const Point u = sub(input.points[t[(k + 1) % 3]], a);
+      const Point w = sub(input.points[t[(k + 2) % 3]], a);
+      const double length = norm(u);
+      shortest = std::min(shortest, length);
+      longest = std::max(longest, length);
+      const double cosine = dot(u, w) / (length * norm(w));
+      smallest_angle =
+          std::min(smallest_angle, std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / M_PI);
+    }
+  }
+  if (count == 0) return absl::StrFormat("; no input triangle within %g of there", radius);
+  std::string text = absl::StrFormat(
+      "; the %d input triangles within %g of there have edges %g to %g long (size asked %g) and "
+      "angles down to %.3g degrees",
+      count, radius, shortest, longest, size, smallest_angle);
+  if (smallest_angle < kSliverAngleDeg) {
+    absl::StrAppend(&text, ": sliver triangles, whose elements are slivers too; the front could "
+                           "not close among them. Re-triangulating the surface with "
+                           "better-shaped triangles avoids this");
+  } else if (shortest < 0.2 * size) {
+    absl::StrAppend(&text, ": input edges far shorter than the size; a smaller size, or a larger "
+                           "--growth, gives the front room to grade");
+  }
+  return text;
+}
+
 // Back-off bookkeeping: how often the front had to re-open its elements in each region. Counted
 // by place, not by point, because re-meshing replaces the points: the region of a face of size d
 // is its cell in a grid whose spacing is the power of two just above 2d.
@@ -159,7 +203,7 @@ class RepairCounts {
 // The back-off for a face that failed in every queue class (F11): fill the small pocket it
 // bounds from one kernel point; failing that, re-open the elements around it, one ring more each
 // time the same region needs it again.
-absl::Status back_off(MesherState& s, Index face, RepairCounts& repairs) {
+absl::Status back_off(MesherState& s, const Mesh& input, Index face, RepairCounts& repairs) {
   const Triangle v = s.front.face(face).v;
   const std::uint32_t stamp = s.front.face(face).stamp;
   if (volume::fill_pocket(s, face, kMaxPocketFaces) > 0) {
@@ -173,10 +217,14 @@ absl::Status back_off(MesherState& s, Index face, RepairCounts& repairs) {
   const int rings = 1 + count;
   const Point& x = centroid;
   if (rings > kMaxCavityRings) {
-    return absl::FailedPreconditionError(absl::StrFormat(
-        "the front got stuck at face (%d, %d, %d) near (%g, %g, %g) after re-opening its "
-        "surroundings %d times; %d tets built, %d front faces left",
-        v[0], v[1], v[2], x[0], x[1], x[2], kMaxCavityRings, s.live_tets, s.front.size()));
+    const double d = volume::element_size_for_face(s, v);
+    const double target = volume::target_size_for_face(s, v);
+    return absl::FailedPreconditionError(absl::StrCat(
+        absl::StrFormat(
+            "the front got stuck at face (%d, %d, %d) near (%g, %g, %g) after re-opening its "
+            "surroundings %d times; %d tets built, %d front faces left",
+            v[0], v[1], v[2], x[0], x[1], x[2], kMaxCavityRings, s.live_tets, s.front.size()),
+        describe_input_near(input, x, 3.0 * std::max(d, target), target)));
   }
   ++count;
   volume::open_cavity(s, face, rings);
@@ -195,14 +243,18 @@ absl::Status overlap_report(const MesherState& s, Index face, double domain_volu
       s.meshed_volume, domain_volume, s.live_tets, x[0], x[1], x[2], s.front.face(face).env));
 }
 
-absl::Status stuck_report(const MesherState& s, Index face, std::int64_t steps) {
+absl::Status stuck_report(const MesherState& s, const Mesh& input, Index face,
+                          std::int64_t steps) {
   const Triangle v = s.front.face(face).v;
   const Point& x = s.points[v[0]];
-  return absl::FailedPreconditionError(absl::StrFormat(
-      "the front did not close after %d steps: %d tets built, %d front faces left, last face "
-      "(%d, %d, %d) near (%g, %g, %g); a target size much smaller than the input triangles can "
-      "cause this: give a size near the input's edge lengths",
-      steps, s.live_tets, s.front.size(), v[0], v[1], v[2], x[0], x[1], x[2]));
+  const double d = volume::element_size_for_face(s, v);
+  const double target = volume::target_size_for_face(s, v);
+  return absl::FailedPreconditionError(absl::StrCat(
+      absl::StrFormat(
+          "the front did not close after %d steps: %d tets built, %d front faces left, last face "
+          "(%d, %d, %d) near (%g, %g, %g)",
+          steps, s.live_tets, s.front.size(), v[0], v[1], v[2], x[0], x[1], x[2]),
+      describe_input_near(input, x, 3.0 * std::max(d, target), target)));
 }
 
 // F2: the size in space: the specification's sources and background grid (eq. 1–14), or one
@@ -267,7 +319,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
   // keeps failing and re-opening without building stops here with a report instead of running on.
   const std::int64_t slack = 20 * static_cast<std::int64_t>(front.triangles.size()) + 100000;
   while (std::optional<Index> face = s.front.pop()) {                  // F6, F11
-    if (++steps > 6 * s.live_tets + slack) return stuck_report(s, *face, steps);
+    if (++steps > 6 * s.live_tets + slack) return stuck_report(s, front, *face, steps);
     if (steps % kCancelCheckInterval == 0) {
       if (progress.cancelled()) return absl::CancelledError("volume meshing cancelled");
       // Elements that do not overlap cannot hold more than the enclosed volume. With crossing
@@ -283,7 +335,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
       s.front.defer(*face, volume::queue_size_for_face(s, f.v));
       continue;
     }
-    if (absl::Status st = back_off(s, *face, repairs); !st.ok()) return st;
+    if (absl::Status st = back_off(s, front, *face, repairs); !st.ok()) return st;
   }
   if (s.front.size() != 0)  // every live face is queued; an empty queue means an empty front
     return absl::InternalError(absl::StrFormat(

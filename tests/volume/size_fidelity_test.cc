@@ -125,5 +125,24 @@ TEST(RealSurfaces, CorpusKnotMeshesAtGrowthOne) {
   mesh_valid(front, mean_edge(front));
 }
 
+// Regression for issue 10: a front that cannot be closed says why, in terms of the input. The
+// lever (gmsh-doc) has fans of triangles with angles down to 0.008 degrees; the front fails there, and
+// the message must say so instead of advising "a size near the input's edge lengths" (the size
+// already was). When sliver fronts mesh (issue 10, part 3), this becomes a test that it meshes.
+TEST(Regression, Issue10StuckFrontOnSliversNamesThem) {
+  const Mesh front = corpus_front("gmsh_lever.stl");
+  ASSERT_FALSE(front.triangles.empty());
+  VolumeParams params;
+  params.size = mean_edge(front);
+  absl::StatusOr<VolumeResult> result = generate_volume_mesh(front, params, no_progress());
+  ASSERT_FALSE(result.ok());
+  EXPECT_EQ(result.status().code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_NE(result.status().message().find("angles down to 0.00838 degrees"), std::string::npos)
+      << result.status();
+  EXPECT_NE(result.status().message().find("sliver triangles"), std::string::npos)
+      << result.status();
+  EXPECT_EQ(result.status().message().find("give a size near"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace afmesh
