@@ -14,8 +14,10 @@ figures (see /work/shared/peers.md for how each is driven).
       the problem.
   peers.py io --stl IN.stl --out OUT.msh [--json]
       gmsh converting binary STL to MSH 4.1 (merge + write), the peer of afmesh-bench-io.
-  peers.py quality MESH.mesh
-      the quality figures of a Medit volume mesh, computed as below (a cross-check of the C++).
+  peers.py quality MESH.mesh [--size H]
+      the quality figures of a Medit volume mesh, computed as below (a cross-check of the C++);
+      with --size, also its interior edge lengths against H (how bench/run_bench.py measures
+      afmesh's meshes, so every tool's edges are measured by the same code).
 
 What is measured, per tool:
   time       wall seconds of the volume phase only: gmsh model.mesh.generate(3), netgen
@@ -29,6 +31,15 @@ What is measured, per tool:
              the angle between outward face normals) and the radius ratio 3 r_in / r_circ =
              108 V^2 / (A |m|); over the mesh the min dihedral, the shares below 10 and 20 degrees,
              and the min and mean radius ratio.
+  edges      (edge_length_summary) the interior edges of the tet mesh, i.e. every tet edge that
+             is not an edge of a boundary triangle (a tet face that belongs to one tet only):
+             their mean length / h and the share of them in [0.7 h, 1.4 h], where h is the size
+             asked of that tool (--size: gmsh Mesh.MeshSizeMax, netgen maxh, tetgen -a 0.34 h^3,
+             afmesh's --size). A mesh that takes the size asked has mean edge / h near 1.
+
+gmsh is asked h as Mesh.MeshSizeMax = h with Mesh.MeshSizeExtendFromBoundary = 0, so its interior
+takes h whether the surface is finer or coarser (with the default, sizes are interpolated from the
+surface and h has no effect, so its count could not be adjusted to another tool's).
 """
 
 import argparse
@@ -52,6 +63,7 @@ GMSH_ALGORITHM_3D = {"gmsh-delaunay": 1, "gmsh-hxt": 10}
 TETGEN_VOLUME_FACTOR = 0.34  # tetgen -a: max tet volume = 0.34 h^3 (peers.md)
 TETGEN_QUALITY = "1.2"        # tetgen -q: radius-edge bound
 QUALITY_CHUNK = 500_000       # tets per numpy batch when measuring quality
+EDGE_BAND = (0.7, 1.4)        # the band of edge lengths (times h) whose share is reported
 
 
 # ---------------------------------------------------------------------------------------------
@@ -158,6 +170,47 @@ def tet_quality_summary(points, tets):
             "mean_radius_ratio": math.fsum(np.concatenate(ratios)) / len(tets)}
 
 
+
+def _row_keys(rows, base):
+    """One int64 key per row of sorted small non-negative integers (rows K x m, values < base)."""
+    keys = np.zeros(len(rows), dtype=np.int64)
+    for column in range(rows.shape[1]):
+        keys = keys * base + rows[:, column]
+    return keys
+
+
+def edge_length_summary(points, tets, size):
+    """Interior edges of a tet mesh against the size h asked of its tool: {"interior_edges",
+    "mean_edge_over_h", "share_edges_in_band"} (band EDGE_BAND times h). An edge is interior when
+    it is not an edge of a boundary triangle, a tet face that belongs to one tet only (so the
+    boundary is the mesh's own, whatever the tool did to the input surface)."""
+    points = np.asarray(points, dtype=np.float64)
+    tets = np.sort(np.asarray(tets, dtype=np.int64), axis=1)
+    empty = {"interior_edges": 0, "mean_edge_over_h": None, "share_edges_in_band": None}
+    if len(tets) == 0 or not size or size <= 0.0:
+        return empty
+    base = int(tets.max()) + 1
+    if base ** 3 >= 2 ** 63:
+        raise ValueError(f"edge_length_summary: {base} points are too many for int64 face keys")
+    faces = np.concatenate([tets[:, [1, 2, 3]], tets[:, [0, 2, 3]], tets[:, [0, 1, 3]],
+                            tets[:, [0, 1, 2]]])
+    face_keys, first, counts = np.unique(_row_keys(faces, base), return_index=True,
+                                         return_counts=True)
+    boundary = faces[first[counts == 1]]
+    del faces, face_keys
+    boundary_edges = np.unique(_row_keys(np.concatenate(
+        [boundary[:, [0, 1]], boundary[:, [0, 2]], boundary[:, [1, 2]]]), base))
+    edges = np.unique(_row_keys(np.concatenate(
+        [tets[:, [a, b]] for a in range(4) for b in range(a + 1, 4)]), base))
+    interior = edges[~np.isin(edges, boundary_edges, assume_unique=True)]
+    if len(interior) == 0:
+        return empty
+    lengths = np.linalg.norm(points[interior // base] - points[interior % base], axis=1) / size
+    in_band = np.count_nonzero((lengths >= EDGE_BAND[0]) & (lengths <= EDGE_BAND[1]))
+    return {"interior_edges": int(len(interior)),
+            "mean_edge_over_h": math.fsum(lengths) / len(lengths),
+            "share_edges_in_band": in_band / len(lengths)}
+
 # ---------------------------------------------------------------------------------------------
 # Input: the surface afmesh-bench-volume wrote.
 
@@ -177,13 +230,15 @@ def read_medit(path):
 
 def gmsh_volume(tool, points, triangles, size):
     """gmsh: the triangles as one discrete surface, a surface loop and a volume; times
-    generate(3) with Mesh.Algorithm3D = 1 (Delaunay) or 10 (HXT), one thread."""
+    generate(3) with Mesh.Algorithm3D = 1 (Delaunay) or 10 (HXT), one thread, the interior sized
+    h (Mesh.MeshSizeMax = h, Mesh.MeshSizeExtendFromBoundary = 0)."""
     import gmsh
     gmsh.initialize([], False)
     try:
         for name, value in (("General.Terminal", 1), ("General.Verbosity", 2),
                             ("General.NumThreads", 1), ("Mesh.MaxNumThreads3D", 1),
-                            ("Mesh.Algorithm3D", GMSH_ALGORITHM_3D[tool])):
+                            ("Mesh.Algorithm3D", GMSH_ALGORITHM_3D[tool]),
+                            ("Mesh.MeshSizeMax", size), ("Mesh.MeshSizeExtendFromBoundary", 0)):
             gmsh.option.setNumber(name, value)
         gmsh.model.add("case")
         surface = gmsh.model.addDiscreteEntity(2)
@@ -205,7 +260,9 @@ def gmsh_volume(tool, points, triangles, size):
         tets = index[tet_nodes.astype(np.int64)].reshape(-1, 4)
     finally:
         gmsh.finalize()
-    return clock, probe, mesh_points, tets, {"options": f"Mesh.Algorithm3D={GMSH_ALGORITHM_3D[tool]}"}
+    return clock, probe, mesh_points, tets, {
+        "options": f"Mesh.Algorithm3D={GMSH_ALGORITHM_3D[tool]} Mesh.MeshSizeMax={size:g} "
+                   f"Mesh.MeshSizeExtendFromBoundary=0"}
 
 
 def netgen_volume(tool, points, triangles, size):
@@ -419,6 +476,8 @@ def measure_volume(tool, surface_prefix, size, out=None):
                "cpu_seconds": clock.cpu_seconds}
     figures.update(probe.figures(len(tets)))
     figures.update(tet_quality_summary(mesh_points, tets))
+    if tool != "tetgen-p":  # plain -p is asked no size
+        figures.update(edge_length_summary(mesh_points, tets, size))
     figures.update(extra)
     if out and len(tets):
         write_volume_medit(mesh_points, tets, out)
@@ -548,6 +607,10 @@ def print_volume(figures):
           f"<10 deg {100 * figures['share_below_10']:.3f}%, "
           f"<20 deg {100 * figures['share_below_20']:.3f}%, radius ratio min "
           f"{_fmt(figures['min_radius_ratio'], '.4f')} mean {_fmt(figures['mean_radius_ratio'], '.4f')}")
+    if figures.get("mean_edge_over_h") is not None:
+        print(f"  edges        {figures['interior_edges']} interior: mean length / h "
+              f"{figures['mean_edge_over_h']:.3f}, {100 * figures['share_edges_in_band']:.1f}% in "
+              f"[{EDGE_BAND[0]:g} h, {EDGE_BAND[1]:g} h] (h = {figures['size']:g})")
 
 
 def print_io(figures):
@@ -581,6 +644,7 @@ def parse_arguments(argv):
     io.add_argument("--json", action="store_true")
     quality = commands.add_parser("quality", help="quality figures of a Medit volume mesh")
     quality.add_argument("mesh")
+    quality.add_argument("--size", type=float, help="also the interior edge lengths against h")
     return parser.parse_args(argv)
 
 
@@ -591,7 +655,10 @@ def main(argv):
     args = parse_arguments(argv)
     if args.command == "quality":
         points, _, tets = read_medit(args.mesh)
-        print(json.dumps(tet_quality_summary(points, tets)))
+        figures = tet_quality_summary(points, tets)
+        if args.size is not None:
+            figures.update(edge_length_summary(points, tets, args.size))
+        print(json.dumps(figures))
         return 0
     if args.command == "io":
         figures = in_fresh_process({"kind": "io", "stl": args.stl, "out": args.out}, args.timeout)
