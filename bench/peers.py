@@ -4,7 +4,7 @@ and tetgen, each on one thread and in a fresh process, with the same speed, memo
 figures (see /work/shared/peers.md for how each is driven).
 
   peers.py volume --surface PREFIX --size H [--tools gmsh-delaunay,gmsh-hxt,netgen,tetgen]
-                  [--timeout SECONDS] [--out-dir DIR] [--json]
+                  [--timeout SECONDS] [--out-dir DIR] [--gmsh-sizes h|surface] [--json]
       PREFIX.mesh (Medit, exact coordinates) and PREFIX.smesh (tetgen) are written by
       `afmesh-bench-volume --surface PREFIX`; without PREFIX.smesh tetgen gets one written from
       PREFIX.mesh. --out-dir DIR: each tool's volume mesh goes to DIR/TOOL.mesh (Medit), for
@@ -39,7 +39,9 @@ What is measured, per tool:
 
 gmsh is asked h as Mesh.MeshSizeMax = h with Mesh.MeshSizeExtendFromBoundary = 0, so its interior
 takes h whether the surface is finer or coarser (with the default, sizes are interpolated from the
-surface and h has no effect, so its count could not be adjusted to another tool's).
+surface and h has no effect, so its count could not be adjusted to another tool's);
+--gmsh-sizes surface keeps that default (the thin inputs of bench/run_bench.py, whose surfaces are
+graded by a size field).
 """
 
 import argparse
@@ -228,17 +230,19 @@ def read_medit(path):
 # ---------------------------------------------------------------------------------------------
 # The peers, each run inside a child process (see run_child).
 
-def gmsh_volume(tool, points, triangles, size):
+def gmsh_volume(tool, points, triangles, size, sizes_from="h"):
     """gmsh: the triangles as one discrete surface, a surface loop and a volume; times
     generate(3) with Mesh.Algorithm3D = 1 (Delaunay) or 10 (HXT), one thread, the interior sized
-    h (Mesh.MeshSizeMax = h, Mesh.MeshSizeExtendFromBoundary = 0)."""
+    h (Mesh.MeshSizeMax = h, Mesh.MeshSizeExtendFromBoundary = 0), or with sizes_from "surface"
+    by gmsh's default, the sizes interpolated from the surface."""
+    sized = ([("Mesh.MeshSizeMax", size), ("Mesh.MeshSizeExtendFromBoundary", 0)]
+             if sizes_from == "h" else [])
     import gmsh
     gmsh.initialize([], False)
     try:
         for name, value in (("General.Terminal", 1), ("General.Verbosity", 2),
                             ("General.NumThreads", 1), ("Mesh.MaxNumThreads3D", 1),
-                            ("Mesh.Algorithm3D", GMSH_ALGORITHM_3D[tool]),
-                            ("Mesh.MeshSizeMax", size), ("Mesh.MeshSizeExtendFromBoundary", 0)):
+                            ("Mesh.Algorithm3D", GMSH_ALGORITHM_3D[tool]), *sized):
             gmsh.option.setNumber(name, value)
         gmsh.model.add("case")
         surface = gmsh.model.addDiscreteEntity(2)
@@ -261,8 +265,8 @@ def gmsh_volume(tool, points, triangles, size):
     finally:
         gmsh.finalize()
     return clock, probe, mesh_points, tets, {
-        "options": f"Mesh.Algorithm3D={GMSH_ALGORITHM_3D[tool]} Mesh.MeshSizeMax={size:g} "
-                   f"Mesh.MeshSizeExtendFromBoundary=0"}
+        "options": f"Mesh.Algorithm3D={GMSH_ALGORITHM_3D[tool]}"
+                   + "".join(f" {name}={value:g}" for name, value in sized)}
 
 
 def netgen_volume(tool, points, triangles, size):
@@ -457,14 +461,14 @@ def write_volume_medit(points, tets, path):
     meshio.write(path, meshio.Mesh(points, [("tetra", tets)]), file_format="medit")
 
 
-def measure_volume(tool, surface_prefix, size, out=None):
+def measure_volume(tool, surface_prefix, size, out=None, gmsh_sizes="h"):
     """Runs one peer on the surface and returns its figures (a dict); with `out`, writes the
     volume mesh there (Medit) when it has tets."""
     if tool == "tetgen-d":
         return tetgen_detect(surface_prefix)
     points, triangles, _ = read_medit(surface_prefix + ".mesh")
     if tool in GMSH_ALGORITHM_3D:
-        run = gmsh_volume(tool, points, triangles, size)
+        run = gmsh_volume(tool, points, triangles, size, gmsh_sizes)
     elif tool == "netgen":
         run = netgen_volume(tool, points, triangles, size)
     else:
@@ -476,7 +480,7 @@ def measure_volume(tool, surface_prefix, size, out=None):
                "cpu_seconds": clock.cpu_seconds}
     figures.update(probe.figures(len(tets)))
     figures.update(tet_quality_summary(mesh_points, tets))
-    if tool != "tetgen-p":  # plain -p is asked no size
+    if tool != "tetgen-p" and not (tool in GMSH_ALGORITHM_3D and gmsh_sizes != "h"):
         figures.update(edge_length_summary(mesh_points, tets, size))
     figures.update(extra)
     if out and len(tets):
@@ -520,7 +524,8 @@ def measure_io(stl_path, msh_path):
 def run_child(job, result_path):
     """In the child: runs `job` (a dict) and writes its figures as JSON to result_path."""
     if job["kind"] == "volume":
-        figures = measure_volume(job["tool"], job["surface"], job["size"], job.get("out"))
+        figures = measure_volume(job["tool"], job["surface"], job["size"], job.get("out"),
+                                 job.get("gmsh_sizes", "h"))
     else:
         figures = measure_io(job["stl"], job["out"])
     with open(result_path, "w") as f:
@@ -636,6 +641,9 @@ def parse_arguments(argv):
                         help="comma-separated: " + ",".join(ALL_TOOLS))
     volume.add_argument("--timeout", type=float, default=3600.0, help="seconds per tool")
     volume.add_argument("--out-dir", help="write each tool's volume mesh to OUT_DIR/TOOL.mesh")
+    volume.add_argument("--gmsh-sizes", choices=("h", "surface"), default="h",
+                        help="gmsh's interior size: h (Mesh.MeshSizeMax, default) or interpolated "
+                             "from the surface (gmsh's default; h has no effect)")
     volume.add_argument("--json", action="store_true", help="one JSON object per tool and line")
     io = commands.add_parser("io", help="gmsh converting STL to MSH 4.1")
     io.add_argument("--stl", required=True)
@@ -671,7 +679,8 @@ def main(argv):
     for tool in args.tools.split(","):
         if tool not in ALL_TOOLS:
             sys.exit(f"peers.py: unknown tool '{tool}'; known: {', '.join(ALL_TOOLS)}")
-        job = {"kind": "volume", "tool": tool, "surface": args.surface, "size": args.size}
+        job = {"kind": "volume", "tool": tool, "surface": args.surface, "size": args.size,
+               "gmsh_sizes": args.gmsh_sizes}
         if args.out_dir:
             job["out"] = os.path.join(os.path.abspath(args.out_dir), f"{tool}.mesh")
         figures = in_fresh_process(job, args.timeout)
