@@ -12,8 +12,23 @@ which writes the surface the peers then mesh.
 Columns: tets; time = wall seconds of the volume phase (cpu = its CPU seconds: on a loaded
 machine wall > cpu); tets/s = tets / wall seconds; bytes/tet = (peak resident memory during the
 phase - resident before) / tets; min dihedral (degrees), shares of tets with min dihedral under 10
-and 20 degrees, min and mean radius ratio (3 r_in / r_circ); afmesh/peer = afmesh's tets/s (or
-bytes/tet) over the peer's, so > 1 means afmesh is faster (or uses more memory per tet).
+and 20 degrees, min and mean radius ratio (3 r_in / r_circ); edge/h = mean length of the interior
+edges (tet edges that are no edge of a boundary triangle) / h, the size asked of that tool, and
+%e in band = the share of them in [0.7 h, 1.4 h] (peers.edge_length_summary measures every
+tool's mesh, afmesh's written out as Medit); afmesh/peer = afmesh's tets/s (or bytes/tet) over the
+peer's, so > 1 means afmesh is faster (or uses more memory per tet). The peers are asked h as
+gmsh Mesh.MeshSizeMax (not extended from the boundary), netgen maxh and tetgen -a 0.34 h^3; at
+the same h they give from about 0.4x to 1.2x afmesh's count, hence:
+
+Equal counts (--equal-count, in the full run at --count-targets 50k; --equal-count-only; e.g.
+--count-targets 50k,500k,2M): for each shape and target N, afmesh's h is found first (its
+surface changes with h), then on that surface each peer's size, each by secant / regula falsi
+steps on log(size) against log(tets) (count ~ size^-3) until the count is within
+--count-tolerance (10%) of N, in at most --count-max-runs (6) runs of at most --count-timeout
+(900 s) each. Per tool: what it was asked, the runs it took, tets, how far from N ("!": not
+within the tolerance after all runs, the closest run shown), the volume phase's seconds, tets/s,
+bytes/tet, min dihedral, %<20°, edge/h, %e in band and the afmesh/peer ratios at those counts. A
+tool that fails or times out says so, with its error, instead of a row.
 
 Thin inputs (--thin, in the full run; --thin-only): each of THIN_INPUTS goes as it is to afmesh
 (`afmesh volume IN -o OUT.msh --spec SIZES --envs tags`, then `--envs auto`) and to every peer.
@@ -79,7 +94,8 @@ SHAPE_TITLES = {"sphere": "sphere, radius 1", "torus": "torus, R = 1, r = 0.35",
 
 
 def parse_arguments(argv):
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build-dir", default=os.path.join(REPO_DIR, "build", "release"),
                         help="build directory holding bench/afmesh-bench-volume and -io")
     parser.add_argument("--work-dir", default=os.path.join(REPO_DIR, "build", "bench-work"),
