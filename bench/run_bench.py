@@ -449,13 +449,17 @@ def start_size(shape, count):
     return ref_h * (ref_count / count) ** (1.0 / 3.0)
 
 
+MAX_SIZE_STEP = 1.5  # the largest change of size from one run of an equal-count search to the next
+
+
 def next_size(tried, target):
     """The next size to try from the runs so far (dicts with "size" and, when they meshed,
     "tets"). With runs either side of the target that bracket it (the largest size above the
     target smaller than the smallest size below it): regula falsi on (log size, log tets) inside
     that bracket; otherwise (no bracket, or counts that do not fall as the size grows, as netgen's
     sometimes) a secant through the two runs closest to the target, slope -3 when there is one
-    run or the slope found is implausible. Never a size already tried."""
+    run or the slope found is implausible (flatter than -1 counts as -1), and at most a factor
+    MAX_SIZE_STEP from the closest run. Never a size already tried."""
     good = [(math.log(r["size"]), math.log(r["tets"])) for r in tried if r.get("tets")]
     goal = math.log(target)
     if not good:  # nothing meshed yet (e.g. afmesh's front did not close): a nearby size
@@ -475,13 +479,16 @@ def next_size(tried, target):
     slope = -3.0
     if b is not None and abs(b[0] - a[0]) > 1e-9:
         slope = (b[1] - a[1]) / (b[0] - a[0])
-        if not -8.0 < slope < -0.3:
-            slope = -3.0
+        if not -8.0 < slope < -1.0:
+            slope = -3.0 if slope > -0.3 or slope < -8.0 else -1.0
     log_size = a[0] + (goal - a[1]) / slope
     if bracket is not None:  # inside the bracket, away from its ends
         low, high = a[0], b[0]
         margin = 0.15 * (high - low)
         log_size = min(max(log_size, low + margin), high - margin)
+    else:  # at most a factor MAX_SIZE_STEP from the closest run (a count 3.4 times or 1/3.4)
+        step = math.log(MAX_SIZE_STEP)
+        log_size = min(max(log_size, a[0] - step), a[0] + step)
     size = math.exp(log_size)
     for r in tried:  # a size already tried gives the same count again
         if abs(math.log(size / r["size"])) < 0.005:
