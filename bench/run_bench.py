@@ -459,7 +459,8 @@ def next_size(tried, target):
     that bracket; otherwise (no bracket, or counts that do not fall as the size grows, as netgen's
     sometimes) a secant through the two runs closest to the target, slope -3 when there is one
     run or the slope found is implausible (flatter than -1 counts as -1), and at most a factor
-    MAX_SIZE_STEP from the closest run. Never a size already tried."""
+    MAX_SIZE_STEP from the closest run. Never a size already tried, nor one within 2% of a run
+    that failed."""
     good = [(math.log(r["size"]), math.log(r["tets"])) for r in tried if r.get("tets")]
     goal = math.log(target)
     if not good:  # nothing meshed yet (e.g. afmesh's front did not close): a nearby size
@@ -489,11 +490,17 @@ def next_size(tried, target):
     else:  # at most a factor MAX_SIZE_STEP from the closest run (a count 3.4 times or 1/3.4)
         step = math.log(MAX_SIZE_STEP)
         log_size = min(max(log_size, a[0] - step), a[0] + step)
-    size = math.exp(log_size)
-    for r in tried:  # a size already tried gives the same count again
-        if abs(math.log(size / r["size"])) < 0.005:
-            size *= 1.01 if (not r.get("tets") or r["tets"] > target) else 0.99
-    return size
+    wanted = math.exp(log_size)
+    # A size already tried gives the same count again, and one within 2% of a failed run (gmsh
+    # HXT crashing, afmesh's front not closing) likely fails again: the nearest size 3%, 6%, ...
+    # either side that is clear of both.
+    clear = lambda size: all(abs(math.log(size / r["size"]))
+                             >= (0.02 if not r.get("tets") else 0.005) for r in tried)
+    for k in range(40):
+        size = wanted * 1.03 ** ((k + 1) // 2 * (1 if k % 2 else -1))
+        if clear(size):
+            return size
+    return wanted
 
 
 def search_count(run, target, first_size, args, label):
