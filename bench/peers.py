@@ -4,7 +4,7 @@ and tetgen, each on one thread and in a fresh process, with the same speed, memo
 figures (see /work/shared/peers.md for how each is driven).
 
   peers.py volume --surface PREFIX --size H [--tools gmsh-delaunay,gmsh-hxt,netgen,tetgen]
-                  [--timeout SECONDS] [--out-dir DIR] [--json]
+                  [--timeout SECONDS] [--out-dir DIR] [--gmsh-sizes h|surface] [--json]
       PREFIX.mesh (Medit, exact coordinates) and PREFIX.smesh (tetgen) are written by
       `afmesh-bench-volume --surface PREFIX`; without PREFIX.smesh tetgen gets one written from
       PREFIX.mesh. --out-dir DIR: each tool's volume mesh goes to DIR/TOOL.mesh (Medit), for
@@ -14,8 +14,10 @@ figures (see /work/shared/peers.md for how each is driven).
       the problem.
   peers.py io --stl IN.stl --out OUT.msh [--json]
       gmsh converting binary STL to MSH 4.1 (merge + write), the peer of afmesh-bench-io.
-  peers.py quality MESH.mesh
-      the quality figures of a Medit volume mesh, computed as below (a cross-check of the C++).
+  peers.py quality MESH.mesh [--size H]
+      the quality figures of a Medit volume mesh, computed as below (a cross-check of the C++);
+      with --size, also its interior edge lengths against H (how bench/run_bench.py measures
+      afmesh's meshes, so every tool's edges are measured by the same code).
 
 What is measured, per tool:
   time       wall seconds of the volume phase only: gmsh model.mesh.generate(3), netgen
@@ -29,6 +31,17 @@ What is measured, per tool:
              the angle between outward face normals) and the radius ratio 3 r_in / r_circ =
              108 V^2 / (A |m|); over the mesh the min dihedral, the shares below 10 and 20 degrees,
              and the min and mean radius ratio.
+  edges      (edge_length_summary) the interior edges of the tet mesh, i.e. every tet edge that
+             is not an edge of a boundary triangle (a tet face that belongs to one tet only):
+             their mean length / h and the share of them in [0.7 h, 1.4 h], where h is the size
+             asked of that tool (--size: gmsh Mesh.MeshSizeMax, netgen maxh, tetgen -a 0.34 h^3,
+             afmesh's --size). A mesh that takes the size asked has mean edge / h near 1.
+
+gmsh is asked h as Mesh.MeshSizeMax = h with Mesh.MeshSizeExtendFromBoundary = 0, so its interior
+takes h whether the surface is finer or coarser (with the default, sizes are interpolated from the
+surface and h has no effect, so its count could not be adjusted to another tool's);
+--gmsh-sizes surface keeps that default (the thin inputs of bench/run_bench.py, whose surfaces are
+graded by a size field).
 """
 
 import argparse
@@ -52,6 +65,7 @@ GMSH_ALGORITHM_3D = {"gmsh-delaunay": 1, "gmsh-hxt": 10}
 TETGEN_VOLUME_FACTOR = 0.34  # tetgen -a: max tet volume = 0.34 h^3 (peers.md)
 TETGEN_QUALITY = "1.2"        # tetgen -q: radius-edge bound
 QUALITY_CHUNK = 500_000       # tets per numpy batch when measuring quality
+EDGE_BAND = (0.7, 1.4)        # the band of edge lengths (times h) whose share is reported
 
 
 # ---------------------------------------------------------------------------------------------
@@ -158,6 +172,47 @@ def tet_quality_summary(points, tets):
             "mean_radius_ratio": math.fsum(np.concatenate(ratios)) / len(tets)}
 
 
+
+def _row_keys(rows, base):
+    """One int64 key per row of sorted small non-negative integers (rows K x m, values < base)."""
+    keys = np.zeros(len(rows), dtype=np.int64)
+    for column in range(rows.shape[1]):
+        keys = keys * base + rows[:, column]
+    return keys
+
+
+def edge_length_summary(points, tets, size):
+    """Interior edges of a tet mesh against the size h asked of its tool: {"interior_edges",
+    "mean_edge_over_h", "share_edges_in_band"} (band EDGE_BAND times h). An edge is interior when
+    it is not an edge of a boundary triangle, a tet face that belongs to one tet only (so the
+    boundary is the mesh's own, whatever the tool did to the input surface)."""
+    points = np.asarray(points, dtype=np.float64)
+    tets = np.sort(np.asarray(tets, dtype=np.int64), axis=1)
+    empty = {"interior_edges": 0, "mean_edge_over_h": None, "share_edges_in_band": None}
+    if len(tets) == 0 or not size or size <= 0.0:
+        return empty
+    base = int(tets.max()) + 1
+    if base ** 3 >= 2 ** 63:
+        raise ValueError(f"edge_length_summary: {base} points are too many for int64 face keys")
+    faces = np.concatenate([tets[:, [1, 2, 3]], tets[:, [0, 2, 3]], tets[:, [0, 1, 3]],
+                            tets[:, [0, 1, 2]]])
+    face_keys, first, counts = np.unique(_row_keys(faces, base), return_index=True,
+                                         return_counts=True)
+    boundary = faces[first[counts == 1]]
+    del faces, face_keys
+    boundary_edges = np.unique(_row_keys(np.concatenate(
+        [boundary[:, [0, 1]], boundary[:, [0, 2]], boundary[:, [1, 2]]]), base))
+    edges = np.unique(_row_keys(np.concatenate(
+        [tets[:, [a, b]] for a in range(4) for b in range(a + 1, 4)]), base))
+    interior = edges[~np.isin(edges, boundary_edges, assume_unique=True)]
+    if len(interior) == 0:
+        return empty
+    lengths = np.linalg.norm(points[interior // base] - points[interior % base], axis=1) / size
+    in_band = np.count_nonzero((lengths >= EDGE_BAND[0]) & (lengths <= EDGE_BAND[1]))
+    return {"interior_edges": int(len(interior)),
+            "mean_edge_over_h": math.fsum(lengths) / len(lengths),
+            "share_edges_in_band": in_band / len(lengths)}
+
 # ---------------------------------------------------------------------------------------------
 # Input: the surface afmesh-bench-volume wrote.
 
@@ -175,15 +230,19 @@ def read_medit(path):
 # ---------------------------------------------------------------------------------------------
 # The peers, each run inside a child process (see run_child).
 
-def gmsh_volume(tool, points, triangles, size):
+def gmsh_volume(tool, points, triangles, size, sizes_from="h"):
     """gmsh: the triangles as one discrete surface, a surface loop and a volume; times
-    generate(3) with Mesh.Algorithm3D = 1 (Delaunay) or 10 (HXT), one thread."""
+    generate(3) with Mesh.Algorithm3D = 1 (Delaunay) or 10 (HXT), one thread, the interior sized
+    h (Mesh.MeshSizeMax = h, Mesh.MeshSizeExtendFromBoundary = 0), or with sizes_from "surface"
+    by gmsh's default, the sizes interpolated from the surface."""
+    sized = ([("Mesh.MeshSizeMax", size), ("Mesh.MeshSizeExtendFromBoundary", 0)]
+             if sizes_from == "h" else [])
     import gmsh
     gmsh.initialize([], False)
     try:
         for name, value in (("General.Terminal", 1), ("General.Verbosity", 2),
                             ("General.NumThreads", 1), ("Mesh.MaxNumThreads3D", 1),
-                            ("Mesh.Algorithm3D", GMSH_ALGORITHM_3D[tool])):
+                            ("Mesh.Algorithm3D", GMSH_ALGORITHM_3D[tool]), *sized):
             gmsh.option.setNumber(name, value)
         gmsh.model.add("case")
         surface = gmsh.model.addDiscreteEntity(2)
@@ -205,7 +264,9 @@ def gmsh_volume(tool, points, triangles, size):
         tets = index[tet_nodes.astype(np.int64)].reshape(-1, 4)
     finally:
         gmsh.finalize()
-    return clock, probe, mesh_points, tets, {"options": f"Mesh.Algorithm3D={GMSH_ALGORITHM_3D[tool]}"}
+    return clock, probe, mesh_points, tets, {
+        "options": f"Mesh.Algorithm3D={GMSH_ALGORITHM_3D[tool]}"
+                   + "".join(f" {name}={value:g}" for name, value in sized)}
 
 
 def netgen_volume(tool, points, triangles, size):
@@ -400,14 +461,14 @@ def write_volume_medit(points, tets, path):
     meshio.write(path, meshio.Mesh(points, [("tetra", tets)]), file_format="medit")
 
 
-def measure_volume(tool, surface_prefix, size, out=None):
+def measure_volume(tool, surface_prefix, size, out=None, gmsh_sizes="h"):
     """Runs one peer on the surface and returns its figures (a dict); with `out`, writes the
     volume mesh there (Medit) when it has tets."""
     if tool == "tetgen-d":
         return tetgen_detect(surface_prefix)
     points, triangles, _ = read_medit(surface_prefix + ".mesh")
     if tool in GMSH_ALGORITHM_3D:
-        run = gmsh_volume(tool, points, triangles, size)
+        run = gmsh_volume(tool, points, triangles, size, gmsh_sizes)
     elif tool == "netgen":
         run = netgen_volume(tool, points, triangles, size)
     else:
@@ -419,6 +480,8 @@ def measure_volume(tool, surface_prefix, size, out=None):
                "cpu_seconds": clock.cpu_seconds}
     figures.update(probe.figures(len(tets)))
     figures.update(tet_quality_summary(mesh_points, tets))
+    if tool != "tetgen-p" and not (tool in GMSH_ALGORITHM_3D and gmsh_sizes != "h"):
+        figures.update(edge_length_summary(mesh_points, tets, size))
     figures.update(extra)
     if out and len(tets):
         write_volume_medit(mesh_points, tets, out)
@@ -461,7 +524,8 @@ def measure_io(stl_path, msh_path):
 def run_child(job, result_path):
     """In the child: runs `job` (a dict) and writes its figures as JSON to result_path."""
     if job["kind"] == "volume":
-        figures = measure_volume(job["tool"], job["surface"], job["size"], job.get("out"))
+        figures = measure_volume(job["tool"], job["surface"], job["size"], job.get("out"),
+                                 job.get("gmsh_sizes", "h"))
     else:
         figures = measure_io(job["stl"], job["out"])
     with open(result_path, "w") as f:
@@ -548,6 +612,10 @@ def print_volume(figures):
           f"<10 deg {100 * figures['share_below_10']:.3f}%, "
           f"<20 deg {100 * figures['share_below_20']:.3f}%, radius ratio min "
           f"{_fmt(figures['min_radius_ratio'], '.4f')} mean {_fmt(figures['mean_radius_ratio'], '.4f')}")
+    if figures.get("mean_edge_over_h") is not None:
+        print(f"  edges        {figures['interior_edges']} interior: mean length / h "
+              f"{figures['mean_edge_over_h']:.3f}, {100 * figures['share_edges_in_band']:.1f}% in "
+              f"[{EDGE_BAND[0]:g} h, {EDGE_BAND[1]:g} h] (h = {figures['size']:g})")
 
 
 def print_io(figures):
@@ -573,6 +641,9 @@ def parse_arguments(argv):
                         help="comma-separated: " + ",".join(ALL_TOOLS))
     volume.add_argument("--timeout", type=float, default=3600.0, help="seconds per tool")
     volume.add_argument("--out-dir", help="write each tool's volume mesh to OUT_DIR/TOOL.mesh")
+    volume.add_argument("--gmsh-sizes", choices=("h", "surface"), default="h",
+                        help="gmsh's interior size: h (Mesh.MeshSizeMax, default) or interpolated "
+                             "from the surface (gmsh's default; h has no effect)")
     volume.add_argument("--json", action="store_true", help="one JSON object per tool and line")
     io = commands.add_parser("io", help="gmsh converting STL to MSH 4.1")
     io.add_argument("--stl", required=True)
@@ -581,6 +652,7 @@ def parse_arguments(argv):
     io.add_argument("--json", action="store_true")
     quality = commands.add_parser("quality", help="quality figures of a Medit volume mesh")
     quality.add_argument("mesh")
+    quality.add_argument("--size", type=float, help="also the interior edge lengths against h")
     return parser.parse_args(argv)
 
 
@@ -591,7 +663,10 @@ def main(argv):
     args = parse_arguments(argv)
     if args.command == "quality":
         points, _, tets = read_medit(args.mesh)
-        print(json.dumps(tet_quality_summary(points, tets)))
+        figures = tet_quality_summary(points, tets)
+        if args.size is not None:
+            figures.update(edge_length_summary(points, tets, args.size))
+        print(json.dumps(figures))
         return 0
     if args.command == "io":
         figures = in_fresh_process({"kind": "io", "stl": args.stl, "out": args.out}, args.timeout)
@@ -604,7 +679,8 @@ def main(argv):
     for tool in args.tools.split(","):
         if tool not in ALL_TOOLS:
             sys.exit(f"peers.py: unknown tool '{tool}'; known: {', '.join(ALL_TOOLS)}")
-        job = {"kind": "volume", "tool": tool, "surface": args.surface, "size": args.size}
+        job = {"kind": "volume", "tool": tool, "surface": args.surface, "size": args.size,
+               "gmsh_sizes": args.gmsh_sizes}
         if args.out_dir:
             job["out"] = os.path.join(os.path.abspath(args.out_dir), f"{tool}.mesh")
         figures = in_fresh_process(job, args.timeout)

@@ -12,8 +12,23 @@ which writes the surface the peers then mesh.
 Columns: tets; time = wall seconds of the volume phase (cpu = its CPU seconds: on a loaded
 machine wall > cpu); tets/s = tets / wall seconds; bytes/tet = (peak resident memory during the
 phase - resident before) / tets; min dihedral (degrees), shares of tets with min dihedral under 10
-and 20 degrees, min and mean radius ratio (3 r_in / r_circ); afmesh/peer = afmesh's tets/s (or
-bytes/tet) over the peer's, so > 1 means afmesh is faster (or uses more memory per tet).
+and 20 degrees, min and mean radius ratio (3 r_in / r_circ); edge/h = mean length of the interior
+edges (tet edges that are no edge of a boundary triangle) / h, the size asked of that tool, and
+%e in band = the share of them in [0.7 h, 1.4 h] (peers.edge_length_summary measures every
+tool's mesh, afmesh's written out as Medit); afmesh/peer = afmesh's tets/s (or bytes/tet) over the
+peer's, so > 1 means afmesh is faster (or uses more memory per tet). The peers are asked h as
+gmsh Mesh.MeshSizeMax (not extended from the boundary), netgen maxh and tetgen -a 0.34 h^3; at
+the same h they give from about 0.4x to 1.2x afmesh's count, hence:
+
+Equal counts (--equal-count, in the full run at --count-targets 50k; --equal-count-only; e.g.
+--count-targets 50k,500k,2M): for each shape and target N, afmesh's h is found first (its
+surface changes with h), then on that surface each peer's size, each by secant / regula falsi
+steps on log(size) against log(tets) (count ~ size^-3) until the count is within
+--count-tolerance (10%) of N, in at most --count-max-runs (6) runs of at most --count-timeout
+(900 s) each. Per tool: what it was asked, the runs it took, tets, how far from N ("!": not
+within the tolerance after all runs, the closest run shown), the volume phase's seconds, tets/s,
+bytes/tet, min dihedral, %<20°, edge/h, %e in band and the afmesh/peer ratios at those counts. A
+tool that fails or times out says so, with its error, instead of a row.
 
 Thin inputs (--thin, in the full run; --thin-only): each of THIN_INPUTS goes as it is to afmesh
 (`afmesh volume IN -o OUT.msh --spec SIZES --envs tags`, then `--envs auto`) and to every peer.
@@ -28,6 +43,7 @@ whose run gives no tets is reported as "surface only".
 import argparse
 import datetime
 import json
+import math
 import os
 import platform
 import re
@@ -78,7 +94,8 @@ SHAPE_TITLES = {"sphere": "sphere, radius 1", "torus": "torus, R = 1, r = 0.35",
 
 
 def parse_arguments(argv):
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build-dir", default=os.path.join(REPO_DIR, "build", "release"),
                         help="build directory holding bench/afmesh-bench-volume and -io")
     parser.add_argument("--work-dir", default=os.path.join(REPO_DIR, "build", "bench-work"),
@@ -96,6 +113,21 @@ def parse_arguments(argv):
                         help="seconds before a peer run is killed and reported as timed out")
     parser.add_argument("--no-before-optimise", action="store_true",
                         help="leave out the afmesh row without its optimisation step")
+    parser.add_argument("--equal-count", dest="equal_count", action="store_true", default=True)
+    parser.add_argument("--no-equal-count", dest="equal_count", action="store_false",
+                        help="skip the equal-count comparison")
+    parser.add_argument("--equal-count-only", action="store_true",
+                        help="only the equal-count comparison: each tool's size adjusted until "
+                             "its tet count is within --count-tolerance of each --count-targets")
+    parser.add_argument("--count-targets", default="50k",
+                        help="tet counts for the equal-count comparison, comma-separated, e.g. "
+                             "50k,500k,2M (default 50k: a few minutes)")
+    parser.add_argument("--count-tolerance", type=float, default=0.10,
+                        help="relative distance of a count to its target that is equal enough")
+    parser.add_argument("--count-max-runs", type=int, default=6,
+                        help="meshings per tool and target to find its size")
+    parser.add_argument("--count-timeout", type=float, default=900.0,
+                        help="seconds before one run of the equal-count search is killed")
     parser.add_argument("--io", dest="io", action="store_true", default=True)
     parser.add_argument("--no-io", dest="io", action="store_false", help="skip the io benchmark")
     parser.add_argument("--io-only", action="store_true", help="only the io benchmark")
@@ -153,7 +185,7 @@ def run_json_lines(command, timeout=None):
     try:
         done = subprocess.run(command, capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:
-        return [{"error": f"timed out after {timeout:.0f} s (killed)"}]
+        return [{"error": f"timed out after {timeout:.0f} s (killed)", "timed_out": True}]
     results = [json.loads(line) for line in done.stdout.splitlines() if line.startswith("{")]
     if not results:
         tail = " | ".join((done.stderr or done.stdout).strip().splitlines()[-3:])
@@ -161,24 +193,43 @@ def run_json_lines(command, timeout=None):
     return results
 
 
-def run_afmesh(args, shape, h, prefix, optimise):
+def measure_edges(figures, mesh_path, h):
+    """Adds the interior edge figures of the Medit mesh at mesh_path (peers.edge_length_summary,
+    the code that measures the peers' meshes) to figures, then deletes the file."""
+    try:
+        if "error" not in figures and os.path.exists(mesh_path):
+            points, _, tets = peers.read_medit(mesh_path)
+            figures.update(peers.edge_length_summary(points, tets, h))
+    finally:
+        if os.path.exists(mesh_path):
+            os.remove(mesh_path)
+    return figures
+
+
+def run_afmesh(args, shape, h, prefix, optimise, timeout=None):
+    """afmesh-bench-volume on SHAPE at h (with optimise: writing the surface to PREFIX.* for the
+    peers), its mesh written to PREFIX-afmesh.mesh for measure_edges."""
+    mesh_path = f"{prefix}-afmesh{'' if optimise else '-noopt'}.mesh"
     command = [os.path.join(args.build_dir, "bench", "afmesh-bench-volume"), "--shape", shape,
-               "--size", repr(h), "--json"]
+               "--size", repr(h), "--json", "--out", mesh_path]
     if optimise:
         command += ["--surface", prefix]
     else:
         command += ["--no-optimise"]
-    figures = run_json_lines(command)[0]
+    figures = run_json_lines(command, timeout or args.peer_timeout)[0]
     figures["tool"] = "afmesh" if optimise else "afmesh no-opt"
-    return figures
+    figures.setdefault("size", h)
+    return measure_edges(figures, mesh_path, h)
 
 
-def run_peer(args, tool, h, prefix):
+def run_peer(args, tool, h, prefix, timeout=None):
+    timeout = timeout or args.peer_timeout
     command = ["/usr/bin/python3", os.path.join(BENCH_DIR, "peers.py"), "volume", "--surface",
-               prefix, "--size", repr(h), "--tools", tool, "--timeout", repr(args.peer_timeout),
-               "--json"]
-    figures = run_json_lines(command)[0]
+               prefix, "--size", repr(h), "--tools", tool, "--timeout", repr(timeout), "--json"]
+    # peers.py kills its child at `timeout`; the margin covers its start-up and the surface read
+    figures = run_json_lines(command, timeout + 120)[0]
     figures["tool"] = tool
+    figures.setdefault("size", h)
     return figures
 
 
@@ -338,7 +389,7 @@ def run_thin_peer(args, tool, prefix, size, work):
     check_volume.py."""
     command = ["/usr/bin/python3", os.path.join(BENCH_DIR, "peers.py"), "volume", "--surface",
                prefix, "--size", repr(size), "--tools", tool, "--timeout",
-               repr(args.thin_timeout), "--out-dir", work, "--json"]
+               repr(args.thin_timeout), "--out-dir", work, "--gmsh-sizes", "surface", "--json"]
     row = run_json_lines(command)[0]
     row["tool"] = tool
     if row.get("mesh_file"):
@@ -377,12 +428,203 @@ def run_thin(args, tools, name, surface, spec, title):
 
 
 # ---------------------------------------------------------------------------------------------
+# Equal element counts: each tool's size adjusted until its tet count is within a tolerance of
+# a target N (count ~ size^-3, so secant steps on log size against log count).
+
+def parse_count(text):
+    """50k -> 50000, 2M -> 2000000, 120000 -> 120000."""
+    match = re.fullmatch(r"(\d+(?:\.\d+)?)([kKmM]?)", text.strip())
+    if not match:
+        raise ValueError(f"bad tet count '{text}' (e.g. 50k, 500k, 2M, 120000)")
+    return int(round(float(match.group(1)) * {"": 1, "k": 1e3, "m": 1e6}[match.group(2).lower()]))
+
+
+def start_size(shape, count):
+    """afmesh's first h for `count` tets: the SIZES entry nearest in count, scaled by
+    (its count / count)^(1/3); None when SIZES has none for the shape."""
+    known = [(TARGET_TETS[t], h) for t, h in SIZES.get(shape, {}).items() if t in TARGET_TETS]
+    if not known:
+        return None
+    ref_count, ref_h = min(known, key=lambda k: abs(math.log(k[0] / count)))
+    return ref_h * (ref_count / count) ** (1.0 / 3.0)
+
+
+MAX_SIZE_STEP = 1.5  # the largest change of size from one run of an equal-count search to the next
+
+
+def next_size(tried, target):
+    """The next size to try from the runs so far (dicts with "size" and, when they meshed,
+    "tets"). With runs either side of the target that bracket it (the largest size above the
+    target smaller than the smallest size below it): regula falsi on (log size, log tets) inside
+    that bracket; otherwise (no bracket, or counts that do not fall as the size grows, as netgen's
+    sometimes) a secant through the two runs closest to the target, slope -3 when there is one
+    run or the slope found is implausible (flatter than -1 counts as -1), and at most a factor
+    MAX_SIZE_STEP from the closest run. Never a size already tried, nor one within 2% of a run
+    that failed."""
+    good = [(math.log(r["size"]), math.log(r["tets"])) for r in tried if r.get("tets")]
+    goal = math.log(target)
+    if not good:  # nothing meshed yet (e.g. afmesh's front did not close): a nearby size
+        return tried[-1]["size"] * 1.03
+    above = [g for g in good if g[1] > goal]  # too many tets: size too small
+    below = [g for g in good if g[1] < goal]
+    bracket = None
+    if above and below:
+        a, b = max(above), min(below)  # by log size
+        if a[0] < b[0]:
+            bracket = (a, b)
+    if bracket is None:
+        ranked = sorted(good, key=lambda g: abs(g[1] - goal))
+        a, b = ranked[0], ranked[1] if len(ranked) > 1 else None
+    else:
+        a, b = bracket
+    slope = -3.0
+    if b is not None and abs(b[0] - a[0]) > 1e-9:
+        slope = (b[1] - a[1]) / (b[0] - a[0])
+        if not -8.0 < slope < -1.0:
+            slope = -3.0 if slope > -0.3 or slope < -8.0 else -1.0
+    log_size = a[0] + (goal - a[1]) / slope
+    if bracket is not None:  # inside the bracket, away from its ends
+        low, high = a[0], b[0]
+        margin = 0.15 * (high - low)
+        log_size = min(max(log_size, low + margin), high - margin)
+    else:  # at most a factor MAX_SIZE_STEP from the closest run (a count 3.4 times or 1/3.4)
+        step = math.log(MAX_SIZE_STEP)
+        log_size = min(max(log_size, a[0] - step), a[0] + step)
+    wanted = math.exp(log_size)
+    # A size already tried gives the same count again, and one within 2% of a failed run (gmsh
+    # HXT crashing, afmesh's front not closing) likely fails again: the nearest size 3%, 6%, ...
+    # either side that is clear of both.
+    clear = lambda size: all(abs(math.log(size / r["size"]))
+                             >= (0.02 if not r.get("tets") else 0.005) for r in tried)
+    for k in range(40):
+        size = wanted * 1.03 ** ((k + 1) // 2 * (1 if k % 2 else -1))
+        if clear(size):
+            return size
+    return wanted
+
+
+def search_count(run, target, first_size, args, label):
+    """Runs `run(size)` (figures with "tets", or "error") at first_size, then at sizes from
+    next_size, until a count within args.count_tolerance of target or args.count_max_runs runs.
+    Returns the chosen figures: the first within tolerance, else the run closest to target
+    ("count_status" "closest"), else the last failure ("failed"; "timed out" stops the search at
+    once). Each step is printed; "trail" lists them all."""
+    tried, size = [], first_size
+    for _ in range(args.count_max_runs):
+        figures = run(size)
+        tried.append(figures)
+        tets = figures.get("tets") if "error" not in figures else None
+        if tets:
+            off = tets / target - 1.0
+            print(f"   {label}: size {size:.5g} -> {tets:,} tets ({100 * off:+.1f}%)", flush=True)
+            if abs(off) <= args.count_tolerance:
+                figures["count_status"] = "within"
+                break
+        else:
+            note = figures.get("error", "no tets")
+            print(f"   {label}: size {size:.5g} -> {'TIMED OUT' if figures.get('timed_out') else 'FAILED'}"
+                  f": {note[:200]}", flush=True)
+            if figures.get("timed_out"):
+                break
+        size = next_size(tried, target)
+    trail = [{"size": r["size"], "tets": r.get("tets") if "error" not in r else None,
+              "seconds": r.get("seconds"), **({"error": r["error"]} if "error" in r else {})}
+             for r in tried]
+    meshed = [r for r in tried if "error" not in r and r.get("tets")]
+    if tried[-1].get("count_status") == "within":
+        chosen = tried[-1]
+    elif meshed and not tried[-1].get("timed_out"):
+        chosen = min(meshed, key=lambda r: abs(math.log(r["tets"] / target)))
+        chosen["count_status"] = "closest"
+    else:
+        chosen = tried[-1]
+        chosen["count_status"] = "timed out" if chosen.get("timed_out") else "failed"
+        if meshed:
+            chosen["closest_meshed"] = min(meshed, key=lambda r: abs(math.log(r["tets"] / target)))
+    chosen["runs"] = len(tried)
+    chosen["trail"] = trail
+    return chosen
+
+
+def equal_count_skip(args, tool, label, target):
+    if f"{tool}@{label}" in args.skip:
+        return f"skipped by --skip {tool}@{label}"
+    if tool == "netgen" and target > TARGET_TETS[args.netgen_max_target]:
+        return f"skipped: --netgen-max-target {args.netgen_max_target}"
+    return None
+
+
+def asked_text(row):
+    """What the tool was asked, e.g. "maxh 0.0812" or "-a 0.00034"."""
+    h = row.get("size")
+    if h is None:
+        return "-"
+    tool = row["tool"]
+    if tool.startswith("afmesh"):
+        return f"--size {h:.4g}"
+    if tool.startswith("gmsh"):
+        return f"MeshSizeMax {h:.4g}"
+    if tool == "netgen":
+        return f"maxh {h:.4g}"
+    if tool == "tetgen":
+        return f"-a {peers.TETGEN_VOLUME_FACTOR * h ** 3:.4g} (h {h:.4g})"
+    return f"{h:.4g}"
+
+
+def run_equal_count(args, tools, shape, label):
+    """One shape at one target count: afmesh's h found first (its surface changes with h), then
+    on that surface each peer's size."""
+    target = parse_count(label)
+    base = os.path.join(args.work_dir, "equal-count", f"{shape}-{label}")
+    os.makedirs(os.path.dirname(base), exist_ok=True)
+    print(f"\n== equal count: {SHAPE_TITLES.get(shape, shape)}: {target:,} tets "
+          f"(within {100 * args.count_tolerance:g}%, at most {args.count_max_runs} runs per tool, "
+          f"{args.count_timeout:g} s per run) ==", flush=True)
+    print(f"   start: {load_line()}", flush=True)
+    h0 = start_size(shape, target)
+    if h0 is None:
+        print(f"   no size for {shape} in SIZES to start from; give one with --size {shape}:50k=H")
+        return {"target_tets": target, "rows": [{"tool": "afmesh", "error": "no start size"}]}
+    prefix_of = lambda h: f"{base}-h{h:.6g}"
+    afmesh = search_count(
+        lambda h: run_afmesh(args, shape, h, prefix_of(h), True, args.count_timeout),
+        target, h0, args, "afmesh")
+    rows = [afmesh]
+    surface_h = afmesh["size"] if "error" not in afmesh else afmesh.get(
+        "closest_meshed", afmesh)["size"]
+    prefix = prefix_of(surface_h)
+    surface = {}
+    if not os.path.exists(prefix + ".mesh"):
+        print("   no surface was written: nothing for the peers to mesh")
+    else:
+        points, triangles, _ = peers.read_medit(prefix + ".mesh")
+        surface = {"prefix": prefix, "afmesh_size": surface_h, "points": len(points),
+                   "triangles": len(triangles)}
+        print(f"   peers mesh afmesh's surface at h = {surface_h:.5g}: {len(points):,} points, "
+              f"{len(triangles):,} triangles", flush=True)
+        for tool in tools:
+            if tool == "afmesh":
+                continue
+            reason = equal_count_skip(args, tool, label, target)
+            if reason:
+                rows.append({"tool": tool, "skipped": reason})
+                continue
+            rows.append(search_count(lambda h: run_peer(args, tool, h, prefix, args.count_timeout),
+                                     target, surface_h, args, tool))
+    print(f"   end: {load_line()}")
+    print_equal_count_table(rows, target, args.count_tolerance)
+    return {"target_tets": target, "tolerance": args.count_tolerance, "surface": surface,
+            "rows": rows}
+
+
+# ---------------------------------------------------------------------------------------------
 # Printing.
 
 VOLUME_COLUMNS = (
     ("tool", 13, "s"), ("tets", 9, ","), ("time s", 8, ".2f"), ("cpu s", 8, ".2f"),
     ("tets/s", 9, ",.0f"), ("bytes/tet", 9, ".0f"), ("min dih", 7, ".2f"), ("%<10°", 7, ".3f"),
     ("%<20°", 7, ".3f"), ("min RR", 7, ".4f"), ("mean RR", 7, ".4f"),
+    ("edge/h", 6, ".3f"), ("%e in band", 10, ".1f"),
     ("afm/peer tets/s", 15, ".2f"), ("afm/peer B/tet", 14, ".2f"))
 
 
@@ -404,7 +646,8 @@ def volume_cells(row, reference):
     return [row["tool"], row["tets"], row["seconds"], row.get("cpu_seconds"), tets_per_s,
             bytes_per_tet, row.get("min_dihedral"), percent(row.get("share_below_10")),
             percent(row.get("share_below_20")), row.get("min_radius_ratio"),
-            row.get("mean_radius_ratio"), speed_ratio, memory_ratio]
+            row.get("mean_radius_ratio"), row.get("mean_edge_over_h"),
+            percent(row.get("share_edges_in_band")), speed_ratio, memory_ratio]
 
 
 def print_table(rows):
@@ -424,6 +667,67 @@ def print_table(rows):
             valid = {True: "valid", False: "INVALID: " + row.get("validation", "")}.get(
                 row.get("valid"), "not validated")
             print(f"   {row['tool']}: {valid}; stages {stages}")
+    print(f"   (edge/h: mean interior edge length / h, the size asked of that tool; %e in band: "
+          f"share of interior edges in [{peers.EDGE_BAND[0]:g} h, {peers.EDGE_BAND[1]:g} h])")
+    sys.stdout.flush()
+
+
+EQUAL_COUNT_COLUMNS = (
+    ("tool", 13, "s"), ("asked", 24, "s"), ("runs", 4, "d"), ("tets", 9, ","),
+    ("vs N", 7, "s"), ("time s", 8, ".2f"), ("tets/s", 9, ",.0f"), ("bytes/tet", 9, ".0f"),
+    ("min dih", 7, ".2f"), ("%<20°", 7, ".3f"), ("edge/h", 6, ".3f"), ("%e in band", 10, ".1f"),
+    ("afm/peer tets/s", 15, ".2f"), ("afm/peer B/tet", 14, ".2f"))
+
+
+def print_equal_count_table(rows, target, tolerance):
+    print("   " + " ".join(_cell(name, w, "s") if spec == "s" else name.rjust(w)
+                           for name, w, spec in EQUAL_COUNT_COLUMNS))
+    ours = rows[0]
+    ours_ok = "error" not in ours and ours.get("seconds")
+    notes = []
+    for row in rows:
+        if "skipped" in row:
+            print(f"   {row['tool']:13s} {row['skipped']}")
+            continue
+        if "error" in row:
+            what = "TIMED OUT" if row.get("timed_out") else "FAILED"
+            print(f"   {row['tool']:13s} {what} at {asked_text(row)} after {row['runs']} run(s): "
+                  f"{row['error'][:300]}")
+            closest = row.get("closest_meshed")
+            if closest:
+                notes.append(f"   {row['tool']}: no figures reported; its closest count before was "
+                             f"{closest['tets']:,} at {asked_text(closest)}")
+            continue
+        tets_per_s = row["tets"] / row["seconds"] if row.get("seconds") else None
+        off = f"{100 * (row['tets'] / target - 1):+.1f}%" + (
+            "" if row.get("count_status") == "within" else "!")
+        speed_ratio = memory_ratio = None
+        if row is not ours and ours_ok and tets_per_s:
+            speed_ratio = (ours["tets"] / ours["seconds"]) / tets_per_s
+            if row.get("bytes_per_tet") and ours.get("bytes_per_tet") is not None:
+                memory_ratio = ours["bytes_per_tet"] / row["bytes_per_tet"]
+        percent = lambda share: None if share is None else 100.0 * share
+        cells = [row["tool"], asked_text(row), row["runs"], row["tets"], off, row["seconds"],
+                 tets_per_s, row.get("bytes_per_tet"), row.get("min_dihedral"),
+                 percent(row.get("share_below_20")), row.get("mean_edge_over_h"),
+                 percent(row.get("share_edges_in_band")), speed_ratio, memory_ratio]
+        print("   " + " ".join(_cell(v, w, spec) for v, (_, w, spec) in zip(cells, EQUAL_COUNT_COLUMNS)))
+        if row.get("count_status") != "within":
+            notes.append(f"   {row['tool']}: NOT within {100 * tolerance:g}% of {target:,} after "
+                         f"{row['runs']} runs; the closest run is shown")
+        if row["tool"] == "afmesh" and row.get("valid") is False:
+            notes.append(f"   afmesh: INVALID: {row.get('validation', '')}")
+    for row in rows:
+        failures = [t for t in row.get("trail", []) if "error" in t]
+        if failures and "error" not in row:
+            notes.append(f"   {row['tool']}: {len(failures)} of its runs failed on the way, e.g. "
+                         f"size {failures[0]['size']:.5g}: {failures[0]['error'][:200]}")
+    print("\n".join(notes) if notes else "", end="\n" if notes else "")
+    print(f"   (vs N: count against the target {target:,}, ! = not within {100 * tolerance:g}%; "
+          f"runs: meshings to find the size; afm/peer: afmesh's tets/s (bytes/tet) over the "
+          f"peer's at these counts, > 1 = afmesh faster (uses more memory per tet); edge/h: mean "
+          f"interior edge / the size asked of that tool; %e in band: share of interior edges in "
+          f"[{peers.EDGE_BAND[0]:g} h, {peers.EDGE_BAND[1]:g} h])")
     sys.stdout.flush()
 
 
@@ -566,7 +870,7 @@ def main(argv):
     print("   every figure from a fresh process, one at a time, one thread each "
           "(OMP_NUM_THREADS=1; gmsh General.NumThreads=1, Mesh.MaxNumThreads3D=1)")
     results = {}
-    only = args.io_only or args.sizing_only or args.thin_only
+    only = args.io_only or args.sizing_only or args.thin_only or args.equal_count_only
     if not only:
         for shape in args.shapes.split(","):
             cases = {}
@@ -574,6 +878,11 @@ def main(argv):
                 cases[target] = run_case(args, tools, shape, target)
             print_growth(shape, cases)
             results[shape] = cases
+    if args.equal_count_only or (args.equal_count and not only):
+        results["equal_count"] = {
+            shape: {label: run_equal_count(args, tools, shape, label)
+                    for label in args.count_targets.split(",")}
+            for shape in args.shapes.split(",")}
     if args.io_only or (args.io and not only):
         results["io"] = run_io(args)
     if args.sizing_only or (args.sizing and not only):

@@ -7,7 +7,11 @@
 # tags as triangle refs) given as they are to afmesh (its CLI, --envs tags and --envs auto) and to
 # each peer (tetgen also as plain -p and as -d, which counts the intersecting face pairs), every
 # volume mesh checked by afmesh stats and tools/check_volume.py --envs (tets across a gap). Prints
-# one table per case; see bench/run_bench.py.
+# one table per case; see bench/run_bench.py. Every volume row has mean interior edge / h (h = the
+# size asked of that tool) and the share of interior edges in [0.7 h, 1.4 h]. The equal-count
+# comparison then adjusts each tool's size (afmesh --size, gmsh MeshSizeMax, netgen maxh, tetgen
+# -a) until its tet count is within 10% of each target, and compares tets/s, bytes/tet and
+# quality at those equal counts (a failed or timed-out search says so).
 #
 # Usage: scripts/bench.sh [bench/run_bench.py options]
 #   scripts/bench.sh                                   everything (netgen at 2M takes tens of minutes)
@@ -16,6 +20,10 @@
 #   scripts/bench.sh --sizing-only                     the size-field throughput alone
 #   scripts/bench.sh --thin-only                       the thin inputs alone (seconds); --no-thin skips them
 #   scripts/bench.sh --shapes sphere --tools afmesh,tetgen --size sphere:2M=0.031
+#   scripts/bench.sh --equal-count-only                equal counts alone, 50k tets (a few minutes)
+#   scripts/bench.sh --equal-count-only --count-targets 50k,500k,2M --count-timeout 3600
+#                                                      also at 500k and 2M (netgen: tens of minutes)
+#   scripts/bench.sh --no-equal-count                  the equal-size tables without it
 # Environment: AFMESH_BENCH_BUILD_DIR (default build/release, the release preset),
 #              AFMESH_BENCH_JOBS (build parallelism, default 2),
 #              AFMESH_CHECK_VOLUME (the independent checker, default ../shared/tools/check_volume.py).
