@@ -176,6 +176,10 @@ std::string describe_input_near(const Mesh& input, const Point& x, double radius
     absl::StrAppend(&text, ": sliver triangles, whose elements are slivers too; the front could "
                            "not close among them. Re-triangulating the surface with "
                            "better-shaped triangles avoids this");
+  } else if (shortest > 4.0 * size) {
+    absl::StrAppend(&text, ": input edges far longer than the size, which the front must grade "
+                           "down from in the gaps along them; a size nearer the input's edges, "
+                           "or a surface re-triangulated at the size, avoids this");
   } else if (shortest < 0.2 * size) {
     absl::StrAppend(&text, ": input edges far shorter than the size; a smaller size, or a larger "
                            "--growth, gives the front room to grade");
@@ -243,6 +247,49 @@ absl::Status overlap_report(const MesherState& s, Index face, double domain_volu
       s.meshed_volume, domain_volume, s.live_tets, x[0], x[1], x[2], s.front.face(face).env));
 }
 
+// Not in the paper: the end game must shrink the front. Once the elements hold all but
+// kEndGameShare of the enclosed volume, the front may only get smaller; a front whose smallest
+// size is not beaten for kEndGameSteps + kEndGameStepsPerFace × that size fills the last gaps
+// with ever smaller elements and would never close (a cube of edges 0.15 at size 0.02: the
+// volume meshed after 1M steps, then 800k tets more without end).
+constexpr double kEndGameShare = 1e-3;
+constexpr std::int64_t kEndGameSteps = 20000;
+constexpr std::int64_t kEndGameStepsPerFace = 20;
+
+class EndGameWatch {
+ public:
+  // True when the end game has stopped making progress (call once per step).
+  bool stalled(const MesherState& s, double domain_volume, std::int64_t step) {
+    if (s.meshed_volume < domain_volume * (1.0 - kEndGameShare)) return false;
+    if (s.front.size() < smallest_front_) {
+      smallest_front_ = s.front.size();
+      since_ = step;
+    }
+    return step - since_ > kEndGameSteps + kEndGameStepsPerFace * smallest_front_;
+  }
+  std::int64_t smallest_front() const { return smallest_front_; }
+
+ private:
+  std::int64_t smallest_front_ = std::numeric_limits<std::int64_t>::max();
+  std::int64_t since_ = 0;
+};
+
+absl::Status end_game_report(const MesherState& s, const Mesh& input, Index face,
+                             double domain_volume, std::int64_t smallest_front) {
+  const Triangle v = s.front.face(face).v;
+  const Point& x = s.points[v[0]];
+  const double target = volume::target_size_for_face(s, v);
+  return absl::FailedPreconditionError(absl::StrCat(
+      absl::StrFormat(
+          "the front stopped closing: the elements hold all but %.2g of the enclosed volume, but "
+          "the last front faces (%d now, %d at best) only make ever smaller elements; %d tets "
+          "built, last face (%d, %d, %d) near (%g, %g, %g)",
+          1.0 - s.meshed_volume / domain_volume, s.front.size(), smallest_front, s.live_tets,
+          v[0], v[1], v[2], x[0], x[1], x[2]),
+      describe_input_near(input, x, 3.0 * std::max(volume::element_size_for_face(s, v), target),
+                          target)));
+}
+
 absl::Status stuck_report(const MesherState& s, const Mesh& input, Index face,
                           std::int64_t steps) {
   const Triangle v = s.front.face(face).v;
@@ -302,10 +349,13 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
                                    Progress& progress) {
   const double boundary_edge = mean_boundary_edge(front);
   const double domain_volume = enclosed_volume(front.points, front.triangles, nullptr);
-  MesherState s(front, std::max(growth, kMinAttachedGrowth), size_field,
-                padded_bounds(front.points), boundary_edge);
   const double max_size = params.spec ? params.spec->max_size : params.size;
   const double h = std::min(max_size, boundary_edge);
+  // The bins' cells are about one element: sized by the boundary alone, a size well below the
+  // input's edges put hundreds of front points in a cell (a cube of edges 0.15 at size 0.02 did
+  // not finish in 400 s).
+  MesherState s(front, std::max(growth, kMinAttachedGrowth), size_field,
+                padded_bounds(front.points), h);
   const double expected_tets =
       std::max(1.0, domain_volume / (h * h * h / (6.0 * std::sqrt(2.0))));
   s.tets.reserve(static_cast<std::size_t>(expected_tets * 1.3));
@@ -314,12 +364,15 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
     return st;
 
   RepairCounts repairs;
+  EndGameWatch end_game;
   std::int64_t steps = 0;
   // A face is taken from the queue a little more than once per element it builds; a front that
   // keeps failing and re-opening without building stops here with a report instead of running on.
   const std::int64_t slack = 20 * static_cast<std::int64_t>(front.triangles.size()) + 100000;
   while (std::optional<Index> face = s.front.pop()) {                  // F6, F11
     if (++steps > 6 * s.live_tets + slack) return stuck_report(s, front, *face, steps);
+    if (end_game.stalled(s, domain_volume, steps))
+      return end_game_report(s, front, *face, domain_volume, end_game.smallest_front());
     if (steps % kCancelCheckInterval == 0) {
       if (progress.cancelled()) return absl::CancelledError("volume meshing cancelled");
       // Elements that do not overlap cannot hold more than the enclosed volume. With crossing

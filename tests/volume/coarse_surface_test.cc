@@ -35,5 +35,28 @@ TEST(CoarseSurface, BoxMeshesAtSizeWellBelowItsEdges) {
   expect_valid_volume_mesh(box_surface({0, 0, 0}, {1, 1, 1}, 0.25), 0.1);
 }
 
+// Regression for issue 10 (never hang): the shipped cube at 0.02, 7.5 × under its edges, meshed
+// all but 2e-4 of its volume after 1M steps and then built ever smaller elements in the last
+// gaps along its faces without end (no answer after 400 s). The end game must shrink the front;
+// a front that stops shrinking ends the job with FAILED_PRECONDITION saying where and why.
+// When such a front meshes, this becomes a test that it is valid.
+TEST(Regression, Issue10EndGameThatStopsClosingEndsTheJob) {
+  absl::StatusOr<Mesh> cube = read_mesh(std::string(AFMESH_SOURCE_DIR) + "/examples/cube/cube.msh");
+  ASSERT_TRUE(cube.ok()) << cube.status();
+  cube->tets.clear();
+  cube->tet_tags.clear();
+  VolumeParams params;
+  params.size = 0.02;
+  params.optimise = false;
+  absl::StatusOr<VolumeResult> result = generate_volume_mesh(*cube, params, no_progress());
+  ASSERT_FALSE(result.ok());
+  EXPECT_EQ(result.status().code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_NE(result.status().message().find("the front stopped closing"), std::string::npos)
+      << result.status();
+  EXPECT_NE(result.status().message().find("input edges far longer than the size"),
+            std::string::npos)
+      << result.status();
+}
+
 }  // namespace
 }  // namespace afmesh
