@@ -34,8 +34,10 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import stl_tools  # noqa: E402
 
-CHECKER = "/work/shared/tools/check_volume.py"
-CORPUS = "/work/shared/corpus"
+# ../shared beside the checkout (as CI lays it out).
+SHARED = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared"))
+CHECKER = os.path.join(SHARED, "tools", "check_volume.py")
+CORPUS = os.path.join(SHARED, "corpus")
 OCCT = "/usr/share/opencascade/data/stl"
 PY = "/usr/bin/python3"
 
@@ -315,6 +317,8 @@ def main():
     ap.add_argument("--fresh", action="store_true")
     ap.add_argument("--keep-meshes", action="store_true")
     ap.add_argument("--report-only", action="store_true")
+    ap.add_argument("--fail-on-invalid", action="store_true",
+                    help="exit 1 when a run of this invocation is not valid (for CI)")
     args = ap.parse_args()
     os.makedirs(os.path.join(args.out, "meshes"), exist_ok=True)
     res_path = os.path.join(args.out, "results.jsonl")
@@ -322,12 +326,14 @@ def main():
         os.remove(res_path)
     results = load_jsonl(res_path)
     done = {(r["group"], r["name"], r["label"]) for r in results}
+    invalid = 0
     if not args.report_only:
         with open(res_path, "a") as f:
             for group, name, stl, label, size, timeout, extra in plan(args):
                 if (group, name, label) in done:
                     continue
                 r = judge(args, group, name, stl, label, size, timeout, extra)
+                invalid += 0 if r["valid"] else 1
                 results.append(r)
                 f.write(json.dumps(r) + "\n")
                 f.flush()
@@ -340,6 +346,9 @@ def main():
     with open(res_path, "w") as f:
         for r in results:
             f.write(json.dumps(r) + "\n")
+    if args.fail_on_invalid and invalid:
+        print(f"{invalid} run(s) not valid", file=sys.stderr)
+        sys.exit(1)
 
 
 if __name__ == "__main__":
