@@ -187,6 +187,15 @@ std::string describe_input_near(const Mesh& input, const Point& x, double radius
   return text;
 }
 
+// describe_input_near for front face v, where the front failed at x: within three of its
+// element sizes (or target sizes, when larger) of x.
+std::string describe_input_near_face(const MesherState& s, const Mesh& input, const Triangle& v,
+                                     const Point& x) {
+  const double d = volume::element_size_for_face(s, v);
+  const double target = volume::target_size_for_face(s, v);
+  return describe_input_near(input, x, 3.0 * std::max(d, target), target);
+}
+
 // Back-off bookkeeping: how often the front had to re-open its elements in each region. Counted
 // by place, not by point, because re-meshing replaces the points: the region of a face of size d
 // is its cell in a grid whose spacing is the power of two just above 2d.
@@ -221,14 +230,12 @@ absl::Status back_off(MesherState& s, const Mesh& input, Index face, RepairCount
   const int rings = 1 + count;
   const Point& x = centroid;
   if (rings > kMaxCavityRings) {
-    const double d = volume::element_size_for_face(s, v);
-    const double target = volume::target_size_for_face(s, v);
     return absl::FailedPreconditionError(absl::StrCat(
         absl::StrFormat(
             "the front got stuck at face (%d, %d, %d) near (%g, %g, %g) after re-opening its "
             "surroundings %d times; %d tets built, %d front faces left",
             v[0], v[1], v[2], x[0], x[1], x[2], kMaxCavityRings, s.live_tets, s.front.size()),
-        describe_input_near(input, x, 3.0 * std::max(d, target), target)));
+        describe_input_near_face(s, input, v, x)));
   }
   ++count;
   volume::open_cavity(s, face, rings);
@@ -278,7 +285,6 @@ absl::Status end_game_report(const MesherState& s, const Mesh& input, Index face
                              double domain_volume, std::int64_t smallest_front) {
   const Triangle v = s.front.face(face).v;
   const Point& x = s.points[v[0]];
-  const double target = volume::target_size_for_face(s, v);
   return absl::FailedPreconditionError(absl::StrCat(
       absl::StrFormat(
           "the front stopped closing: the elements hold all but %.2g of the enclosed volume, but "
@@ -286,22 +292,19 @@ absl::Status end_game_report(const MesherState& s, const Mesh& input, Index face
           "built, last face (%d, %d, %d) near (%g, %g, %g)",
           1.0 - s.meshed_volume / domain_volume, s.front.size(), smallest_front, s.live_tets,
           v[0], v[1], v[2], x[0], x[1], x[2]),
-      describe_input_near(input, x, 3.0 * std::max(volume::element_size_for_face(s, v), target),
-                          target)));
+      describe_input_near_face(s, input, v, x)));
 }
 
 absl::Status stuck_report(const MesherState& s, const Mesh& input, Index face,
                           std::int64_t steps) {
   const Triangle v = s.front.face(face).v;
   const Point& x = s.points[v[0]];
-  const double d = volume::element_size_for_face(s, v);
-  const double target = volume::target_size_for_face(s, v);
   return absl::FailedPreconditionError(absl::StrCat(
       absl::StrFormat(
           "the front did not close after %d steps: %d tets built, %d front faces left, last face "
           "(%d, %d, %d) near (%g, %g, %g)",
           steps, s.live_tets, s.front.size(), v[0], v[1], v[2], x[0], x[1], x[2]),
-      describe_input_near(input, x, 3.0 * std::max(d, target), target)));
+      describe_input_near_face(s, input, v, x)));
 }
 
 // F2: the size in space: the specification's sources and background grid (eq. 1–14), or one
