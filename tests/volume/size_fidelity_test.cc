@@ -13,6 +13,7 @@
 #include "core/volume/generate_volume_mesh.h"
 #include "core/volume/repair_front.h"
 #include "gtest/gtest.h"
+#include "tests/volume/mesh_and_check.h"
 
 namespace afmesh {
 namespace {
@@ -55,17 +56,7 @@ EdgeFigures interior_edges(const Mesh& mesh, double h, double within = 0) {
   return f;
 }
 
-Mesh mesh_valid(const Mesh& front, double h, double growth = 1.0) {
-  VolumeParams params;
-  params.size = h;
-  params.growth = growth;
-  absl::StatusOr<VolumeResult> result = generate_volume_mesh(front, params, no_progress());
-  EXPECT_TRUE(result.ok()) << result.status();
-  if (!result.ok()) return {};
-  const ValidationReport report = validate_volume_mesh(result->mesh, &front);
-  EXPECT_TRUE(report.valid()) << report.to_string();
-  return std::move(result->mesh);
-}
+Mesh mesh_valid(const Mesh& front, double h) { return mesh_and_check(front, h).mesh; }
 
 TEST(SizeFidelity, SphereWhoseFrontMatchesTheSize) {
   const Mesh mesh = mesh_valid(sphere_surface({0, 0, 0}, 1.0, 0.1), 0.1);
