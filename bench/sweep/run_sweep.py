@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Robustness sweep of `afmesh volume` (issue 10, part 1): runs, judges and tabulates.
 
-usage: run_sweep.py [--afmesh BIN] [--out DIR] [--groups calibration,solids,corpus,special,occt]
+usage: run_sweep.py [--afmesh BIN] [--out DIR] [--groups calibration,solids,corpus,special,occt,thin]
                     [--limit N] [--sizes 0.5,1,2,none] [--timeout SEC] [--fresh] [--report-only]
 
 Groups (each run appended as one JSON line to DIR/results.jsonl; a run already there is skipped,
@@ -15,6 +15,10 @@ so a sweep can be extended with a larger --limit; --fresh starts over):
                and the gmsh-written sphere with a bore and a box cavity, no --size and 0.1
   occt         /usr/share/opencascade/data/stl/{shape,sh1,sh2,TR12J_OCC}.stl at 1x and 0.5x
                their mean edge and with no --size
+  thin         the thin fronts of `make-thin-examples --variants DIR` (--thin DIR): domes, sails
+               and crossing X's of other shapes, each with its family's spec file, with
+               --envs tags and --envs auto; judged with `stats --envs tags` and the checker's
+               --envs (no tet across a thin gap)
 
 Each run: `nice -n 10 afmesh volume IN -o OUT.msh [--size H] --json --timeout T`, one at a time.
 A successful run is followed by `afmesh stats OUT.msh --json` and the independent checker
@@ -85,6 +89,8 @@ def judge(args, group, name, stl, label, size, timeout, extra=None):
     cmd = ["nice", "-n", "10", args.afmesh, "volume", stl, "-o", out, "--json", "--timeout", f"{timeout:g}"]
     if size is not None:
         cmd += ["--size", f"{size:.6g}"]
+    cmd += (extra or {}).get("cli_args", [])
+    envs = (extra or {}).get("envs_check", False)
     rc, so, se, wall, to = run(cmd, timeout + 20)
     rec = {"group": group, "name": name, "stl": stl, "label": label, "size": size, "rc": rc,
            "wall": round(wall, 3), "timeout": to or (rc == 6 and "did not finish within" in se),
@@ -103,7 +109,8 @@ def judge(args, group, name, stl, label, size, timeout, extra=None):
                     "server_messages": val.get("messages", [])[:3],
                     "repair": s.get("repair", {}),
                     "timings": {t.get("stage"): t.get("seconds") for t in s.get("timings", [])}})
-        src, sso, sse, _, _ = run(["nice", "-n", "10", args.afmesh, "stats", out, "--json"], 120)
+        src, sso, sse, _, _ = run(["nice", "-n", "10", args.afmesh, "stats", out, "--json"]
+                                  + (["--envs", "tags"] if envs else []), 120)
         rec["stats_rc"] = src
         try:
             st = json.loads(sso)
@@ -112,11 +119,13 @@ def judge(args, group, name, stl, label, size, timeout, extra=None):
                                    st.get("validation", {}).get("checks", []) if c.get("outcome") == "failed"]
         except ValueError:
             rec["stats_error"] = (sse or sso).strip()[-300:]
-        crc, cso, cse, _, cto = run(["nice", "-n", "10", PY, CHECKER, out, stl, "--json"], 300)
+        crc, cso, cse, _, cto = run(["nice", "-n", "10", PY, CHECKER, out, stl, "--json"]
+                                    + (["--envs"] if envs else []), 300)
         if crc not in (0, 1) or not cso.strip():
             mesh = out[:-4] + ".mesh"
             run(["nice", "-n", "10", args.afmesh, "convert", out, mesh], 120)
-            crc, cso, cse, _, cto = run(["nice", "-n", "10", PY, CHECKER, mesh, stl, "--json"], 300)
+            crc, cso, cse, _, cto = run(["nice", "-n", "10", PY, CHECKER, mesh, stl, "--json"]
+                                        + (["--envs"] if envs else []), 300)
             rec["checked_on"] = "mesh"
         repaired = any(int(rec["repair"].get(k, 0)) > 0 for k in ("trianglesReoriented", "trianglesDropped"))
         if repaired:
@@ -148,7 +157,7 @@ def judge(args, group, name, stl, label, size, timeout, extra=None):
         try:
             c = json.loads(cso)
             rec["check_pass"] = bool(c.get("pass"))
-            rec["check_fail"] = [k for k in ("positive", "conform", "boundary", "volume") if
+            rec["check_fail"] = [k for k in ("positive", "conform", "boundary", "volume", "envs") if
                                  not c.get(k, {}).get("pass", True)]
             rec["check"] = {k: c[k] for k in ("positive", "conform", "boundary", "volume") if k in c}
             rec["check_min_dihedral"] = c.get("quality", {}).get("min_dihedral_deg")
@@ -226,6 +235,17 @@ def plan(args):
                 for label, h in (("none", None), ("0.1", 0.1)):
                     jobs.append(("special", s["name"], s["stl"], label, h, args.timeout,
                                  {"h_s": s["h_s"], "outward": s["outward"], "flipped": s["flipped"]}))
+    if "thin" in groups:
+        # make-thin-examples --variants DIR (tests/environments): the dome, sails and crossing X
+        # with other thicknesses, triangulations, boxes, heels and cambers (issue 10, part 6),
+        # each with its family's shipped spec and with --envs tags and --envs auto.
+        root = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+        for v in load_jsonl(os.path.join(args.thin, "thin.jsonl")):
+            spec = os.path.join(root, "examples", v["family"], v["family"] + "-sizes.json")
+            for envs in ("tags", "auto"):
+                jobs.append(("thin", v["name"], v["file"], envs, None, args.timeout,
+                             {"cli_args": ["--spec", spec, "--envs", envs], "envs_check": True,
+                              "family": v["family"], "parameters": v["parameters"]}))
     if "occt" in groups:
         for n in ("shape", "sh1", "sh2", "TR12J_OCC"):
             path = os.path.join(OCCT, n + ".stl")
@@ -269,7 +289,7 @@ def summarise(results, t_of):
         elif r.get("timeout") and t_of and r.get("size") and r.get("volume"):
             r["est_tets"] = int(kmed * r["volume"] / r["size"] ** 3)
             r["rel_time_lower_bound"] = r["wall"] / t_of(r["est_tets"])
-    for group in ("calibration", "solids", "special", "occt", "corpus"):
+    for group in ("calibration", "solids", "special", "occt", "corpus", "thin"):
         rs = [r for r in results if r["group"] == group]
         if not rs:
             continue
@@ -317,6 +337,8 @@ def main():
     ap.add_argument("--fresh", action="store_true")
     ap.add_argument("--keep-meshes", action="store_true")
     ap.add_argument("--report-only", action="store_true")
+    ap.add_argument("--thin", default="/work/sweep-out/thin",
+                    help="folder of make-thin-examples --variants (thin.jsonl and the fronts)")
     ap.add_argument("--fail-on-invalid", action="store_true",
                     help="exit 1 when a run of this invocation is not valid (for CI)")
     args = ap.parse_args()

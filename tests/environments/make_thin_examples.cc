@@ -3,15 +3,108 @@
 // EXAMPLES_DIR/crossing/crossing.mesh (Medit,
 // triangle references = crossing-environment ids). The shipped files are its output;
 // thin_examples_test checks that they still are.
+//
+// make-thin-examples --variants DIR: the same three families with other thicknesses,
+// triangulations, boxes, heels and cambers (issue 10, part 6), as DIR/NAME.mesh, and one JSON
+// line per front in DIR/thin.jsonl (name, family, file, parameters), for bench/sweep.
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "core/io/mesh_io.h"
 #include "core/shapes/thin_shapes.h"
 
+namespace {
+
+struct Variant {
+  std::string name;
+  std::string family;  // dome, sails or crossing: the shipped spec file of that family applies
+  std::string parameters;  // JSON object
+  afmesh::Mesh mesh;
+};
+
+std::vector<Variant> thin_variants() {
+  std::vector<Variant> out;
+  char text[256];
+  for (const double thickness : {0.001, 0.01}) {
+    for (const int inner : {8, 14, 20}) {
+      for (const int extra : {2, 4}) {
+        for (const double box : {3.0, 4.0}) {
+          afmesh::QuarterDomeParams p;
+          p.thickness = thickness;
+          p.inner_divisions = inner;
+          p.outer_divisions = inner + extra;
+          p.box_side = box;
+          std::snprintf(text, sizeof text, "dome_t%g_n%d_m%d_L%g", thickness, inner, inner + extra,
+                        box);
+          const std::string name = text;
+          std::snprintf(text, sizeof text,
+                        "{\"thickness\": %g, \"inner_divisions\": %d, \"outer_divisions\": %d, "
+                        "\"box_side\": %g}",
+                        thickness, inner, inner + extra, box);
+          out.push_back({name, "dome", text, afmesh::quarter_dome_surface(p)});
+        }
+      }
+    }
+  }
+  for (const double thickness : {0.001, 0.01}) {
+    for (const double heel : {0.0, 10.0, 20.0}) {
+      afmesh::SailsParams p;
+      p.thickness = thickness;
+      p.heel_deg = heel;
+      std::snprintf(text, sizeof text, "sails_t%g_heel%g", thickness, heel);
+      const std::string name = text;
+      std::snprintf(text, sizeof text, "{\"thickness\": %g, \"heel_deg\": %g}", thickness, heel);
+      out.push_back({name, "sails", text, afmesh::sails_surface(p)});
+    }
+  }
+  for (const double camber : {0.0, 0.02, 0.04}) {
+    for (const int divisions : {3, 4, 6}) {
+      for (const double thickness : {0.001, 0.01}) {
+        afmesh::CrossingPlatesParams p;
+        p.camber = camber;
+        p.divisions = divisions;
+        p.thickness = thickness;
+        std::snprintf(text, sizeof text, "crossing_c%g_n%d_t%g", camber, divisions, thickness);
+        const std::string name = text;
+        std::snprintf(text, sizeof text,
+                      "{\"camber\": %g, \"divisions\": %d, \"thickness\": %g}", camber,
+                      divisions, thickness);
+        out.push_back({name, "crossing", text, afmesh::crossing_plates_surface(p)});
+      }
+    }
+  }
+  return out;
+}
+
+int write_variants(const std::string& dir) {
+  std::FILE* list = std::fopen((dir + "/thin.jsonl").c_str(), "w");
+  if (list == nullptr) {
+    std::fprintf(stderr, "make-thin-examples: cannot write %s/thin.jsonl\n", dir.c_str());
+    return 1;
+  }
+  for (const Variant& v : thin_variants()) {
+    const std::string path = dir + "/" + v.name + ".mesh";
+    if (const absl::Status status = afmesh::write_mesh(v.mesh, path); !status.ok()) {
+      std::fprintf(stderr, "make-thin-examples: %s\n", std::string(status.message()).c_str());
+      std::fclose(list);
+      return 1;
+    }
+    std::fprintf(list,
+                 "{\"name\": \"%s\", \"family\": \"%s\", \"file\": \"%s\", \"triangles\": %zu, "
+                 "\"parameters\": %s}\n",
+                 v.name.c_str(), v.family.c_str(), path.c_str(), v.mesh.triangles.size(),
+                 v.parameters.c_str());
+  }
+  return std::fclose(list) == 0 ? 0 : 1;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  if (argc == 3 && std::string(argv[1]) == "--variants") return write_variants(argv[2]);
   if (argc != 2) {
-    std::fprintf(stderr, "usage: make-thin-examples EXAMPLES_DIR\n");
+    std::fprintf(stderr, "usage: make-thin-examples EXAMPLES_DIR | --variants DIR\n");
     return 2;
   }
   const std::string dir = argv[1];
