@@ -139,5 +139,55 @@ TEST(MeshTopology, EdgeGroupsClassifyUseCountsAndDirections) {
   EXPECT_EQ(t.nonmanifold_edges[0].triangles, (std::vector<Index>{2, 3, 4}));
 }
 
+// The boundary of tet (0, 1, 2, 3), outward: every edge has two triangles traversing it in
+// opposite directions.
+std::vector<Triangle> tet_boundary() { return {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}}; }
+
+// The triangle on edge (a, b) other than t, by brute force.
+Index other_on_edge(const std::vector<Triangle>& triangles, Index t, Index a, Index b) {
+  for (Index u = 0; u < static_cast<Index>(triangles.size()); ++u) {
+    if (u == t) continue;
+    const Triangle& v = triangles[u];
+    const bool has_a = v[0] == a || v[1] == a || v[2] == a;
+    const bool has_b = v[0] == b || v[1] == b || v[2] == b;
+    if (has_a && has_b) return u;
+  }
+  return kInvalidIndex;
+}
+
+TEST(MeshTopology, EdgeNeighboursOfAClosedSurfaceAgreeInOrientation) {
+  const std::vector<Triangle> triangles = tet_boundary();
+  const EdgeNeighbours n = triangle_edge_neighbours(triangles);
+  for (Index t = 0; t < 4; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const Index a = triangles[t][k], b = triangles[t][(k + 1) % 3];
+      EXPECT_EQ(n.across[t][k], other_on_edge(triangles, t, a, b)) << t << " " << k;
+      EXPECT_FALSE(n.same_way[t][k]) << t << " " << k;
+    }
+  }
+}
+
+TEST(MeshTopology, EdgeNeighboursMarkAFlippedTriangleOnAllItsEdges) {
+  std::vector<Triangle> triangles = tet_boundary();
+  std::swap(triangles[2][1], triangles[2][2]);
+  const EdgeNeighbours n = triangle_edge_neighbours(triangles);
+  for (Index t = 0; t < 4; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const bool touches_flipped = t == 2 || n.across[t][k] == 2;
+      EXPECT_EQ(n.same_way[t][k], touches_flipped) << t << " " << k;
+    }
+  }
+}
+
+TEST(MeshTopology, EdgeNeighboursAreInvalidOnOpenAndNonManifoldEdges) {
+  // Three triangles on edge (0, 1) and one open edge elsewhere.
+  const std::vector<Triangle> triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  const EdgeNeighbours n = triangle_edge_neighbours(triangles);
+  EXPECT_EQ(n.across[0][0], kInvalidIndex);  // (0, 1): three uses
+  EXPECT_EQ(n.across[0][1], kInvalidIndex);  // (1, 2): one use
+  EXPECT_EQ(n.across[1][0], kInvalidIndex);
+  EXPECT_EQ(n.across[2][2], kInvalidIndex);  // (4, 0): one use
+}
+
 }  // namespace
 }  // namespace afmesh
