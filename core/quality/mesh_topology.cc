@@ -7,13 +7,14 @@
 namespace afmesh {
 namespace {
 
-// One triangle's traversal of one edge: the edge (a, b), a < b, and whether the triangle runs
-// from a to b.
+// One triangle's traversal of one edge: the edge (a, b), a < b, whether the triangle runs
+// from a to b, and which of its edges it is (from corner `slot` to corner `slot` + 1).
 struct HalfEdge {
   Index a = 0;
   Index b = 0;
   Index triangle = 0;
   bool forward = false;
+  std::int8_t slot = 0;
 };
 
 std::vector<HalfEdge> sorted_half_edges(const std::vector<Triangle>& triangles) {
@@ -22,13 +23,28 @@ std::vector<HalfEdge> sorted_half_edges(const std::vector<Triangle>& triangles) 
   for (Index t = 0; t < static_cast<Index>(triangles.size()); ++t) {
     for (int k = 0; k < 3; ++k) {
       const Index from = triangles[t][k], to = triangles[t][(k + 1) % 3];
-      half_edges.push_back({std::min(from, to), std::max(from, to), t, from < to});
+      half_edges.push_back(
+          {std::min(from, to), std::max(from, to), t, from < to, static_cast<std::int8_t>(k)});
     }
   }
   std::sort(half_edges.begin(), half_edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
     return std::tie(x.a, x.b, x.triangle, x.forward) < std::tie(y.a, y.b, y.triangle, y.forward);
   });
   return half_edges;
+}
+
+// Calls visit(first, last) for each run [first, last) of sorted half-edges on the same edge.
+template <typename Visit>
+void for_each_edge_run(const std::vector<HalfEdge>& half_edges, Visit visit) {
+  for (std::size_t first = 0; first < half_edges.size();) {
+    std::size_t last = first + 1;
+    while (last < half_edges.size() && half_edges[last].a == half_edges[first].a &&
+           half_edges[last].b == half_edges[first].b) {
+      ++last;
+    }
+    visit(first, last);
+    first = last;
+  }
 }
 
 // Disjoint sets over corner ids 3 t + k (corner k of triangle t), union by size.
@@ -292,15 +308,9 @@ TriangleTopology analyze_triangle_topology(const std::vector<Triangle>& triangle
   TriangleTopology topology;
   const std::vector<HalfEdge> half_edges = sorted_half_edges(triangles);
   CornerSets corners(3 * triangles.size());
-  for (std::size_t first = 0; first < half_edges.size();) {
-    std::size_t last = first + 1;
-    while (last < half_edges.size() && half_edges[last].a == half_edges[first].a &&
-           half_edges[last].b == half_edges[first].b) {
-      ++last;
-    }
+  for_each_edge_run(half_edges, [&](std::size_t first, std::size_t last) {
     classify_edge(triangles, half_edges, first, last, corners, topology);
-    first = last;
-  }
+  });
   topology.nonmanifold_vertices = split_vertices(triangles, corners);
   return topology;
 }
@@ -310,30 +320,15 @@ EdgeNeighbours triangle_edge_neighbours(const std::vector<Triangle>& triangles) 
   result.across.assign(triangles.size(), {kInvalidIndex, kInvalidIndex, kInvalidIndex});
   result.same_way.assign(triangles.size(), {false, false, false});
   const std::vector<HalfEdge> half_edges = sorted_half_edges(triangles);
-  const auto edge_slot = [&](Index t, Index a, Index b) {
-    const Triangle& v = triangles[t];
-    for (int k = 0; k < 3; ++k) {
-      const Index from = v[k], to = v[(k + 1) % 3];
-      if (std::min(from, to) == a && std::max(from, to) == b) return k;
-    }
-    return 0;  // not reached: the half-edge came from this triangle
-  };
-  for (std::size_t first = 0; first < half_edges.size();) {
-    std::size_t last = first + 1;
-    while (last < half_edges.size() && half_edges[last].a == half_edges[first].a &&
-           half_edges[last].b == half_edges[first].b) {
-      ++last;
-    }
-    if (last - first == 2) {
-      const HalfEdge& x = half_edges[first];
-      const HalfEdge& y = half_edges[first + 1];
-      const int kx = edge_slot(x.triangle, x.a, x.b), ky = edge_slot(y.triangle, y.a, y.b);
-      result.across[x.triangle][kx] = y.triangle;
-      result.across[y.triangle][ky] = x.triangle;
-      result.same_way[x.triangle][kx] = result.same_way[y.triangle][ky] = x.forward == y.forward;
-    }
-    first = last;
-  }
+  for_each_edge_run(half_edges, [&](std::size_t first, std::size_t last) {
+    if (last - first != 2) return;
+    const HalfEdge& x = half_edges[first];
+    const HalfEdge& y = half_edges[first + 1];
+    result.across[x.triangle][x.slot] = y.triangle;
+    result.across[y.triangle][y.slot] = x.triangle;
+    result.same_way[x.triangle][x.slot] = result.same_way[y.triangle][y.slot] =
+        x.forward == y.forward;
+  });
   return result;
 }
 
