@@ -24,23 +24,28 @@ constexpr double kVolumeSignTolerance = 1e-9;
 
 void flip(Triangle& t) { std::swap(t[1], t[2]); }
 
-// Step 1: drops the triangles that repeat a point, when the rest stays closed and manifold.
-std::int64_t drop_repeated_point_triangles(Mesh& front) {
-  std::vector<Triangle> kept;
-  std::vector<Index> kept_tags;
-  kept.reserve(front.triangles.size());
+// Step 1: the triangles that do not repeat a point, with their tags, into `triangles` and `tags`
+// (filled only when some triangle repeats a point). Returns how many repeat one.
+std::int64_t without_repeated_points(const Mesh& front, std::vector<Triangle>& triangles,
+                                     std::vector<Index>& tags) {
+  const std::int64_t repeated = std::count_if(
+      front.triangles.begin(), front.triangles.end(),
+      [](const Triangle& t) { return !has_distinct_indices(t); });
+  if (repeated == 0) return 0;
   for (std::size_t t = 0; t < front.triangles.size(); ++t) {
     if (!has_distinct_indices(front.triangles[t])) continue;
-    kept.push_back(front.triangles[t]);
-    kept_tags.push_back(t < front.triangle_tags.size() ? front.triangle_tags[t] : 0);
+    triangles.push_back(front.triangles[t]);
+    tags.push_back(front.triangle_tags[t]);
   }
-  const std::int64_t dropped = static_cast<std::int64_t>(front.triangles.size() - kept.size());
-  if (dropped == 0 || kept.empty()) return 0;
-  const TriangleTopology topology = analyze_triangle_topology(kept);
-  if (!topology.open_edges.empty() || !topology.nonmanifold_edges.empty()) return 0;
-  front.triangles = std::move(kept);
-  front.triangle_tags = std::move(kept_tags);
-  return dropped;
+  return repeated;
+}
+
+// True when every edge has exactly two triangles (closed, manifold along edges).
+bool closed_and_manifold(const EdgeNeighbours& adjacency) {
+  for (const std::array<Index, 3>& across : adjacency.across)
+    for (const Index u : across)
+      if (u == kInvalidIndex) return false;
+  return true;
 }
 
 // Step 2: labels the edge-connected components and, per triangle, whether it must turn to agree
@@ -144,7 +149,7 @@ int nesting_depth(const Mesh& front, const std::vector<Component>& parts, std::s
     for (const Triangle& v : parts[d].triangles)
       angle += solid_angle(parts[c].sample, front.points[v[0]], front.points[v[1]],
                            front.points[v[2]]);
-    // About an outward-turned closed surface: 1 inside, 0 outside.
+    // About a consistently oriented closed surface: +-1 inside (by its orientation), 0 outside.
     const double winding = std::abs(angle / (4.0 * std::numbers::pi));
     const double nearest = std::round(winding);
     if (std::abs(winding - nearest) > kWindingTolerance || nearest > 1) return -1;
@@ -173,22 +178,27 @@ std::vector<std::string> FrontRepairReport::notes() const {
 FrontRepairReport repair_front(Mesh& front) {
   FrontRepairReport report;
   front.triangle_tags.resize(front.triangles.size(), 0);
-  report.triangles_dropped = drop_repeated_point_triangles(front);
-  for (const Triangle& t : front.triangles) {
-    if (!has_distinct_indices(t)) {
-      report.skipped_because = "a triangle repeats a point";
-      return report;
-    }
-  }
-  const TriangleTopology topology = analyze_triangle_topology(front.triangles);
-  if (!topology.open_edges.empty() || !topology.nonmanifold_edges.empty()) {
-    report.skipped_because = "the surface has open or non-manifold edges";
+  // Step 1, kept only when the rest is closed and manifold: then one edge adjacency serves the
+  // check and steps 2-3.
+  std::vector<Triangle> kept;
+  std::vector<Index> kept_tags;
+  const std::int64_t repeated = without_repeated_points(front, kept, kept_tags);
+  const std::vector<Triangle>& triangles = repeated > 0 ? kept : front.triangles;
+  const EdgeNeighbours adjacency = triangle_edge_neighbours(triangles);
+  if ((repeated > 0 && kept.empty()) || !closed_and_manifold(adjacency)) {
+    report.skipped_because = repeated > 0 ? "a triangle repeats a point"
+                                          : "the surface has open or non-manifold edges";
     return report;
+  }
+  if (repeated > 0) {
+    front.triangles = std::move(kept);
+    front.triangle_tags = std::move(kept_tags);
+    report.triangles_dropped = repeated;
   }
   std::vector<Index> component;
   std::vector<char> turn;
   Index count = 0;
-  if (!orient_components(triangle_edge_neighbours(front.triangles), component, turn, count)) {
+  if (!orient_components(adjacency, component, turn, count)) {
     report.skipped_because = "a component cannot be oriented (non-orientable)";
     return report;
   }
@@ -203,14 +213,9 @@ FrontRepairReport repair_front(Mesh& front) {
     if (2 * turned[component[t]] > size[component[t]]) turn[t] ^= 1;
 
   std::vector<Component> parts = split_components(front, component, turn, count);
-  // Outward-turned copies, for the winding numbers (a component of unknown sign as it is).
-  std::vector<Component> outward = parts;
-  for (Component& part : outward)
-    if (part.sign_known && part.volume < 0)
-      for (Triangle& v : part.triangles) flip(v);
   for (std::size_t c = 0; c < parts.size(); ++c) {
     if (!parts[c].sign_known) continue;
-    const int depth = parts.size() == 1 ? 0 : nesting_depth(front, outward, c);
+    const int depth = parts.size() == 1 ? 0 : nesting_depth(front, parts, c);
     if (depth < 0) continue;
     const bool cavity = depth % 2 == 1;
     report.cavities += cavity ? 1 : 0;
