@@ -14,6 +14,7 @@
 #include "absl/strings/str_format.h"
 #include "core/environments/environments.h"
 #include "core/geometry/vec.h"
+#include "core/quality/measures.h"
 #include "core/quality/optimise.h"
 #include "core/quality/validate_common.h"
 #include "core/sizing/attached_sizes.h"
@@ -155,16 +156,11 @@ std::string describe_input_near(const Mesh& input, const Point& x, double radius
     for (const Index p : t) near = near || norm(sub(input.points[p], x)) <= radius;
     if (!near) continue;
     ++count;
+    smallest_angle = std::min(smallest_angle, triangle_quality(input.points, t).min_angle_deg);
     for (int k = 0; k < 3; ++k) {
-      const Point& a = input.points[t[k]];
-      const Point u = sub(input.points[t[(k + 1) % 3]], a);
-      const Point w = sub(input.points[t[(k + 2) % 3]], a);
-      const double length = norm(u);
+      const double length = norm(sub(input.points[t[(k + 1) % 3]], input.points[t[k]]));
       shortest = std::min(shortest, length);
       longest = std::max(longest, length);
-      const double cosine = dot(u, w) / (length * norm(w));
-      smallest_angle =
-          std::min(smallest_angle, std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / M_PI);
     }
   }
   if (count == 0) return absl::StrFormat("; no input triangle within %g of there", radius);
