@@ -117,23 +117,18 @@ double target_size_for_face(const MesherState& s, const Triangle& v) {
   return std::min(s.size_field.size_at(mid), attached);
 }
 
-namespace {
-
-// F5/F9: the target size `target` kept within [0.55, 1.6] × the face's mean edge.
-double clamped_to_face(const MesherState& s, const Triangle& v, double target) {
+double element_size_for_target(const MesherState& s, const Triangle& v, double target) {
   const double edge = mean_edge(s.points[v[0]], s.points[v[1]], s.points[v[2]]);
   return std::clamp(target, 0.55 * edge, 1.6 * edge);
 }
 
-}  // namespace
-
 double element_size_for_face(const MesherState& s, const Triangle& v) {
-  return clamped_to_face(s, v, target_size_for_face(s, v));
+  return element_size_for_target(s, v, target_size_for_face(s, v));
 }
 
 double queue_size_for_face(const MesherState& s, const Triangle& v) {
   const double target = target_size_for_face(s, v);
-  const double d = clamped_to_face(s, v, target);
+  const double d = element_size_for_target(s, v, target);
   return d <= target ? d : target * target / d;
 }
 

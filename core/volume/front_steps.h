@@ -49,12 +49,17 @@ Strictness strictness_for(int attempts);
 // square edge length: 1 for the regular tet, 0 when flat, negative when inverted.
 double tet_shape_quality(const Point& a, const Point& b, const Point& c, const Point& d);
 
-// Eq. 15: the size wanted at face v, min(delta_bg(centroid), c_i · min(delta_A, delta_B, delta_C)).
+// Eq. 15: the size wanted at face v, min(delta_bg(x), c_i · min(delta_A, delta_B, delta_C)), with
+// x the centroid, or, where the size field varies, the point 0.41 × that size above it (where
+// the element's new edges are).
 double target_size_for_face(const MesherState& s, const Triangle& v);
 
-// F5/F9 with eq. 15: the size of the element face `v` should form,
-//   d = min(delta_bg(centroid), c_i · min(delta_A, delta_B, delta_C)),
-// kept within [0.55, 1.6] × the face's mean edge so the element is not needle- or flat-shaped.
+// F5/F9: the size of the element face `v` should form for the wanted size `target`
+// (target_size_for_face), kept within [0.55, 1.6] × the face's mean edge so the element is not
+// needle- or flat-shaped.
+double element_size_for_target(const MesherState& s, const Triangle& v, double target);
+
+// element_size_for_target(s, v, target_size_for_face(s, v)).
 double element_size_for_face(const MesherState& s, const Triangle& v);
 
 // F6: the queue key of face v, the size of the element it forms (element_size_for_face), except

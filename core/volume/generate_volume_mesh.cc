@@ -113,12 +113,13 @@ absl::Status check_face_environments(const Mesh& front, const std::vector<std::i
 bool delete_face(MesherState& s, Index face) {
   const Triangle v = s.front.face(face).v;
   const volume::Strictness rules = volume::strictness_for(s.front.face(face).attempts);
-  const double d = volume::element_size_for_face(s, v);               // F5/F9
+  const double target = volume::target_size_for_face(s, v);           // F5/F9, eq. 15
+  const double d = volume::element_size_for_target(s, v, target);
   // A face much smaller than the size wanted there (a sliver of front left between elements)
   // closes with points that exist: a new point may not come closer to the front's points than
   // this share of the wanted size. Else each tiny face spawns a tinier element next to it, for
   // ever (seen on the L-block at h 0.05: points 1e-5 apart, tets without end).
-  const double min_spacing = kMinNewPointSpacing * volume::target_size_for_face(s, v);
+  const double min_spacing = kMinNewPointSpacing * target;
   const Point ideal = volume::ideal_point(s, v, d);                    // F7.1
   volume::gather_candidates(s, face, ideal, d, rules);                 // F7.2
   for (const volume::Candidate& c : s.candidates) {
@@ -187,8 +188,8 @@ std::string describe_input_near(const Mesh& input, const Point& x, double radius
 // element sizes (or target sizes, when larger) of x.
 std::string describe_input_near_face(const MesherState& s, const Mesh& input, const Triangle& v,
                                      const Point& x) {
-  const double d = volume::element_size_for_face(s, v);
   const double target = volume::target_size_for_face(s, v);
+  const double d = volume::element_size_for_target(s, v, target);
   return describe_input_near(input, x, 3.0 * std::max(d, target), target);
 }
 
