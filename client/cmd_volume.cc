@@ -26,6 +26,7 @@
 #include "proto/size_spec_convert.h"
 #include "client/volume_call.h"
 #include "core/io/mesh_io.h"
+#include "core/quality/measures.h"
 #include "grpc/grpc.h"
 
 namespace afmesh::cli {
@@ -103,26 +104,6 @@ absl::StatusOr<Mesh> read_front(const VolumeCommandOptions& options) {
   return mesh;
 }
 
-// Mean length of the front's triangle edges (each shared edge counted from both sides): the
-// size that keeps the interior like the boundary when --size is not given. Triangles with an
-// index out of range are skipped here; the server rejects them, naming the triangle.
-double mean_edge_length(const Mesh& front) {
-  const auto in_range = [&front](Index i) {
-    return i >= 0 && static_cast<std::size_t>(i) < front.points.size();
-  };
-  double sum = 0.0;
-  std::size_t edges = 0;
-  for (const Triangle& triangle : front.triangles) {
-    if (!in_range(triangle[0]) || !in_range(triangle[1]) || !in_range(triangle[2])) continue;
-    for (int corner = 0; corner < 3; ++corner) {
-      const Point& a = front.points[triangle[corner]];
-      const Point& b = front.points[triangle[(corner + 1) % 3]];
-      sum += std::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
-      ++edges;
-    }
-  }
-  return edges == 0 ? 1.0 : sum / static_cast<double>(edges);
-}
 
 // The specification travels in the call's first message, except its background grid, which
 // follows in slices of any number (volume_call.cc). gRPC refuses messages over 4 MiB (its

@@ -255,4 +255,22 @@ absl::StatusOr<QualitySummary> summarize_quality(const Mesh& mesh) {
   return summary;
 }
 
+double mean_edge_length(const Mesh& surface) {
+  const auto in_range = [&surface](Index i) {
+    return i >= 0 && static_cast<std::size_t>(i) < surface.points.size();
+  };
+  double sum = 0.0;
+  std::size_t edges = 0;
+  for (const Triangle& triangle : surface.triangles) {
+    if (!in_range(triangle[0]) || !in_range(triangle[1]) || !in_range(triangle[2])) continue;
+    for (int corner = 0; corner < 3; ++corner) {
+      const Point& a = surface.points[triangle[corner]];
+      const Point& b = surface.points[triangle[(corner + 1) % 3]];
+      sum += std::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
+      ++edges;
+    }
+  }
+  return edges == 0 ? 1.0 : sum / static_cast<double>(edges);
+}
+
 }  // namespace afmesh

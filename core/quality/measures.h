@@ -54,6 +54,11 @@ TriangleQuality triangle_quality(const Point& a, const Point& b, const Point& c)
 // Quality of `triangle` of `points` (N×3). Indices must be in range.
 TriangleQuality triangle_quality(const std::vector<Point>& points, const Triangle& triangle);
 
+// Mean length of the edges of `surface.triangles` (each shared edge counted from both sides), in
+// length units. Triangles with an index out of range are skipped (callers that have not
+// validated the surface yet); 1 when no triangle is left.
+double mean_edge_length(const Mesh& surface);
+
 // A histogram with `bins` equal bins over [lo, hi]. A value below lo counts in the first bin and
 // one at or above hi in the last (measures may overshoot their range by rounding); NaN values
 // are counted in `nan_count` only.

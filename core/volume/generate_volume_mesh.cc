@@ -68,13 +68,6 @@ Box padded_bounds(const std::vector<Point>& points) {
   return b;
 }
 
-double mean_boundary_edge(const Mesh& front) {
-  double sum = 0;
-  for (const Triangle& t : front.triangles)
-    for (int i = 0; i < 3; ++i) sum += norm(sub(front.points[t[i]], front.points[t[(i + 1) % 3]]));
-  return sum / (3.0 * static_cast<double>(front.triangles.size()));
-}
-
 // F1/F4: the input triangles, flipped to look into the domain, form the initial front, each with
 // its crossing environment (paper §2).
 absl::Status load_initial_front(MesherState& s, const Mesh& input,
@@ -347,7 +340,7 @@ Mesh compact_result(const MesherState& s, const Mesh& input) {
 absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params,
                                    const SizeField& size_field, double growth, StageClock& clock,
                                    Progress& progress) {
-  const double boundary_edge = mean_boundary_edge(front);
+  const double boundary_edge = mean_edge_length(front);
   const double domain_volume = enclosed_volume(front.points, front.triangles, nullptr);
   const double max_size = params.spec ? params.spec->max_size : params.size;
   const double h = std::min(max_size, boundary_edge);

@@ -8,6 +8,7 @@
 #include "absl/container/flat_hash_set.h"
 #include "core/geometry/vec.h"
 #include "core/io/mesh_io.h"
+#include "core/quality/measures.h"
 #include "core/quality/validate.h"
 #include "core/shapes/shapes.h"
 #include "core/volume/generate_volume_mesh.h"
@@ -94,26 +95,19 @@ Mesh corpus_front(const std::string& name) {
   return *std::move(front);
 }
 
-double mean_edge(const Mesh& front) {
-  double sum = 0;
-  for (const Triangle& t : front.triangles)
-    for (int k = 0; k < 3; ++k) sum += norm(sub(front.points[t[k]], front.points[t[(k + 1) % 3]]));
-  return sum / (3.0 * static_cast<double>(front.triangles.size()));
-}
-
 // Regression for issue 10: a scan-like blob (openfoam-examples), closed and clean, got stuck at
 // the default growth 1 and the default size (the mean edge).
 TEST(Regression, Issue10CorpusBlobMeshesAtGrowthOne) {
   const Mesh front = corpus_front("of_blob.stl");
   ASSERT_FALSE(front.triangles.empty());
-  mesh_valid(front, mean_edge(front));
+  mesh_valid(front, mean_edge_length(front));
 }
 
 // A knot (libcgal-demo), closed and clean, at the same defaults.
 TEST(RealSurfaces, CorpusKnotMeshesAtGrowthOne) {
   const Mesh front = corpus_front("cgal_knot1.stl");
   ASSERT_FALSE(front.triangles.empty());
-  mesh_valid(front, mean_edge(front));
+  mesh_valid(front, mean_edge_length(front));
 }
 
 // Regression for issue 10: a front that cannot be closed says why, in terms of the input. The
@@ -124,7 +118,7 @@ TEST(Regression, Issue10StuckFrontOnSliversNamesThem) {
   const Mesh front = corpus_front("gmsh_lever.stl");
   ASSERT_FALSE(front.triangles.empty());
   VolumeParams params;
-  params.size = mean_edge(front);
+  params.size = mean_edge_length(front);
   absl::StatusOr<VolumeResult> result = generate_volume_mesh(front, params, no_progress());
   ASSERT_FALSE(result.ok());
   EXPECT_EQ(result.status().code(), absl::StatusCode::kFailedPrecondition);
