@@ -19,6 +19,7 @@
 #include "core/quality/validate_common.h"
 #include "core/sizing/attached_sizes.h"
 #include "core/sizing/spec_size_field.h"
+#include "core/volume/estimate_elements.h"
 #include "core/volume/front_steps.h"
 
 namespace afmesh {
@@ -31,14 +32,6 @@ constexpr int kMaxCavityRings = 4;
 constexpr double kMinNewPointSpacing = 0.04;  // of the wanted size; the last class allows 0.044
 constexpr std::size_t kMaxPocketFaces = 256;  // larger unmeshed regions are not pockets
 constexpr int kCancelCheckInterval = 256;  // faces between cancellation checks
-// Not in the paper: the least growth of the sizes attached to points (eq. 15). With c_i = 1 a
-// new point is never larger than the smallest point of its face, so the boundary's smallest
-// sizes spread through the whole domain behind the front that carries them: the interior never
-// reaches the size asked for (a front of edges 0.078 at size 0.08 gave interior edges of 0.059),
-// and where such a front meets a coarser one there is no room left to grade (real scans and
-// parts failed at growth 1 and meshed at 1.2). A uniform mesh follows the size field away from
-// the boundary; the boundary's finer sizes grow into it by at least this factor per element.
-constexpr double kMinAttachedGrowth = 1.2;
 // Input triangles with an angle below this are called slivers in failure messages.
 constexpr double kSliverAngleDeg = 5.0;
 
@@ -297,17 +290,6 @@ absl::Status stuck_report(const MesherState& s, const Mesh& input, Index face,
       describe_input_near_face(s, input, v, x)));
 }
 
-// F2: the size in space: the specification's sources and background grid (eq. 1–14), or one
-// uniform size.
-absl::StatusOr<std::unique_ptr<SizeField>> make_size_field(const VolumeParams& params,
-                                                           const Mesh& front) {
-  if (!params.spec) return std::make_unique<UniformSize>(params.size);
-  Box domain = empty_box();
-  for (const Point& p : front.points) enclose(domain, p);
-  absl::StatusOr<SpecSizeField> field = SpecSizeField::create(*params.spec, domain);
-  if (!field.ok()) return field.status();
-  return std::make_unique<SpecSizeField>(*std::move(field));
-}
 
 // Drops deleted tets and points no tet uses any more; input points keep their indices.
 Mesh compact_result(const MesherState& s, const Mesh& input) {
@@ -350,7 +332,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
   MesherState s(front, std::max(growth, kMinAttachedGrowth), size_field,
                 padded_bounds(front.points), h);
   const double expected_tets =
-      std::max(1.0, domain_volume / (h * h * h / (6.0 * std::sqrt(2.0))));
+      std::max(1.0, estimate_volume_mesh(front, size_field, max_size, growth).tets);
   s.tets.reserve(static_cast<std::size_t>(expected_tets * 1.3));
   s.points.reserve(front.points.size() + static_cast<std::size_t>(expected_tets / 4));
   if (absl::Status st = load_initial_front(s, front, params.face_environments); !st.ok())
@@ -394,6 +376,18 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
 }
 
 }  // namespace
+
+// F2: the size in space: the specification's sources and background grid (eq. 1–14), or one
+// uniform size.
+absl::StatusOr<std::unique_ptr<SizeField>> make_size_field(const VolumeParams& params,
+                                                           const Mesh& front) {
+  if (!params.spec) return std::make_unique<UniformSize>(params.size);
+  Box domain = empty_box();
+  for (const Point& p : front.points) enclose(domain, p);
+  absl::StatusOr<SpecSizeField> field = SpecSizeField::create(*params.spec, domain);
+  if (!field.ok()) return field.status();
+  return std::make_unique<SpecSizeField>(*std::move(field));
+}
 
 absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const VolumeParams& params,
                                                   Progress& progress) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -11,9 +12,19 @@
 #include "absl/status/statusor.h"
 #include "core/common/progress.h"
 #include "core/mesh/mesh.h"
+#include "core/sizing/size_field.h"
 #include "core/sizing/size_spec.h"
 
 namespace afmesh {
+
+// Not in the paper: the least growth of the sizes attached to points (eq. 15). With c_i = 1 a
+// new point is never larger than the smallest point of its face, so the boundary's smallest
+// sizes spread through the whole domain behind the front that carries them: the interior never
+// reaches the size asked for (a front of edges 0.078 at size 0.08 gave interior edges of 0.059),
+// and where such a front meets a coarser one there is no room left to grade (real scans and
+// parts failed at growth 1 and meshed at 1.2). A uniform mesh follows the size field away from
+// the boundary; the boundary's finer sizes grow into it by at least this factor per element.
+inline constexpr double kMinAttachedGrowth = 1.2;
 
 struct VolumeParams {
   // Target edge length h of the uniform size field (> 0, in the units of the points).
@@ -55,6 +66,11 @@ struct VolumeResult {
 absl::Status validate_front(const Mesh& front,
                             std::span<const std::int32_t> face_environments = {},
                             bool check_self_intersections = true);
+
+// F2: the size in space: params.spec's sources and background grid (eq. 1–14) over the front's
+// box, or the uniform params.size.
+absl::StatusOr<std::unique_ptr<SizeField>> make_size_field(const VolumeParams& params,
+                                                           const Mesh& front);
 
 // Fills the volume enclosed by `front` (outward-oriented closed triangles) with tetrahedra whose
 // boundary faces are exactly the front's triangles.
