@@ -70,7 +70,12 @@ absl::StatusOr<VolumeJobOutput> run_volume_job(const Mesh& front, const VolumePa
   absl::StatusOr<VolumeResult> volume = generate_volume_mesh(front, params, progress);
   if (!volume.ok()) return volume.status();
   VolumeJobOutput output{
-      .volume = *std::move(volume), .quality = {}, .validation = {}, .warnings = {}, .repair = {}};
+      .volume = *std::move(volume),
+      .quality = {},
+      .validation = {},
+      .warnings = {},
+      .repair = {},
+      .estimated_tets = 0};
   std::vector<StageTiming>& timings = output.volume.timings;
 
   if (absl::Status status = stop_if_cancelled(progress); !status.ok()) return status;

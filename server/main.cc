@@ -5,8 +5,10 @@
 
 #include <csignal>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 #include <thread>
 
 #include "CLI/CLI.hpp"
@@ -30,6 +32,15 @@ int wait_for_signal(const sigset_t& signals) {
   while (sigwait(&signals, &signal) != 0) {
   }
   return signal;
+}
+
+// A flag in MiB for a limit kept in bytes.
+void add_mebibytes_option(CLI::App& app, const std::string& name, std::int64_t& bytes,
+                          const std::string& description) {
+  app.add_option_function<std::int64_t>(
+         name, [&bytes](std::int64_t mib) { bytes = mib << 20; }, description)
+      ->default_str(std::to_string(bytes >> 20))
+      ->check(CLI::Range(std::int64_t{1}, std::int64_t{1} << 40));
 }
 
 void add_flags(CLI::App& app, afmesh::server::ServerOptions& options) {
@@ -58,6 +69,15 @@ void add_flags(CLI::App& app, afmesh::server::ServerOptions& options) {
                  "most background grid tetrahedra per request")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  app.add_option("--max-elements", options.service.limits.max_elements,
+                 "most tetrahedra a request may ask for, by the estimate made before meshing")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  add_mebibytes_option(app, "--max-request-mb", options.service.limits.max_request_bytes,
+                       "most bytes of one request's messages, in MiB");
+  add_mebibytes_option(app, "--memory-budget-mb", options.service.memory_budget_bytes,
+                       "memory the jobs running at once may be expected to need together, in "
+                       "MiB (default: 3/4 of physical memory)");
   app.add_flag_callback(
       "--quiet", [&options] { options.service.log_calls = false; }, "do not log each call");
 }

@@ -18,6 +18,7 @@
 #include "absl/strings/str_format.h"
 #include "afmesh/v1/mesher.grpc.pb.h"
 #include "grpcpp/grpcpp.h"
+#include "core/volume/estimate_elements.h"
 #include "core/volume/repair_front.h"
 #include "server/volume_environments.h"
 #include "server/volume_output.h"
@@ -78,10 +79,12 @@ class CallProgress final : public Progress {
 class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
  public:
   MeshVolumeCall(grpc::CallbackServerContext* context, WorkerPool& pool, CallGate& gate,
-                 const VolumeJob& job, const ServiceOptions& options)
+                 MemoryBudget& budget, const VolumeJob& job, const ServiceOptions& options)
       : context_(context),
         pool_(pool),
         gate_(gate),
+        budget_(budget),
+        max_elements_(options.limits.max_elements),
         job_(job),
         log_calls_(options.log_calls),
         input_(options.limits),
@@ -239,7 +242,8 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
       timings.push_back({"repair", seconds_since(repair_start)});
       for (std::string& note : repair.notes()) notes.push_back(std::move(note));
       const Clock::time_point start = Clock::now();
-      const absl::Status status = run_environments_guarded(mode, front, params, notes);
+      absl::Status status = admit_by_estimate(front, params);
+      if (status.ok()) status = run_environments_guarded(mode, front, params, notes);
       if (mode != v1::ENVIRONMENT_MODE_NONE) {
         timings.push_back({"environments", seconds_since(start)});
       }
@@ -253,8 +257,42 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
     if (output.ok()) {
       output->warnings.insert(output->warnings.begin(), notes.begin(), notes.end());
       output->repair = repair;
+      output->estimated_tets = estimated_tets_;
     }
     complete_job(std::move(output), std::move(timings));
+  }
+
+  // Limits up front: the tets the size field asks for and the bytes the job will need, from
+  // estimate_volume_mesh, against --max-elements and the server's memory budget; the bytes stay
+  // reserved until the call is gone (its mesh streamed out). A size specification that cannot
+  // be evaluated is the job's to report.
+  absl::Status admit_by_estimate(const Mesh& front, const VolumeParams& params) {
+    absl::StatusOr<VolumeEstimate> estimate = estimate_volume_mesh(front, params);
+    if (!estimate.ok()) return absl::OkStatus();
+    estimated_tets_ = estimate->tets;
+    if (estimate->tets > static_cast<double>(max_elements_)) {
+      return absl::ResourceExhaustedError(absl::StrFormat(
+          "the size field asks for about %.3g tetrahedra (estimated before meshing from the "
+          "enclosed volume and the sizes), over this server's limit of %d (--max-elements); ask "
+          "for larger elements, or split the domain",
+          estimate->tets, max_elements_));
+    }
+    const double gib = static_cast<double>(std::int64_t{1} << 30);
+    if (estimate->bytes > static_cast<double>(budget_.capacity())) {
+      return absl::ResourceExhaustedError(absl::StrFormat(
+          "meshing this input needs about %.3g GiB (about %.3g tetrahedra), over this server's "
+          "memory budget of %.3g GiB (--memory-budget-mb); ask for larger elements",
+          estimate->bytes / gib, estimate->tets, static_cast<double>(budget_.capacity()) / gib));
+    }
+    reservation_ = budget_.try_reserve(static_cast<std::int64_t>(estimate->bytes));
+    if (!reservation_) {
+      return absl::ResourceExhaustedError(absl::StrFormat(
+          "the server's memory budget (%.3g GiB, --memory-budget-mb) is held by the jobs running "
+          "now (%.3g GiB); this one needs about %.3g GiB: retry later",
+          static_cast<double>(budget_.capacity()) / gib,
+          static_cast<double>(budget_.in_use()) / gib, estimate->bytes / gib));
+    }
+    return absl::OkStatus();
   }
 
   // assign_environments, turning exceptions into statuses like run_guarded.
@@ -351,6 +389,11 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
   WorkerPool& pool_;
   CallGate& gate_;
   bool admitted_ = false;  // passed the gate: counted until this object is deleted
+  MemoryBudget& budget_;
+  const std::int64_t max_elements_;
+  // Set by the job before it meshes: what admit_by_estimate found and took.
+  double estimated_tets_ = 0.0;
+  std::optional<MemoryBudget::Reservation> reservation_;
   const VolumeJob& job_;
   const bool log_calls_;
   VolumeInput input_;  // touched by reads only, one at a time
@@ -385,16 +428,21 @@ bool CallProgress::cancelled() const { return call_.stop_requested(); }
 class MesherService final : public v1::Mesher::CallbackService {
  public:
   MesherService(WorkerPool& pool, CallGate& gate, VolumeJob job, const ServiceOptions& options)
-      : pool_(pool), gate_(gate), job_(std::move(job)), options_(options) {}
+      : pool_(pool),
+        gate_(gate),
+        budget_(options.memory_budget_bytes),
+        job_(std::move(job)),
+        options_(options) {}
 
   grpc::ServerBidiReactor<Request, Response>* MeshVolume(
       grpc::CallbackServerContext* context) override {
-    return new MeshVolumeCall(context, pool_, gate_, job_, options_);
+    return new MeshVolumeCall(context, pool_, gate_, budget_, job_, options_);
   }
 
  private:
   WorkerPool& pool_;
   CallGate& gate_;
+  MemoryBudget budget_;  // outlives the calls, like job_
   const VolumeJob job_;
   const ServiceOptions options_;
 };

@@ -1,9 +1,11 @@
 // The afmesh.v1.Mesher gRPC service (callback API, one reactor per call).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 
 #include "server/call_gate.h"
+#include "server/memory_budget.h"
 #include "server/volume_input.h"
 #include "server/volume_job.h"
 #include "server/worker_pool.h"
@@ -16,6 +18,8 @@ namespace afmesh::server {
 
 struct ServiceOptions {
   InputLimits limits;
+  // Bytes the jobs running at once may be expected to need together (--memory-budget-mb).
+  std::int64_t memory_budget_bytes = default_memory_budget();
   // One line on stderr per finished call (peer, status, counts).
   bool log_calls = true;
 };

@@ -72,6 +72,12 @@ absl::Status check_inline_grid_limits(const v1::SizeSpec& size, const InputLimit
 
 absl::Status VolumeInput::add(const v1::MeshVolumeRequest& request) {
   ++message_count_;
+  bytes_ += static_cast<std::int64_t>(request.ByteSizeLong());
+  if (bytes_ > limits_.max_request_bytes) {
+    return absl::ResourceExhaustedError(absl::StrFormat(
+        "the request is over this server's limit of %d bytes (--max-request-mb) at %s",
+        limits_.max_request_bytes, message_name(message_count_)));
+  }
   switch (request.part_case()) {
     case v1::MeshVolumeRequest::kHeader:
       return add_header(request.header());

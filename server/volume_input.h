@@ -19,13 +19,18 @@
 namespace afmesh::server {
 
 // The server's size limits on one request (flags --max-points, --max-triangles,
-// --max-grid-points, --max-grid-tets; the grid limits count a background grid inline or
-// streamed).
+// --max-grid-points, --max-grid-tets, --max-request-mb, --max-elements; the grid limits count a
+// background grid inline or streamed).
 struct InputLimits {
   std::int64_t max_points = 10'000'000;
   std::int64_t max_triangles = 20'000'000;
   std::int64_t max_grid_points = 10'000'000;
   std::int64_t max_grid_tets = 60'000'000;
+  // Bytes of all the request's messages together, as encoded on the wire.
+  std::int64_t max_request_bytes = std::int64_t{2} << 30;
+  // Tetrahedra the size field may ask for, by the estimate made before meshing
+  // (core/volume/estimate_elements.h); checked by the service, not by VolumeInput.
+  std::int64_t max_elements = 100'000'000;
 };
 
 class VolumeInput {
@@ -63,6 +68,7 @@ class VolumeInput {
 
   InputLimits limits_;
   std::int64_t message_count_ = 0;  // messages taken so far, for error messages
+  std::int64_t bytes_ = 0;          // their encoded size
   bool has_header_ = false;
   std::optional<std::uint64_t> declared_points_;
   std::optional<std::uint64_t> declared_triangles_;

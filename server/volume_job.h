@@ -44,6 +44,9 @@ struct VolumeJobOutput {
   std::vector<std::string> warnings;
   // What the service repaired in the front before meshing it (set by the service, not the job).
   FrontRepairReport repair;
+  // The tets the server expected before meshing (core/volume/estimate_elements.h; its limits
+  // were checked against this); 0 when not estimated.
+  double estimated_tets = 0.0;
 };
 
 // Meshes `front` (N points, M triangles with tags; already checked by the service for finite

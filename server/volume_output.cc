@@ -161,6 +161,7 @@ void VolumeOutputStream::fill_summary(v1::Summary& summary) const {
   repaired.set_triangles_reoriented(static_cast<std::uint64_t>(repair.triangles_reoriented));
   repaired.set_components(static_cast<std::uint64_t>(repair.components));
   repaired.set_cavities(static_cast<std::uint64_t>(repair.cavities));
+  summary.set_estimated_tet_count(output_.estimated_tets);
 
   auto add_timing = [&summary](const std::string& stage, double seconds) {
     v1::StageTiming& timing = *summary.add_timings();

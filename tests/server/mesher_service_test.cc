@@ -1215,5 +1215,79 @@ TEST_F(MesherServiceTest, RejectsUnknownEnvironmentMode) {
                   grpc::StatusCode::INVALID_ARGUMENT, {"options.environments", "unknown value 7"});
 }
 
+// ---------------------------------------------------------------------------------------------
+// Limits up front (issue 12, part 1): what a request asks for is estimated before meshing
+// (core/volume/estimate_elements.h) and checked against --max-elements and the memory budget.
+
+std::vector<Request> tetrahedron_requests_at(double size) {
+  std::vector<Request> requests = requests_for(tetrahedron_front());
+  requests[0].mutable_header()->mutable_options()->mutable_size()->set_max_size(size);
+  return requests;
+}
+
+TEST_F(MesherServiceTest, ASizeAskingForTrillionsOfTetsIsRefusedWithItsEstimateBeforeMeshing) {
+  start(counting_job(probe_));
+  // Volume 1/6 at edges of 1e-4: about 1.5e12 tets.
+  expect_rejected(tetrahedron_requests_at(1e-4), grpc::StatusCode::RESOURCE_EXHAUSTED,
+                  {"about 1.51e+12 tetrahedra", "limit of 100000000 (--max-elements)"});
+}
+
+TEST_F(MesherServiceTest, AJobNeedingMoreThanTheWholeMemoryBudgetIsRefused) {
+  ServerOptions options;
+  options.service.memory_budget_bytes = std::int64_t{1} << 20;
+  start(counting_job(probe_), options);
+  expect_rejected(tetrahedron_requests_at(0.01), grpc::StatusCode::RESOURCE_EXHAUSTED,
+                  {"memory budget of 0.000977 GiB (--memory-budget-mb)"});
+}
+
+TEST_F(MesherServiceTest, ABudgetHeldByARunningJobRefusesTheNextUntilItEnds) {
+  ServerOptions options;
+  options.service.memory_budget_bytes = std::int64_t{5} << 20;  // one job of ~3 MB fits
+  start(slow_job(probe_), options);
+  const std::vector<Request> requests = tetrahedron_requests_at(0.05);
+  grpc::ClientContext running_context;
+  auto running = stub_->MeshVolume(&running_context);
+  for (const Request& request : requests) ASSERT_TRUE(running->Write(request));
+  running->WritesDone();
+  ASSERT_EQ(probe_->started.get_future().wait_for(std::chrono::seconds(5)),
+            std::future_status::ready);
+
+  const CallOutcome refused = call(requests);
+  EXPECT_EQ(refused.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_THAT(refused.status.error_message(), HasSubstr("held by the jobs running now"));
+  EXPECT_THAT(refused.status.error_message(), HasSubstr("retry later"));
+  EXPECT_EQ(probe_->runs.load(), 1);
+
+  running_context.TryCancel();
+  EXPECT_EQ(running->Finish().error_code(), grpc::StatusCode::CANCELLED);
+  // The cancelled call's reservation is given back once the call is gone; a new job runs then.
+  bool admitted = false;
+  for (int attempt = 0; attempt < 100 && !admitted; ++attempt) {
+    grpc::ClientContext context;
+    context.set_deadline(std::chrono::system_clock::now() + std::chrono::milliseconds(200));
+    const CallOutcome outcome = call(requests, context);
+    admitted = outcome.status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED;
+  }
+  EXPECT_TRUE(admitted);
+  EXPECT_GE(probe_->runs.load(), 2);
+}
+
+TEST_F(MesherServiceTest, ARequestOverTheByteLimitIsRefusedNamingTheFlag) {
+  ServerOptions options;
+  options.service.limits.max_request_bytes = 100;
+  start(counting_job(probe_), options);
+  expect_rejected(requests_for(large_mesh()), grpc::StatusCode::RESOURCE_EXHAUSTED,
+                  {"limit of 100 bytes (--max-request-mb)"});
+}
+
+TEST_F(MesherServiceTest, SummaryCarriesTheEstimateTheLimitsWereCheckedAgainst) {
+  start(counting_job(probe_));
+  const CallOutcome outcome = call(tetrahedron_requests_at(0.05));
+  ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+  ASSERT_TRUE(outcome.responses.back().has_summary());
+  // (1/6) / (0.05^3 / (6 sqrt 2)) regular tets, times 1.07 for an advancing-front mesh.
+  EXPECT_NEAR(outcome.responses.back().summary().estimated_tet_count(), 12'107, 10);
+}
+
 }  // namespace
 }  // namespace afmesh::server
