@@ -33,6 +33,13 @@ using Response = v1::MeshVolumeResponse;
 // Least time between two Progress events of the same stage.
 constexpr auto kProgressInterval = std::chrono::milliseconds(100);
 
+// Backpressure (issue 12, part 2): a refusal that may succeed later carries the trailing
+// metadata kRetryAfterKey, the milliseconds to wait first. Refusals that cannot succeed later
+// (input or estimate over a limit) carry none.
+constexpr char kRetryAfterKey[] = "retry-after-ms";
+constexpr int kRetryAfterBusyMs = 1000;    // all workers and queue slots taken
+constexpr int kRetryAfterBudgetMs = 2000;  // the memory budget held by running jobs
+
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -100,8 +107,10 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
     slot_ = pool_.try_reserve();
     if (!slot_) {
       finish_with(absl::ResourceExhaustedError(absl::StrFormat(
-          "the server is busy: all %d workers and %d queue slots are taken; retry later",
-          pool_.workers(), pool_.max_queue())));
+                      "the server is busy: all %d workers and %d queue slots are taken; retry "
+                      "in about %d ms",
+                      pool_.workers(), pool_.max_queue(), kRetryAfterBusyMs)),
+                  kRetryAfterBusyMs);
       return;
     }
     StartRead(&request_);
@@ -286,11 +295,16 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
     }
     reservation_ = budget_.try_reserve(static_cast<std::int64_t>(estimate->bytes));
     if (!reservation_) {
+      {
+        std::lock_guard<std::mutex> lock(mu_);
+        retry_after_ms_ = kRetryAfterBudgetMs;
+      }
       return absl::ResourceExhaustedError(absl::StrFormat(
           "the server's memory budget (%.3g GiB, --memory-budget-mb) is held by the jobs running "
-          "now (%.3g GiB); this one needs about %.3g GiB: retry later",
+          "now (%.3g GiB); this one needs about %.3g GiB: retry later (in about %d ms)",
           static_cast<double>(budget_.capacity()) / gib,
-          static_cast<double>(budget_.in_use()) / gib, estimate->bytes / gib));
+          static_cast<double>(budget_.in_use()) / gib, estimate->bytes / gib,
+          kRetryAfterBudgetMs));
     }
     return absl::OkStatus();
   }
@@ -335,12 +349,14 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
   }
   grpc::Status stop_status() const { return to_grpc(stop_status_absl()); }
 
-  // Finishes the call with `status` (an error before any job ran).
-  void finish_with(const absl::Status& status) {
+  // Finishes the call with `status` (an error before any job ran), telling the client to retry
+  // after `retry_after_ms` when set.
+  void finish_with(const absl::Status& status, std::optional<int> retry_after_ms = std::nullopt) {
     {
       std::lock_guard<std::mutex> lock(mu_);
       if (final_status_) return;
       final_status_ = to_grpc(status);
+      if (retry_after_ms) retry_after_ms_ = retry_after_ms;
     }
     pump();
   }
@@ -359,7 +375,9 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
       finished_ = true;
       const grpc::Status status = *final_status_;
       const std::string counts = log_counts_;
+      const std::optional<int> retry_after_ms = status.ok() ? std::nullopt : retry_after_ms_;
       lock.unlock();
+      if (retry_after_ms) context_->AddTrailingMetadata(kRetryAfterKey, std::to_string(*retry_after_ms));
       log_finish(status, counts);
       Finish(status);
       return;
@@ -412,6 +430,7 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
   std::unique_ptr<VolumeOutputStream> output_ ABSL_GUARDED_BY(mu_);
   std::optional<grpc::Status> final_status_ ABSL_GUARDED_BY(mu_);
   std::string log_counts_ ABSL_GUARDED_BY(mu_);
+  std::optional<int> retry_after_ms_ ABSL_GUARDED_BY(mu_);  // sent with a failed final status
   bool writing_ ABSL_GUARDED_BY(mu_) = false;
   bool finished_ ABSL_GUARDED_BY(mu_) = false;
   Response current_;  // the write in flight; only touched while writing_ is false

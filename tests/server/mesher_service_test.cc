@@ -247,6 +247,13 @@ VolumeJob counting_job(std::shared_ptr<JobProbe> probe) {
 // ---------------------------------------------------------------------------------------------
 // Fixture: an in-process server and a stub.
 
+// The server's retry hint (trailing metadata retry-after-ms), empty when it sent none.
+std::string retry_after(const grpc::ClientContext& context) {
+  const auto& trailers = context.GetServerTrailingMetadata();
+  const auto found = trailers.find("retry-after-ms");
+  return found == trailers.end() ? "" : std::string(found->second.data(), found->second.size());
+}
+
 struct CallOutcome {
   grpc::Status status;
   std::vector<Response> responses;
@@ -501,12 +508,14 @@ TEST_F(MesherServiceTest, CallFindingWorkersAndQueueFullGetsResourceExhausted) {
   ASSERT_TRUE(first.has_progress());
   EXPECT_EQ(first.progress().stage(), "queued");
 
-  // Call 3 is refused at once.
+  // Call 3 is refused at once, with a hint of when to retry.
   const Clock::time_point asked = Clock::now();
-  const CallOutcome refused = call(requests);
+  grpc::ClientContext refused_context;
+  const CallOutcome refused = call(requests, refused_context);
   const double seconds = std::chrono::duration<double>(Clock::now() - asked).count();
   EXPECT_EQ(refused.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_THAT(refused.status.error_message(), HasSubstr("busy"));
+  EXPECT_EQ(retry_after(refused_context), "1000");
   EXPECT_LT(seconds, 2.0);
 
   running_context.TryCancel();
@@ -1230,6 +1239,11 @@ TEST_F(MesherServiceTest, ASizeAskingForTrillionsOfTetsIsRefusedWithItsEstimateB
   // Volume 1/6 at edges of 1e-4: about 1.5e12 tets.
   expect_rejected(tetrahedron_requests_at(1e-4), grpc::StatusCode::RESOURCE_EXHAUSTED,
                   {"about 1.51e+12 tetrahedra", "limit of 100000000 (--max-elements)"});
+  // Asking again cannot help: no retry hint.
+  grpc::ClientContext context;
+  EXPECT_EQ(call(tetrahedron_requests_at(1e-4), context).status.error_code(),
+            grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(retry_after(context), "");
 }
 
 TEST_F(MesherServiceTest, AJobNeedingMoreThanTheWholeMemoryBudgetIsRefused) {
@@ -1252,9 +1266,11 @@ TEST_F(MesherServiceTest, ABudgetHeldByARunningJobRefusesTheNextUntilItEnds) {
   ASSERT_EQ(probe_->started.get_future().wait_for(std::chrono::seconds(5)),
             std::future_status::ready);
 
-  const CallOutcome refused = call(requests);
+  grpc::ClientContext refused_context;
+  const CallOutcome refused = call(requests, refused_context);
   EXPECT_EQ(refused.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_THAT(refused.status.error_message(), HasSubstr("held by the jobs running now"));
+  EXPECT_EQ(retry_after(refused_context), "2000");
   EXPECT_THAT(refused.status.error_message(), HasSubstr("retry later"));
   EXPECT_EQ(probe_->runs.load(), 1);
 
