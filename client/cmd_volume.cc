@@ -8,12 +8,16 @@
 // physical tags; 0 = none), `auto` lets the server find them; default none.
 // Without --server a private afmesh-server runs for the command on a local socket: the same
 // code path as a remote server. Formats follow the file extensions (core/io/mesh_io.h).
+#include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <random>
 #include <string>
+#include <thread>
 #include <utility>
 
 #include "absl/strings/str_format.h"
@@ -42,6 +46,7 @@ struct VolumeCommandOptions {
   std::string spec_path;      // empty: a uniform size, no sources
   std::string envs = "none";  // auto, tags or none
   std::string server;  // empty: start a private server
+  int retries = 4;     // calls sent again after a refusal that may pass later
   bool json = false;
   bool quiet = false;
   double timeout_seconds = 0.0;
@@ -68,6 +73,37 @@ int exit_code_for(const absl::Status& status) {
     default:
       return kExitInternal;
   }
+}
+
+// Backpressure (issue 12, part 2): a call is sent again when the server said it may pass later
+// (retry_after: workers or memory budget busy), or when a shared server could not be reached or
+// is draining (UNAVAILABLE: the call did no work there, and another replica behind the same
+// address may take it). Other failures are final.
+bool is_retryable(const absl::Status& status, bool shared_server) {
+  if (retry_after(status)) return true;
+  return shared_server && status.code() == absl::StatusCode::kUnavailable;
+}
+
+// The wait before retry `attempt` (1, 2, ...): the server's hint or 0.25 s doubling per attempt,
+// whichever is longer, at most 30 s, times a random factor in [0.5, 1.5) so that clients
+// refused together do not come back together.
+std::chrono::milliseconds retry_delay(int attempt, std::optional<std::chrono::milliseconds> hint,
+                                      std::mt19937_64& random) {
+  const double backoff_ms = 250.0 * std::pow(2.0, std::min(attempt - 1, 16));
+  const double base_ms =
+      std::min(30'000.0, std::max(backoff_ms, hint ? static_cast<double>(hint->count()) : 0.0));
+  const double jitter = std::uniform_real_distribution<double>(0.5, 1.5)(random);
+  return std::chrono::milliseconds(static_cast<std::int64_t>(base_ms * jitter));
+}
+
+// Sleeps for `delay`, or less when a signal arrives (then returns false).
+bool wait_unless_interrupted(std::chrono::milliseconds delay, const InterruptWatcher& interrupts) {
+  const auto until = std::chrono::steady_clock::now() + delay;
+  while (std::chrono::steady_clock::now() < until) {
+    if (interrupts.signal() != 0) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return interrupts.signal() == 0;
 }
 
 // The output must hold tetrahedra: checked before any meshing work.
@@ -243,15 +279,34 @@ int run_volume(const VolumeCommandOptions& options) {
                                                : EnvironmentSource::kNone,
       .timeout_seconds = options.timeout_seconds,
       .canceller = canceller.get()};
-  absl::StatusOr<VolumeCallResult> result = call_mesh_volume(
-      address, *front, call_options,
-      [&progress](std::string_view stage, double fraction) { progress.update(stage, fraction); },
-      [&progress, &options](std::string_view message) {
-        if (options.quiet) return;
-        progress.finish();
-        std::fprintf(stderr, "afmesh volume: warning: %.*s\n", static_cast<int>(message.size()),
-                     message.data());
-      });
+  const auto call = [&] {
+    return call_mesh_volume(
+        address, *front, call_options,
+        [&progress](std::string_view stage, double fraction) { progress.update(stage, fraction); },
+        [&progress, &options](std::string_view message) {
+          if (options.quiet) return;
+          progress.finish();
+          std::fprintf(stderr, "afmesh volume: warning: %.*s\n",
+                       static_cast<int>(message.size()), message.data());
+        });
+  };
+  absl::StatusOr<VolumeCallResult> result = call();
+  std::mt19937_64 random(std::random_device{}());
+  for (int attempt = 1; attempt <= options.retries && !result.ok() &&
+                        interrupts.signal() == 0 &&
+                        is_retryable(result.status(), private_server == nullptr);
+       ++attempt) {
+    const std::chrono::milliseconds delay =
+        retry_delay(attempt, retry_after(result.status()), random);
+    progress.finish();
+    if (!options.quiet) {
+      std::fprintf(stderr, "afmesh volume: %s; retry %d of %d in %.1f s\n",
+                   std::string(result.status().message()).c_str(), attempt, options.retries,
+                   static_cast<double>(delay.count()) / 1000.0);
+    }
+    if (!wait_unless_interrupted(delay, interrupts)) break;
+    result = call();
+  }
   if (!result.ok()) {
     progress.finish();
     if (interrupts.signal() != 0) return interrupted(interrupts.signal());
@@ -318,6 +373,13 @@ void add_volume_command(CLI::App& app, Action& action) {
   command->add_flag("--quiet", options->quiet, "print nothing but errors");
   command->add_option("--timeout", options->timeout_seconds, "give up after SEC seconds")
       ->check(CLI::PositiveNumber);
+  command
+      ->add_option("--retries", options->retries,
+                   "times a call is sent again when the server is busy (its retry hint), or a "
+                   "shared server is unreachable or draining; jittered back-off from 0.25 s, "
+                   "doubling, at most 30 s per wait")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100));
   command->callback([options, command, &action] {
     options->size_given = command->count("--size") > 0;
     options->growth_given = command->count("--growth") > 0;

@@ -5,6 +5,8 @@
 #include <memory>
 #include <optional>
 
+#include "absl/strings/cord.h"
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_format.h"
 #include "afmesh/v1/mesher.grpc.pb.h"
 #include "google/protobuf/util/json_util.h"
@@ -13,6 +15,10 @@
 
 namespace afmesh::cli {
 namespace {
+
+// The server's retry hint (server/mesher_service.cc) and where it travels in an absl::Status.
+constexpr char kRetryAfterKey[] = "retry-after-ms";
+constexpr char kRetryAfterPayload[] = "type.afmesh.dev/retry-after-ms";
 
 using Request = v1::MeshVolumeRequest;
 using Response = v1::MeshVolumeResponse;
@@ -265,7 +271,23 @@ absl::StatusOr<VolumeCallResult> call_mesh_volume(const std::string& address, co
   absl::StatusOr<VolumeCallResult> result =
       run_call(*stream, front, options, on_progress, on_warning);
   if (options.canceller != nullptr) options.canceller->attach(nullptr);
+  if (!result.ok()) {
+    const auto& trailers = context.GetServerTrailingMetadata();
+    if (const auto hint = trailers.find(kRetryAfterKey); hint != trailers.end()) {
+      absl::Status status = result.status();
+      status.SetPayload(kRetryAfterPayload,
+                        absl::Cord(std::string(hint->second.data(), hint->second.size())));
+      return status;
+    }
+  }
   return result;
+}
+
+std::optional<std::chrono::milliseconds> retry_after(const absl::Status& status) {
+  const auto payload = status.GetPayload(kRetryAfterPayload);  // absl::optional<absl::Cord>
+  int ms = 0;
+  if (!payload || !absl::SimpleAtoi(std::string(*payload), &ms) || ms < 0) return std::nullopt;
+  return std::chrono::milliseconds(ms);
 }
 
 }  // namespace afmesh::cli

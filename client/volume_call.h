@@ -3,6 +3,7 @@
 // so that only volume_call.cc compiles them.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <mutex>
@@ -85,9 +86,15 @@ struct VolumeCallResult {
   VolumeSummary summary;
 };
 
+// The server's hint on a failed call that may succeed if sent again later (the trailing
+// metadata retry-after-ms of a refusal for a full server or a held memory budget); nullopt when
+// the server sent none, i.e. asking again unchanged cannot help.
+std::optional<std::chrono::milliseconds> retry_after(const absl::Status& status);
+
 // Runs MeshVolume against `address` with `front` (points N×3, triangles M×3 with tags).
 // Errors: the call's gRPC status as the absl::Status of the same code and message;
-// DATA_LOSS when the server's answer ends without a Summary or disagrees with it.
+// DATA_LOSS when the server's answer ends without a Summary or disagrees with it. A retry hint
+// travels as a payload of the status (retry_after).
 absl::StatusOr<VolumeCallResult> call_mesh_volume(const std::string& address, const Mesh& front,
                                                   const VolumeCallOptions& options,
                                                   const ProgressCallback& on_progress,

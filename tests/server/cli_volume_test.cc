@@ -23,6 +23,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 // The boundary of the unit corner tetrahedron, outward-oriented, as a Medit file.
 constexpr const char* kTetrahedronFront = R"(MeshVersionFormatted 2
@@ -180,9 +181,55 @@ TEST_F(CliVolumeTest, OutputFormatWithoutTetrahedraIsAUsageError) {
 TEST_F(CliVolumeTest, UnreachableServerExitsWithUnavailable) {
   const std::string address = "unix:" + (dir_ / "nobody.sock").string();
   EXPECT_EQ(run_volume(quoted(dir_ / "front.mesh") + " -o " + quoted(dir_ / "v.msh") +
-                       " --server " + address),
+                       " --server " + address + " --retries 1"),
             5);
+  EXPECT_THAT(stderr_text(), HasSubstr("retry 1 of 1 in"));
   EXPECT_THAT(stderr_text(), HasSubstr("cannot reach the server"));
+}
+
+// Backpressure (issue 12, part 2): a full server's refusal carries a retry hint; the CLI waits
+// (jittered, growing) and sends the call again, saying so, until it passes or --retries runs out.
+TEST_F(CliVolumeTest, BusySharedServerIsRetriedWithBackOffUntilItTakesTheCall) {
+  const fs::path socket = dir_ / "busy.sock";
+  const std::string address = "unix:" + socket.string();
+  const pid_t server = fork();
+  ASSERT_GE(server, 0);
+  if (server == 0) {
+    execl(AFMESH_SERVER_BINARY, AFMESH_SERVER_BINARY, "--listen", address.c_str(), "--workers", "1",
+          "--max-queue", "0", "--quiet", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!fs::exists(socket) && std::chrono::steady_clock::now() < give_up) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  // A job of a few seconds takes the only worker (the L-block example at 0.1: about 136k tets).
+  const fs::path busy_err = dir_ / "busy-stderr.txt";
+  const std::string busy = std::string(AFMESH_CLI_BINARY) + " volume " +
+                           quoted(fs::path(AFMESH_SOURCE_DIR) / "examples/lblock/lblock.stl") +
+                           " -o " + quoted(dir_ / "busy.vtu") + " --size 0.1 --server " + address +
+                           " >/dev/null 2>" + quoted(busy_err);
+  std::thread busy_call([&busy] { EXPECT_EQ(std::system(busy.c_str()), 0); });
+  while (read_file(busy_err).find("front") == std::string::npos &&
+         std::chrono::steady_clock::now() < give_up + std::chrono::seconds(20)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+
+  const std::string small = quoted(dir_ / "front.mesh") + " -o " + quoted(dir_ / "v.msh") +
+                            " --server " + address;
+  EXPECT_EQ(run_volume(small + " --retries 0"), 5);
+  EXPECT_THAT(stderr_text(), HasSubstr("the server is busy"));
+  EXPECT_THAT(stderr_text(), Not(HasSubstr("retry 1")));
+
+  EXPECT_EQ(run_volume(small + " --retries 20"), 0) << stderr_text();
+  EXPECT_THAT(stderr_text(), HasSubstr("the server is busy"));
+  EXPECT_THAT(stderr_text(), HasSubstr("retry 1 of 20 in"));
+  busy_call.join();
+
+  kill(server, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(waitpid(server, &status, 0), server);
+  EXPECT_TRUE(WIFEXITED(status));
 }
 
 TEST_F(CliVolumeTest, SharedServerServesCliAndExitsZeroOnSigterm) {
