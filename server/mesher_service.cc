@@ -275,7 +275,8 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
   // estimate_volume_mesh, against --max-elements and the server's memory budget; the bytes stay
   // reserved until the call is gone (its mesh streamed out). A size specification that cannot
   // be evaluated is the job's to report.
-  absl::Status admit_by_estimate(const Mesh& front, const VolumeParams& params) {
+  absl::Status admit_by_estimate(const Mesh& front, VolumeParams& params) {
+    params.max_tets = max_elements_;  // the front stops there too, should the estimate be wrong
     absl::StatusOr<VolumeEstimate> estimate = estimate_volume_mesh(front, params);
     if (!estimate.ok()) return absl::OkStatus();
     estimated_tets_ = estimate->tets;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -41,6 +42,10 @@ struct VolumeParams {
   // core/quality/optimise.h). The boundary is never changed.
   bool optimise = true;
   std::vector<std::int32_t> face_environments;  // LFACR per input triangle (paper §2); empty = none
+  // The front stops with FAILED_PRECONDITION once it has built more tets than this (> 0; the
+  // server's --max-elements), or than 10 times the estimate (estimate_elements.h) plus 100000:
+  // a front that far over the size asked for is making elements far smaller than asked.
+  std::int64_t max_tets = std::numeric_limits<std::int64_t>::max();
   // Diagnostics only, never set from the wire: false skips the input check's self-intersection
   // rule, so that a front whose faces cross can be given to the loop without environments, to
   // show how the advancing front fails on it (paper §2, Figure 1). The other rules still apply.

@@ -8,6 +8,7 @@
 
 #include "core/shapes/shapes.h"
 #include "core/sizing/spec_size_field.h"
+#include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "tests/volume/mesh_and_check.h"
 
@@ -92,6 +93,19 @@ TEST(EstimateElements, AHugeRequestIsCountedWithoutMeshing) {
   EXPECT_GT(estimate->tets, 0.9 * volume / regular);
   EXPECT_LT(estimate->tets, 2.0 * volume / regular);
   EXPECT_GT(estimate->bytes, 100 * estimate->tets);
+}
+
+// Never hang (issue 10, part 2): a front over its element limit stops, saying where it was.
+TEST(EstimateElements, AFrontOverItsTetLimitStopsWithAReport) {
+  VolumeParams params;
+  params.size = 0.1;
+  params.max_tets = 1000;
+  absl::StatusOr<VolumeResult> result =
+      generate_volume_mesh(sphere_surface({0, 0, 0}, 1.0, 0.1), params, no_progress());
+  ASSERT_FALSE(result.ok());
+  EXPECT_EQ(result.status().code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_THAT(std::string(result.status().message()),
+              ::testing::HasSubstr("over its limit of 1000 (the size field asks for about 3"));
 }
 
 TEST(EstimateElements, AnInvalidSpecIsItsError) {
