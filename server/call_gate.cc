@@ -20,10 +20,12 @@ void CallGate::close() {
   closed_ = true;
 }
 
-void CallGate::wait_until_empty() {
+bool CallGate::wait_until_empty_for(std::chrono::steady_clock::duration timeout) {
   std::unique_lock<std::mutex> lock(mu_);
-  empty_.wait(lock, [this] { return active_ == 0; });
+  return empty_.wait_for(lock, timeout, [this] { return active_ == 0; });
 }
+
+void CallGate::abort() { aborting_.store(true, std::memory_order_release); }
 
 std::chrono::steady_clock::time_point CallGate::last_leave() {
   std::lock_guard<std::mutex> lock(mu_);

@@ -2,9 +2,11 @@
 //
 // A graceful stop (SIGTERM) closes the gate, so new calls are refused with UNAVAILABLE and a
 // load balancer sends them elsewhere, waits until every admitted call has ended, and only then
-// shuts the gRPC server down, so no call in flight is cut short.
+// shuts the gRPC server down, so no call in flight is cut short. Calls still in flight when the
+// grace period is over are told to stop (abort()): their jobs end, and they finish UNAVAILABLE.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
@@ -21,8 +23,12 @@ class CallGate {
   void leave();
   // Refuses every later try_enter().
   void close();
-  // Blocks until no admitted call remains.
-  void wait_until_empty();
+  // Blocks until no admitted call remains, or `timeout` has passed; true when none remains.
+  bool wait_until_empty_for(std::chrono::steady_clock::duration timeout);
+  // Asks every admitted call to stop (see aborting()).
+  void abort();
+  // True once abort() was called: calls stop their jobs and end UNAVAILABLE.
+  bool aborting() const { return aborting_.load(std::memory_order_acquire); }
   // When the last admitted call ended (the steady clock's epoch if none has).
   std::chrono::steady_clock::time_point last_leave();
 
@@ -31,6 +37,7 @@ class CallGate {
   std::condition_variable empty_;
   int active_ ABSL_GUARDED_BY(mu_) = 0;
   bool closed_ ABSL_GUARDED_BY(mu_) = false;
+  std::atomic<bool> aborting_{false};
   std::chrono::steady_clock::time_point last_leave_ ABSL_GUARDED_BY(mu_);
 };
 

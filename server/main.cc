@@ -1,8 +1,10 @@
 // afmesh-server: serves afmesh.v1.Mesher (with gRPC health and reflection) until SIGTERM or
-// SIGINT, then stops accepting calls, lets those in flight finish and exits 0. A second signal
-// during that drain exits at once (status 1).
+// SIGINT, then stops accepting calls, lets those in flight finish within --grace-period (then
+// stops them: they end UNAVAILABLE) and exits 0. A second signal during that drain exits at
+// once (status 1).
 #include <pthread.h>
 
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdint>
@@ -69,6 +71,15 @@ void add_flags(CLI::App& app, afmesh::server::ServerOptions& options) {
                  "most background grid tetrahedra per request")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  app.add_option_function<double>(
+         "--grace-period",
+         [&options](double seconds) {
+           options.grace_period = std::chrono::milliseconds(static_cast<long long>(seconds * 1000));
+         },
+         "seconds a drain (SIGTERM) waits for the calls in flight before stopping them "
+         "(they end UNAVAILABLE)")
+      ->default_str(std::to_string(options.grace_period.count() / 1000))
+      ->check(CLI::Range(0.0, 86400.0));
   app.add_option("--max-elements", options.service.limits.max_elements,
                  "most tetrahedra a request may ask for, by the estimate made before meshing")
       ->capture_default_str()

@@ -166,10 +166,10 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
 
   void OnDone() override { release(); }
 
-  // True once the client cancelled or the deadline passed.
+  // True once the client cancelled, the deadline passed or the server's drain ran out of time.
   bool stop_requested() const {
     return cancel_requested_.load(std::memory_order_acquire) ||
-           std::chrono::system_clock::now() >= deadline_;
+           std::chrono::system_clock::now() >= deadline_ || gate_.aborting();
   }
 
   // Queues a Progress event: always on a new stage, else at most every kProgressInterval
@@ -341,10 +341,16 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
     pump();
   }
 
-  // CANCELLED, or DEADLINE_EXCEEDED when the deadline has passed.
+  // CANCELLED, DEADLINE_EXCEEDED when the deadline has passed, or UNAVAILABLE when the server
+  // stopped the call at the end of its drain.
   absl::Status stop_status_absl() const {
     if (std::chrono::system_clock::now() >= deadline_) {
       return absl::DeadlineExceededError("the call's deadline passed; meshing stopped");
+    }
+    if (gate_.aborting() && !cancel_requested_.load(std::memory_order_acquire)) {
+      return absl::UnavailableError(
+          "the server is shutting down and its --grace-period ran out; meshing stopped: retry "
+          "(another replica can serve the call)");
     }
     return absl::CancelledError("the call was cancelled; meshing stopped");
   }

@@ -16,6 +16,9 @@ namespace {
 
 // Time left to clients to read the end of their calls before the connections close.
 constexpr auto kFinishGrace = std::chrono::milliseconds(200);
+// After the grace period, how long stopped calls get to end by themselves before gRPC cancels
+// whatever is left (a client that stopped reading, say).
+constexpr auto kAbortGrace = std::chrono::seconds(2);
 
 // `listen` with its port replaced by `port` (for "host:0"); unix: addresses are kept.
 std::string dial_address(const std::string& listen, int port) {
@@ -54,6 +57,7 @@ absl::StatusOr<std::unique_ptr<MesherServer>> MesherServer::start(const ServerOp
                                                " (address in use, bad address, or no permission)"));
   }
   server->address_ = dial_address(options.listen, port);
+  server->grace_period_ = options.grace_period;
   return server;
 }
 
@@ -65,11 +69,15 @@ void MesherServer::shutdown() {
   if (server_ != nullptr) {
     gate_.close();
     server_->GetHealthCheckService()->SetServingStatus(false);
-    gate_.wait_until_empty();
+    if (!gate_.wait_until_empty_for(grace_period_)) {
+      gate_.abort();
+      gate_.wait_until_empty_for(kAbortGrace);
+    }
     // A call's last bytes are written when it ends, but the client may not have read them:
     // closing the connections at once can fail the call on its side ("Broken pipe").
     std::this_thread::sleep_until(gate_.last_leave() + kFinishGrace);
-    server_->Shutdown();
+    // Calls still open now (only after an abort) are cancelled by gRPC at once.
+    server_->Shutdown(std::chrono::system_clock::now());
     server_->Wait();
     server_.reset();
   }

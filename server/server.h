@@ -3,6 +3,7 @@
 // executable and, in-process, by the tests.
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -26,6 +27,9 @@ struct ServerOptions {
   // Calls admitted beyond the running ones (they wait in arrival order); a call arriving when
   // workers + max_queue calls are in progress gets RESOURCE_EXHAUSTED.
   int max_queue = 16;
+  // How long a drain (SIGTERM) waits for the calls in flight before stopping them
+  // (--grace-period); below Kubernetes' default terminationGracePeriodSeconds of 30.
+  std::chrono::milliseconds grace_period{25'000};
   ServiceOptions service;
 };
 
@@ -43,9 +47,10 @@ class MesherServer {
   const std::string& address() const { return address_; }
 
   // Drains, then stops: health turns NOT_SERVING and new calls get UNAVAILABLE; every call in
-  // flight finishes (its job and its whole result included); after a short grace for clients
-  // to read their last messages the gRPC server and the workers stop. Blocks until done;
-  // idempotent.
+  // flight finishes (its job and its whole result included) within options.grace_period; calls
+  // still in flight then are stopped (jobs cancelled, the calls end UNAVAILABLE so that clients
+  // retry elsewhere); after a short grace for clients to read their last messages the gRPC
+  // server and the workers stop. Blocks until done; idempotent.
   void shutdown();
 
  private:
@@ -56,6 +61,7 @@ class MesherServer {
   std::unique_ptr<grpc::Service> service_;
   std::unique_ptr<grpc::Server> server_;
   std::string address_;
+  std::chrono::milliseconds grace_period_{0};
 };
 
 }  // namespace afmesh::server

@@ -591,6 +591,35 @@ TEST_F(MesherServiceTest, ShutdownLetsCallInFlightFinishWhole) {
   EXPECT_EQ(mesh_from(responses).tet_tags, std::vector<Index>{7});
 }
 
+// Graceful shutdown (issue 12, part 4): a call still running when --grace-period is over is
+// stopped; it ends UNAVAILABLE (retryable elsewhere) and the drain completes soon after.
+TEST_F(MesherServiceTest, DrainStopsCallsStillRunningAfterTheGracePeriod) {
+  ServerOptions options;
+  options.grace_period = std::chrono::milliseconds(300);
+  start(slow_job(probe_), options);
+  grpc::ClientContext context;
+  auto running = stub_->MeshVolume(&context);
+  for (const Request& request : requests_for(tetrahedron_front())) {
+    ASSERT_TRUE(running->Write(request));
+  }
+  running->WritesDone();
+  ASSERT_EQ(probe_->started.get_future().wait_for(std::chrono::seconds(5)),
+            std::future_status::ready);
+
+  const Clock::time_point asked = Clock::now();
+  std::thread stopper([this] { server_->shutdown(); });
+  Response response;
+  while (running->Read(&response)) {
+  }
+  const grpc::Status status = running->Finish();
+  stopper.join();
+  const double seconds = std::chrono::duration<double>(Clock::now() - asked).count();
+  std::printf("drain with a 0.3 s grace period took %.2f s\n", seconds);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::UNAVAILABLE) << status.error_message();
+  EXPECT_THAT(status.error_message(), HasSubstr("--grace-period ran out"));
+  EXPECT_LT(seconds, 5.0);  // the slow job gives up by itself only after 10 s
+}
+
 TEST_F(MesherServiceTest, DrainingServerRefusesNewCallsAndReportsNotServing) {
   start(slow_job(probe_));
   grpc::ClientContext running_context;
