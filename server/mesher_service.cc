@@ -20,6 +20,7 @@
 #include "grpcpp/grpcpp.h"
 #include "core/volume/estimate_elements.h"
 #include "core/volume/repair_front.h"
+#include "server/call_auth.h"
 #include "server/volume_environments.h"
 #include "server/volume_output.h"
 
@@ -455,6 +456,10 @@ class MesherService final : public v1::Mesher::CallbackService {
 
   grpc::ServerBidiReactor<Request, Response>* MeshVolume(
       grpc::CallbackServerContext* context) override {
+    if (auto* refused = refuse_unauthenticated<Request, Response>(
+            "MeshVolume", context, options_.bearer_token, options_.log_calls)) {
+      return refused;
+    }
     return new MeshVolumeCall(context, pool_, gate_, budget_, job_, options_);
   }
 

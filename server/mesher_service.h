@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "server/call_gate.h"
 #include "server/memory_budget.h"
@@ -22,6 +23,8 @@ struct ServiceOptions {
   std::int64_t memory_budget_bytes = default_memory_budget();
   // One line on stderr per finished call (peer, status, counts).
   bool log_calls = true;
+  // When set, calls must carry "authorization: Bearer <bearer_token>" (call_auth.h).
+  std::string bearer_token;
 };
 
 // The Mesher service: MeshVolume calls pass `gate` (UNAVAILABLE once it is closed), reserve a

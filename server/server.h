@@ -8,6 +8,7 @@
 
 #include "absl/status/statusor.h"
 #include "server/call_gate.h"
+#include "server/credentials.h"
 #include "server/mesher_service.h"
 #include "server/volume_job.h"
 #include "server/worker_pool.h"
@@ -26,12 +27,15 @@ struct ServerOptions {
   // Calls admitted beyond the running ones (they wait in arrival order); a call arriving when
   // workers + max_queue calls are in progress gets RESOURCE_EXHAUSTED.
   int max_queue = 16;
-  ServiceOptions service;
+  ServiceOptions service;  // its bearer_token comes from security.token_file
+  // TLS, mutual TLS and the bearer token (credentials.h); default: plaintext, no token.
+  SecurityFiles security;
 };
 
 class MesherServer {
  public:
-  // Starts listening. UNAVAILABLE when the address cannot be bound.
+  // Starts listening. INVALID_ARGUMENT naming the file when a security file is unreadable or
+  // invalid (load_server_security); UNAVAILABLE when the address cannot be bound.
   static absl::StatusOr<std::unique_ptr<MesherServer>> start(const ServerOptions& options,
                                                              VolumeJob job);
   // Shuts down (see shutdown()).
@@ -41,6 +45,8 @@ class MesherServer {
 
   // The address clients dial: the listen address, with the chosen port when it asked for 0.
   const std::string& address() const { return address_; }
+  // What the server asks of its clients (TLS, client certificates, token).
+  const ServerSecurity& security() const { return security_; }
 
   // Drains, then stops: health turns NOT_SERVING and new calls get UNAVAILABLE; every call in
   // flight finishes (its job and its whole result included); after a short grace for clients
@@ -56,6 +62,7 @@ class MesherServer {
   std::unique_ptr<grpc::Service> service_;
   std::unique_ptr<grpc::Server> server_;
   std::string address_;
+  ServerSecurity security_;
 };
 
 }  // namespace afmesh::server
