@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "grpcpp/grpcpp.h"
+#include "server/call_log.h"
 
 namespace afmesh::server {
 
@@ -28,7 +29,7 @@ class RefusedBidiCall final : public grpc::ServerBidiReactor<Request, Response> 
 };
 
 // For the top of each bidirectional handler: null when the call may go on, else a reactor that
-// refuses it (logged on stderr as "RPC from PEER: code 16: ..." when `log` is set), to be
+// refuses it (logged on stderr as a call_log.h line with nothing read, when `log` is set), to be
 // returned instead of the call's own.
 template <class Request, class Response>
 grpc::ServerBidiReactor<Request, Response>* refuse_unauthenticated(
@@ -36,8 +37,12 @@ grpc::ServerBidiReactor<Request, Response>* refuse_unauthenticated(
   const grpc::Status status = check_bearer_token(*context, token);
   if (status.ok()) return nullptr;
   if (log) {
-    std::fprintf(stderr, "%s from %s: code %d: %s\n", rpc, context->peer().c_str(),
-                 static_cast<int>(status.error_code()), status.error_message().c_str());
+    CallRecord record;
+    record.id = next_call_id();
+    record.rpc = rpc;
+    record.peer = context->peer();
+    record.status = status;
+    std::fprintf(stderr, "%s\n", format_call_log(record).c_str());
   }
   return new RefusedBidiCall<Request, Response>(status);
 }

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "absl/strings/str_split.h"
 #include "afmesh/v1/mesher.grpc.pb.h"
 #include "gmock/gmock.h"
 #include "grpc/grpc.h"
@@ -378,6 +379,35 @@ TEST_F(TlsServerTest, MutualTlsAndTokenTogether) {
   EXPECT_TRUE(mesh(credentials, std::string("Bearer ") + kToken).status.ok());
   EXPECT_EQ(server_->security().describe(),
             "TLS, client certificates required, bearer token required");
+}
+
+// ----- the log line per call --------------------------------------------------------------------
+
+// A served call and a refused one each leave one structured line (server/call_log.h); the
+// refused one read nothing.
+TEST_F(TlsServerTest, EachCallLogsOneStructuredLine) {
+  ServerOptions options;
+  options.listen = "127.0.0.1:0";
+  options.workers = 1;
+  options.security = token_files();
+  absl::StatusOr<std::unique_ptr<MesherServer>> server =
+      MesherServer::start(options, counting_job(runs_));
+  ASSERT_TRUE(server.ok()) << server.status();
+  server_ = *std::move(server);
+  ::testing::internal::CaptureStderr();
+  const Outcome served = mesh(grpc::InsecureChannelCredentials(), std::string("Bearer ") + kToken);
+  const Outcome refused = mesh(grpc::InsecureChannelCredentials());
+  const std::string log = ::testing::internal::GetCapturedStderr();
+  ASSERT_TRUE(served.status.ok()) << served.status.error_message();
+  ASSERT_EQ(refused.status.error_code(), grpc::StatusCode::UNAUTHENTICATED);
+  const std::vector<std::string> lines = absl::StrSplit(log, '\n', absl::SkipEmpty());
+  ASSERT_EQ(lines.size(), 2u) << log;
+  EXPECT_THAT(lines[0], AllOf(HasSubstr("rpc=MeshVolume peer=ipv4:127.0.0.1:"),
+                              HasSubstr("messages_in=3"), HasSubstr("points_in=4 triangles_in=4"),
+                              HasSubstr("outcome=ok code=OK points_out=4 tets_out=1")));
+  EXPECT_THAT(lines[1], AllOf(HasSubstr("messages_in=0 bytes_in=0 points_in=0"),
+                              HasSubstr("outcome=refused code=UNAUTHENTICATED"),
+                              HasSubstr("message=\"this server needs a bearer token")));
 }
 
 // ----- start-up ---------------------------------------------------------------------------------
