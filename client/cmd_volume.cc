@@ -1,5 +1,6 @@
 // afmesh volume IN -o OUT [--size H] [--growth C] [--spec SPEC.json] [--envs auto|tags|none]
-//                         [--server ADDR] [--json] [--quiet] [--timeout SEC]
+//                         [--server ADDR] [--tls-ca FILE [--tls-cert FILE --tls-key FILE]]
+//                         [--token-file FILE] [--json] [--quiet] [--timeout SEC]
 // Fills the closed front in IN with tetrahedra through the MeshVolume call and writes OUT.
 // --spec sends a whole size specification (sources, background grid; design.md, "Size
 // specification"); --size and --growth, when given, override its maxSize and growth.
@@ -8,6 +9,8 @@
 // physical tags; 0 = none), `auto` lets the server find them; default none.
 // Without --server a private afmesh-server runs for the command on a local socket: the same
 // code path as a remote server. Formats follow the file extensions (core/io/mesh_io.h).
+// --tls-ca, --tls-cert, --tls-key and --token-file match a shared server's --tls-cert, --tls-key,
+// --tls-client-ca and --token-file (client/channel_credentials.h); they need --server.
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -21,6 +24,7 @@
 #include <utility>
 
 #include "absl/strings/str_format.h"
+#include "client/channel_credentials.h"
 #include "client/commands.h"
 #include "core/environments/environments.h"
 #include "client/interrupt_watcher.h"
@@ -28,6 +32,7 @@
 #include "client/server_launcher.h"
 #include "client/spec_file.h"
 #include "proto/size_spec_convert.h"
+#include "security/address_reach.h"
 #include "client/volume_call.h"
 #include "core/io/mesh_io.h"
 #include "core/quality/measures.h"
@@ -47,6 +52,7 @@ struct VolumeCommandOptions {
   std::string envs = "none";  // auto, tags or none
   std::string server;  // empty: start a private server
   int retries = 4;     // calls sent again after a refusal that may pass later
+  ClientSecurityFiles security;  // TLS and token files for --server
   bool json = false;
   bool quiet = false;
   double timeout_seconds = 0.0;
@@ -65,6 +71,9 @@ int exit_code_for(const absl::Status& status) {
     case absl::StatusCode::kResourceExhausted:
     case absl::StatusCode::kUnimplemented:
       return kExitUnavailable;  // the server cannot take the work: elsewhere or later
+    case absl::StatusCode::kUnauthenticated:
+    case absl::StatusCode::kPermissionDenied:
+      return kExitUnauthenticated;  // the token is missing or wrong
     case absl::StatusCode::kFailedPrecondition:
     case absl::StatusCode::kInternal:
     case absl::StatusCode::kDeadlineExceeded:
@@ -207,6 +216,25 @@ void print_summary(const VolumeCommandOptions& options, const VolumeSummary& sum
   std::printf("\n");
 }
 
+// TLS and token for the call (--tls-*, --token-file). They are for a shared server: the private
+// one listens on a unix socket only this user can reach, without TLS or token.
+absl::StatusOr<ClientSecurity> security_for(const VolumeCommandOptions& options) {
+  if (options.server.empty() && options.security.any()) {
+    return absl::InvalidArgumentError(
+        "--tls-ca, --tls-cert, --tls-key and --token-file are for a shared server: give --server "
+        "ADDR (the private server needs none of them)");
+  }
+  absl::StatusOr<ClientSecurity> loaded = load_client_security(options.security);
+  if (loaded.ok() && loaded->has_token() && !loaded->tls() && !options.quiet &&
+      security::reach_of(options.server) == security::Reach::kOtherHosts) {
+    std::fprintf(stderr,
+                 "afmesh volume: warning: the bearer token goes to %s in plaintext; use --tls-ca "
+                 "when the server serves TLS\n",
+                 options.server.c_str());
+  }
+  return loaded;
+}
+
 // Exit status after SIGINT / SIGTERM, as a shell reports a process ended by the signal.
 int interrupted(int signal) {
   std::fprintf(stderr, "afmesh volume: interrupted\n");
@@ -223,6 +251,11 @@ int run_volume(const VolumeCommandOptions& options) {
   grpc_init();
   if (absl::Status status = check_output_path(options.output); !status.ok()) {
     print_error(status);
+    return kExitUsage;
+  }
+  absl::StatusOr<ClientSecurity> security = security_for(options);
+  if (!security.ok()) {
+    print_error(security.status());
     return kExitUsage;
   }
   ProgressDisplay progress(stderr, ProgressDisplay::mode_for(stderr, options.quiet));
@@ -278,7 +311,8 @@ int run_volume(const VolumeCommandOptions& options) {
                       : options.envs == "auto" ? EnvironmentSource::kAuto
                                                : EnvironmentSource::kNone,
       .timeout_seconds = options.timeout_seconds,
-      .canceller = canceller.get()};
+      .canceller = canceller.get(),
+      .security = *std::move(security)};
   const auto call = [&] {
     return call_mesh_volume(
         address, *front, call_options,
@@ -369,6 +403,7 @@ void add_volume_command(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"auto", "tags", "none"}));
   command->add_option("--server", options->server,
                       "server address (host:port or unix:PATH); default: a private server");
+  add_client_security_flags(*command, options->security);
   command->add_flag("--json", options->json, "print the summary as JSON on stdout");
   command->add_flag("--quiet", options->quiet, "print nothing but errors");
   command->add_option("--timeout", options->timeout_seconds, "give up after SEC seconds")

@@ -16,6 +16,9 @@ enum ExitCode : int {
   kExitUnavailable = 5,    // the server cannot be reached or started
   kExitMeshingFailed = 6,  // the server could not produce the mesh
   kExitInternal = 7,       // anything else (an output file cannot be written, ...)
+  // The server refused the call's credentials (a missing or wrong bearer token). A refused TLS
+  // handshake cannot be told from an unreachable server and exits with kExitUnavailable.
+  kExitUnauthenticated = 8,
 };
 
 // A subcommand's action, run after a successful parse; returns the process exit code.

@@ -258,9 +258,10 @@ absl::StatusOr<VolumeCallResult> call_mesh_volume(const std::string& address, co
                                                   const ProgressCallback& on_progress,
                                                   const WarningCallback& on_warning) {
   const std::shared_ptr<grpc::Channel> channel =
-      grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
+      grpc::CreateChannel(address, options.security.channel_credentials());
   const std::unique_ptr<v1::Mesher::Stub> stub = v1::Mesher::NewStub(channel);
   grpc::ClientContext context;
+  options.security.add_to(context);
   if (options.timeout_seconds > 0) {
     context.set_deadline(std::chrono::system_clock::now() +
                          std::chrono::duration_cast<std::chrono::system_clock::duration>(

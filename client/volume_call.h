@@ -15,6 +15,7 @@
 
 #include "absl/base/thread_annotations.h"
 #include "absl/status/statusor.h"
+#include "client/channel_credentials.h"
 #include "core/mesh/mesh.h"
 #include "core/sizing/size_spec.h"
 
@@ -56,6 +57,8 @@ struct VolumeCallOptions {
   double timeout_seconds = 0.0;
   // When set, cancels the call on request.
   CallCanceller* canceller = nullptr;
+  // TLS and the bearer token (channel_credentials.h); default: plaintext, no token.
+  ClientSecurity security;
 };
 
 // Where the call is, for the progress display: the client's own stages ("send", "receive")

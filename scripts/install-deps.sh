@@ -8,6 +8,7 @@ packages=(
   g++ cmake ninja-build ccache pkg-config
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libabsl-dev libeigen3-dev libgtest-dev libgmock-dev libcli11-dev
+  libssl-dev openssl  # security/: PEM checks at start-up; the TLS tests make their certificates with openssl
   python3-minimal python3-numpy python3-meshio python3-gmsh python3-vtk9  # cross-checks: /usr/bin/python3 with meshio, gmsh and VTK
 )
 if [[ "${1:-}" == "--peers" ]]; then

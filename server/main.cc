@@ -16,6 +16,7 @@
 #include "CLI/CLI.hpp"
 #include "grpc/grpc.h"
 #include "server/default_volume_job.h"
+#include "server/listen_note.h"
 #include "server/server.h"
 
 namespace {
@@ -89,6 +90,15 @@ void add_flags(CLI::App& app, afmesh::server::ServerOptions& options) {
   add_mebibytes_option(app, "--memory-budget-mb", options.service.memory_budget_bytes,
                        "memory the jobs running at once may be expected to need together, in "
                        "MiB (default: 3/4 of physical memory)");
+  app.add_option("--tls-cert", options.security.tls_cert,
+                 "PEM certificate chain to serve TLS with (needs --tls-key)");
+  app.add_option("--tls-key", options.security.tls_key,
+                 "PEM private key of --tls-cert (unencrypted)");
+  app.add_option("--tls-client-ca", options.security.tls_client_ca,
+                 "PEM CA bundle: require client certificates signed by it (mutual TLS)");
+  app.add_option("--token-file", options.security.token_file,
+                 "file holding a bearer token every Mesher call must send "
+                 "(authorization: Bearer TOKEN)");
   app.add_flag_callback(
       "--quiet", [&options] { options.service.log_calls = false; }, "do not log each call");
 }
@@ -112,7 +122,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "afmesh-server: %s\n", std::string(server.status().message()).c_str());
     return 1;
   }
-  std::fprintf(stderr, "afmesh-server: listening on %s\n", (*server)->address().c_str());
+  for (const std::string& line :
+       afmesh::server::listen_note((*server)->address(), (*server)->security())) {
+    std::fprintf(stderr, "afmesh-server: %s\n", line.c_str());
+  }
 
   const int signal = wait_for_signal(signals);
   std::fprintf(stderr, "afmesh-server: %s, draining calls in flight\n", strsignal(signal));

@@ -20,6 +20,8 @@
 #include "grpcpp/grpcpp.h"
 #include "core/volume/estimate_elements.h"
 #include "core/volume/repair_front.h"
+#include "server/call_auth.h"
+#include "server/call_log.h"
 #include "server/volume_environments.h"
 #include "server/volume_output.h"
 
@@ -124,6 +126,7 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
     {
       std::lock_guard<std::mutex> lock(mu_);
       if (finished_) return;
+      if (ok) count_request(request_, record_);
     }
     if (!ok) {
       end_of_input();
@@ -330,8 +333,8 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
       if (stop_requested()) {
         final_status_ = stop_status();
       } else if (output.ok()) {
-        log_counts_ = absl::StrFormat("%d points, %d tets", output->volume.mesh.points.size(),
-                                      output->volume.mesh.tets.size());
+        record_.points_out = static_cast<std::int64_t>(output->volume.mesh.points.size());
+        record_.tets_out = static_cast<std::int64_t>(output->volume.mesh.tets.size());
         output_ = std::make_unique<VolumeOutputStream>(*std::move(output), std::move(timings));
         final_status_ = grpc::Status::OK;
       } else {
@@ -381,11 +384,11 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
     } else if (final_status_ && job_state_ != JobState::kRunning) {
       finished_ = true;
       const grpc::Status status = *final_status_;
-      const std::string counts = log_counts_;
+      CallRecord record = record_;
       const std::optional<int> retry_after_ms = status.ok() ? std::nullopt : retry_after_ms_;
       lock.unlock();
       if (retry_after_ms) context_->AddTrailingMetadata(kRetryAfterKey, std::to_string(*retry_after_ms));
-      log_finish(status, counts);
+      log_finish(status, std::move(record));
       Finish(status);
       return;
     } else {
@@ -396,13 +399,15 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
     StartWrite(&current_);
   }
 
-  // One line per call on stderr: peer, then "OK, <counts>" or the status code and message.
-  void log_finish(const grpc::Status& status, const std::string& counts) const {
+  // One structured line per call on stderr (call_log.h).
+  void log_finish(const grpc::Status& status, CallRecord record) const {
     if (!log_calls_) return;
-    const std::string outcome =
-        status.ok() ? absl::StrCat("OK, ", counts)
-                    : absl::StrCat("code ", status.error_code(), ": ", status.error_message());
-    std::fprintf(stderr, "MeshVolume from %s: %s\n", context_->peer().c_str(), outcome.c_str());
+    record.id = next_call_id();
+    record.rpc = "MeshVolume";
+    record.peer = context_->peer();
+    record.seconds = seconds_since(receive_start_);
+    record.status = status;
+    std::fprintf(stderr, "%s\n", format_call_log(record).c_str());
   }
 
   // Drops one reference (gRPC's at OnDone, the job's when it returns); the last one deletes.
@@ -436,7 +441,7 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
   std::deque<Response> outbox_ ABSL_GUARDED_BY(mu_);  // events waiting to be written
   std::unique_ptr<VolumeOutputStream> output_ ABSL_GUARDED_BY(mu_);
   std::optional<grpc::Status> final_status_ ABSL_GUARDED_BY(mu_);
-  std::string log_counts_ ABSL_GUARDED_BY(mu_);
+  CallRecord record_ ABSL_GUARDED_BY(mu_);  // input counts as read, output counts once done
   std::optional<int> retry_after_ms_ ABSL_GUARDED_BY(mu_);  // sent with a failed final status
   bool writing_ ABSL_GUARDED_BY(mu_) = false;
   bool finished_ ABSL_GUARDED_BY(mu_) = false;
@@ -462,6 +467,10 @@ class MesherService final : public v1::Mesher::CallbackService {
 
   grpc::ServerBidiReactor<Request, Response>* MeshVolume(
       grpc::CallbackServerContext* context) override {
+    if (auto* refused = refuse_unauthenticated<Request, Response>(
+            "MeshVolume", context, options_.bearer_token, options_.log_calls)) {
+      return refused;
+    }
     return new MeshVolumeCall(context, pool_, gate_, budget_, job_, options_);
   }
 

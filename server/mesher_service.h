@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "server/call_gate.h"
 #include "server/memory_budget.h"
@@ -20,8 +21,11 @@ struct ServiceOptions {
   InputLimits limits;
   // Bytes the jobs running at once may be expected to need together (--memory-budget-mb).
   std::int64_t memory_budget_bytes = default_memory_budget();
-  // One line on stderr per finished call (peer, status, counts).
+  // One structured line on stderr per finished call (id, peer, input sizes, duration, outcome,
+  // code: call_log.h).
   bool log_calls = true;
+  // When set, calls must carry "authorization: Bearer <bearer_token>" (call_auth.h).
+  std::string bearer_token;
 };
 
 // The Mesher service: MeshVolume calls pass `gate` (UNAVAILABLE once it is closed), reserve a

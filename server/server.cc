@@ -42,14 +42,20 @@ absl::StatusOr<std::unique_ptr<MesherServer>> MesherServer::start(const ServerOp
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
 
+  absl::StatusOr<ServerSecurity> security = load_server_security(options.security);
+  if (!security.ok()) return security.status();
+  ServiceOptions service_options = options.service;
+  service_options.bearer_token = security->bearer_token;
+
   std::unique_ptr<MesherServer> server(new MesherServer());
+  server->security_ = *std::move(security);
   server->pool_ = std::make_unique<WorkerPool>(worker_count(options.workers), options.max_queue);
   server->service_ =
-      make_mesher_service(*server->pool_, server->gate_, std::move(job), options.service);
+      make_mesher_service(*server->pool_, server->gate_, std::move(job), service_options);
 
   grpc::ServerBuilder builder;
   int port = 0;
-  builder.AddListeningPort(options.listen, grpc::InsecureServerCredentials(), &port);
+  builder.AddListeningPort(options.listen, server->security_.credentials, &port);
   builder.RegisterService(server->service_.get());
   server->server_ = builder.BuildAndStart();
   if (server->server_ == nullptr || port == 0) {

@@ -9,6 +9,7 @@
 
 #include "absl/status/statusor.h"
 #include "server/call_gate.h"
+#include "server/credentials.h"
 #include "server/mesher_service.h"
 #include "server/volume_job.h"
 #include "server/worker_pool.h"
@@ -30,12 +31,15 @@ struct ServerOptions {
   // How long a drain (SIGTERM) waits for the calls in flight before stopping them
   // (--grace-period); below Kubernetes' default terminationGracePeriodSeconds of 30.
   std::chrono::milliseconds grace_period{25'000};
-  ServiceOptions service;
+  ServiceOptions service;  // its bearer_token comes from security.token_file
+  // TLS, mutual TLS and the bearer token (credentials.h); default: plaintext, no token.
+  SecurityFiles security;
 };
 
 class MesherServer {
  public:
-  // Starts listening. UNAVAILABLE when the address cannot be bound.
+  // Starts listening. INVALID_ARGUMENT naming the file when a security file is unreadable or
+  // invalid (load_server_security); UNAVAILABLE when the address cannot be bound.
   static absl::StatusOr<std::unique_ptr<MesherServer>> start(const ServerOptions& options,
                                                              VolumeJob job);
   // Shuts down (see shutdown()).
@@ -45,6 +49,8 @@ class MesherServer {
 
   // The address clients dial: the listen address, with the chosen port when it asked for 0.
   const std::string& address() const { return address_; }
+  // What the server asks of its clients (TLS, client certificates, token).
+  const ServerSecurity& security() const { return security_; }
 
   // Drains, then stops: health turns NOT_SERVING and new calls get UNAVAILABLE; every call in
   // flight finishes (its job and its whole result included) within options.grace_period; calls
@@ -62,6 +68,7 @@ class MesherServer {
   std::unique_ptr<grpc::Server> server_;
   std::string address_;
   std::chrono::milliseconds grace_period_{0};
+  ServerSecurity security_;
 };
 
 }  // namespace afmesh::server
