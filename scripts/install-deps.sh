@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs what afmesh needs to build and test, from Debian 12's apt only.
-# Usage: scripts/install-deps.sh [--peers]   (--peers adds gmsh, netgen, tetgen for bench/)
+# Usage: scripts/install-deps.sh [--peers] [--image]
+#   --peers adds gmsh, netgen, tetgen for bench/; --image adds buildah and mmdebstrap for
+#   deploy/build-image.sh.
 # Does nothing when everything is present; needs root (or sudo) to install what is missing.
 set -euo pipefail
 
@@ -10,15 +12,25 @@ packages=(
   libabsl-dev libeigen3-dev libgtest-dev libgmock-dev libcli11-dev
   libssl-dev openssl  # security/: PEM checks at start-up; the TLS tests make their certificates with openssl
   python3-minimal python3-numpy python3-meshio python3-gmsh python3-vtk9  # cross-checks: /usr/bin/python3 with meshio, gmsh and VTK
+  yamllint  # deploy/k8s
 )
-if [[ "${1:-}" == "--peers" ]]; then
-  packages+=(gmsh python3-gmsh netgen python3-netgen tetgen time)
-fi
+for arg in "$@"; do
+  case "$arg" in
+    --peers) packages+=(gmsh python3-gmsh netgen python3-netgen tetgen time) ;;
+    --image) packages+=(buildah mmdebstrap) ;;
+    *) echo "install-deps: unknown option $arg" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# deploy/k8s's schema check runs on node + npm (Debian's nodejs 18 and npm 9 suffice); a node
+# from elsewhere that bundles npm (and conflicts with Debian's npm package) counts as present.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  missing+=(nodejs npm)
+fi
 [[ ${#missing[@]} -eq 0 ]] && exit 0
 
 echo "afmesh: installing missing packages: ${missing[*]}" >&2
