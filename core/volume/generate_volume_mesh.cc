@@ -237,6 +237,19 @@ absl::Status overlap_report(const MesherState& s, Index face, double domain_volu
       s.meshed_volume, domain_volume, s.live_tets, x[0], x[1], x[2], s.front.face(face).env));
 }
 
+// FAILED_PRECONDITION: `what` went wrong, then the face being worked on, where it is, and what
+// the input looks like there (describe_input_near_face).
+absl::Status failure_at_face(const MesherState& s, const Mesh& input, Index face,
+                             const std::string& what) {
+  const Triangle v = s.front.face(face).v;
+  const Point& x = s.points[v[0]];
+  return absl::FailedPreconditionError(
+      absl::StrCat(what,
+                   absl::StrFormat(", last face (%d, %d, %d) near (%g, %g, %g)", v[0], v[1], v[2],
+                                   x[0], x[1], x[2]),
+                   describe_input_near_face(s, input, v, x)));
+}
+
 // Not in the paper: the end game must shrink the front. Once the elements hold all but
 // kEndGameShare of the enclosed volume, the front may only get smaller; a front whose smallest
 // size is not beaten for kEndGameSteps + kEndGameStepsPerFace × that size fills the last gaps
@@ -266,16 +279,13 @@ class EndGameWatch {
 
 absl::Status end_game_report(const MesherState& s, const Mesh& input, Index face,
                              double domain_volume, std::int64_t smallest_front) {
-  const Triangle v = s.front.face(face).v;
-  const Point& x = s.points[v[0]];
-  return absl::FailedPreconditionError(absl::StrCat(
+  return failure_at_face(
+      s, input, face,
       absl::StrFormat(
           "the front stopped closing: the elements hold all but %.2g of the enclosed volume, but "
           "the last front faces (%d now, %d at best) only make ever smaller elements; %d tets "
-          "built, last face (%d, %d, %d) near (%g, %g, %g)",
-          1.0 - s.meshed_volume / domain_volume, s.front.size(), smallest_front, s.live_tets,
-          v[0], v[1], v[2], x[0], x[1], x[2]),
-      describe_input_near_face(s, input, v, x)));
+          "built",
+          1.0 - s.meshed_volume / domain_volume, s.front.size(), smallest_front, s.live_tets));
 }
 
 // Not in the paper: a front that has built many times the elements the size field asks for
@@ -288,27 +298,19 @@ constexpr double kMaxTetsSlack = 100000;
 
 absl::Status overbuilt_report(const MesherState& s, const Mesh& input, Index face,
                               double expected_tets, std::int64_t max_tets) {
-  const Triangle v = s.front.face(face).v;
-  const Point& x = s.points[v[0]];
-  return absl::FailedPreconditionError(absl::StrCat(
-      absl::StrFormat(
-          "the front built %d tets, over its limit of %d (the size field asks for about %.0f), "
-          "with %d front faces left; last face (%d, %d, %d) near (%g, %g, %g)",
-          s.live_tets, max_tets, expected_tets, s.front.size(), v[0], v[1], v[2], x[0], x[1],
-          x[2]),
-      describe_input_near_face(s, input, v, x)));
+  return failure_at_face(
+      s, input, face,
+      absl::StrFormat("the front built %d tets, over its limit of %d (the size field asks for "
+                      "about %.0f), with %d front faces left",
+                      s.live_tets, max_tets, expected_tets, s.front.size()));
 }
 
 absl::Status stuck_report(const MesherState& s, const Mesh& input, Index face,
                           std::int64_t steps) {
-  const Triangle v = s.front.face(face).v;
-  const Point& x = s.points[v[0]];
-  return absl::FailedPreconditionError(absl::StrCat(
-      absl::StrFormat(
-          "the front did not close after %d steps: %d tets built, %d front faces left, last face "
-          "(%d, %d, %d) near (%g, %g, %g)",
-          steps, s.live_tets, s.front.size(), v[0], v[1], v[2], x[0], x[1], x[2]),
-      describe_input_near_face(s, input, v, x)));
+  return failure_at_face(s, input, face,
+                         absl::StrFormat("the front did not close after %d steps: %d tets built, "
+                                         "%d front faces left",
+                                         steps, s.live_tets, s.front.size()));
 }
 
 
