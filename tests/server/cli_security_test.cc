@@ -17,6 +17,7 @@
 
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "tests/server/cli_test_support.h"
 #include "tests/server/test_certificates.h"
 
 namespace afmesh {
@@ -26,31 +27,10 @@ namespace fs = std::filesystem;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-constexpr const char* kTetrahedronFront = R"(MeshVersionFormatted 2
-Dimension 3
-Vertices
-4
-0 0 0 0
-1 0 0 0
-0 1 0 0
-0 0 1 0
-Triangles
-4
-1 3 2 7
-1 2 4 7
-1 4 3 7
-2 3 4 7
-End
-)";
-
-std::string quoted(const std::string& text) { return "'" + text + "'"; }
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-int exit_status(int status) { return WIFEXITED(status) ? WEXITSTATUS(status) : -1; }
+using cli_test::exit_status;
+using cli_test::kTetrahedronFront;
+using cli_test::read_file;
+using cli_test::shell_quoted;
 
 // One afmesh-server with mutual TLS and a token on a free loopback port, for the whole suite.
 class CliSecurityTest : public ::testing::Test {
@@ -69,17 +49,13 @@ class CliSecurityTest : public ::testing::Test {
 
   static void start_server() {
     const std::string log = (pki_->dir / "server.log").string();
-    server_ = fork();
+    server_ = cli_test::start_server_process(
+        AFMESH_SERVER_BINARY,
+        {"--listen", "127.0.0.1:0", "--workers", "1", "--tls-cert", pki_->server_cert(),
+         "--tls-key", pki_->server_key(), "--tls-client-ca", pki_->ca_cert(), "--token-file",
+         (pki_->dir / "token").string()},
+        log);
     ASSERT_GE(server_, 0);
-    if (server_ == 0) {
-      const std::string cert = pki_->server_cert(), key = pki_->server_key();
-      const std::string ca = pki_->ca_cert(), token = (pki_->dir / "token").string();
-      freopen(log.c_str(), "w", stderr);
-      execl(AFMESH_SERVER_BINARY, AFMESH_SERVER_BINARY, "--listen", "127.0.0.1:0", "--workers", "1",
-            "--tls-cert", cert.c_str(), "--tls-key", key.c_str(), "--tls-client-ca", ca.c_str(),
-            "--token-file", token.c_str(), static_cast<char*>(nullptr));
-      _exit(127);
-    }
     // The chosen port is in the start-up line.
     const std::regex listening("listening on 127\\.0\\.0\\.1:([0-9]+) ");
     const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
@@ -107,21 +83,22 @@ class CliSecurityTest : public ::testing::Test {
 
   // Runs `command` with stdout and stderr in files; returns the exit status.
   int run(const std::string& command) {
-    const std::string line =
-        command + " >" + quoted(file("stdout.txt")) + " 2>" + quoted(file("stderr.txt"));
+    const std::string line = command + " >" + shell_quoted(file("stdout.txt")) + " 2>" +
+                             shell_quoted(file("stderr.txt"));
     return exit_status(std::system(line.c_str()));
   }
 
   // `afmesh volume front.mesh -o out.vtu --server 127.0.0.1:PORT ARGS`.
   int volume(const std::string& args) {
     fs::remove(file("out.vtu"));
-    return run(std::string(AFMESH_CLI_BINARY) + " volume " + quoted(file("front.mesh")) + " -o " +
-               quoted(file("out.vtu")) + " --quiet --server 127.0.0.1:" + port_ + " " + args);
+    return run(std::string(AFMESH_CLI_BINARY) + " volume " + shell_quoted(file("front.mesh")) +
+               " -o " + shell_quoted(file("out.vtu")) + " --quiet --server 127.0.0.1:" + port_ +
+               " " + args);
   }
 
   std::string tls_flags() const {
-    return "--tls-ca " + quoted(pki_->ca_cert()) + " --tls-cert " + quoted(pki_->client_cert()) +
-           " --tls-key " + quoted(pki_->client_key());
+    return "--tls-ca " + shell_quoted(pki_->ca_cert()) + " --tls-cert " +
+           shell_quoted(pki_->client_cert()) + " --tls-key " + shell_quoted(pki_->client_key());
   }
   std::string stderr_text() const { return read_file(file("stderr.txt")); }
 
@@ -145,22 +122,23 @@ TEST_F(CliSecurityTest, ServerSaysItIsLoopbackOnlyAndWhatItAsks) {
 }
 
 TEST_F(CliSecurityTest, EveryCredentialGivenIsServed) {
-  EXPECT_EQ(volume(tls_flags() + " --token-file " + quoted(file("token"))), 0) << stderr_text();
+  EXPECT_EQ(volume(tls_flags() + " --token-file " + shell_quoted(file("token"))), 0)
+      << stderr_text();
   EXPECT_TRUE(fs::exists(file("out.vtu")));
 }
 
 TEST_F(CliSecurityTest, MissingOrWrongTokenExitsUnauthenticated) {
   EXPECT_EQ(volume(tls_flags()), 8);
   EXPECT_THAT(stderr_text(), HasSubstr("needs a bearer token"));
-  EXPECT_EQ(volume(tls_flags() + " --token-file " + quoted(file("wrong-token"))), 8);
+  EXPECT_EQ(volume(tls_flags() + " --token-file " + shell_quoted(file("wrong-token"))), 8);
   EXPECT_THAT(stderr_text(), HasSubstr("the bearer token is not valid"));
   EXPECT_FALSE(fs::exists(file("out.vtu")));
 }
 
 // --retries 0: a refused handshake looks like an unreachable server, which the CLI retries.
 TEST_F(CliSecurityTest, MissingClientCertificateOrTlsCannotReachTheServer) {
-  const std::string token = " --retries 0 --token-file " + quoted(file("token"));
-  EXPECT_EQ(volume("--tls-ca " + quoted(pki_->ca_cert()) + token), 5);
+  const std::string token = " --retries 0 --token-file " + shell_quoted(file("token"));
+  EXPECT_EQ(volume("--tls-ca " + shell_quoted(pki_->ca_cert()) + token), 5);
   EXPECT_THAT(stderr_text(), HasSubstr("cannot reach the server"));
   EXPECT_EQ(volume(token.substr(1)), 5);  // plaintext against TLS
   EXPECT_THAT(stderr_text(), HasSubstr("cannot reach the server"));
@@ -168,29 +146,31 @@ TEST_F(CliSecurityTest, MissingClientCertificateOrTlsCannotReachTheServer) {
 
 TEST_F(CliSecurityTest, BadClientFlagsAreUsageErrorsNamingTheFile) {
   const std::string missing = file("missing-ca.crt");
-  EXPECT_EQ(volume("--tls-ca " + quoted(missing)), 2);
+  EXPECT_EQ(volume("--tls-ca " + shell_quoted(missing)), 2);
   EXPECT_THAT(stderr_text(), AllOf(HasSubstr("--tls-ca"), HasSubstr(missing)));
-  EXPECT_EQ(
-      volume("--tls-ca " + quoted(pki_->ca_cert()) + " --tls-cert " + quoted(pki_->client_cert())),
-      2);
+  EXPECT_EQ(volume("--tls-ca " + shell_quoted(pki_->ca_cert()) + " --tls-cert " +
+                   shell_quoted(pki_->client_cert())),
+            2);
   EXPECT_THAT(stderr_text(), HasSubstr("--tls-cert and --tls-key go together"));
   // Without --server the private server needs no credentials.
-  EXPECT_EQ(run(std::string(AFMESH_CLI_BINARY) + " volume " + quoted(file("front.mesh")) + " -o " +
-                quoted(file("out.vtu")) + " --token-file " + quoted(file("token"))),
-            2);
+  EXPECT_EQ(
+      run(std::string(AFMESH_CLI_BINARY) + " volume " + shell_quoted(file("front.mesh")) + " -o " +
+          shell_quoted(file("out.vtu")) + " --token-file " + shell_quoted(file("token"))),
+      2);
   EXPECT_THAT(stderr_text(), HasSubstr("give --server"));
 }
 
 TEST_F(CliSecurityTest, ServerWithAnUnreadableCertificateExitsOneNamingIt) {
   const std::string missing = file("missing-server.crt");
   EXPECT_EQ(run(std::string(AFMESH_SERVER_BINARY) + " --listen 127.0.0.1:0 --tls-cert " +
-                quoted(missing) + " --tls-key " + quoted(pki_->server_key())),
+                shell_quoted(missing) + " --tls-key " + shell_quoted(pki_->server_key())),
             1);
   EXPECT_THAT(stderr_text(),
               HasSubstr("afmesh-server: --tls-cert " + missing + ": cannot be read"));
-  EXPECT_EQ(run(std::string(AFMESH_SERVER_BINARY) + " --listen 127.0.0.1:0 --tls-cert " +
-                quoted(pki_->server_cert()) + " --tls-key " + quoted(pki_->client_key())),
-            1);
+  EXPECT_EQ(
+      run(std::string(AFMESH_SERVER_BINARY) + " --listen 127.0.0.1:0 --tls-cert " +
+          shell_quoted(pki_->server_cert()) + " --tls-key " + shell_quoted(pki_->client_key())),
+      1);
   EXPECT_THAT(stderr_text(), HasSubstr("does not belong to the certificate"));
 }
 

@@ -18,23 +18,19 @@
 #include "core/io/mesh_io.h"
 #include "core/io/sized_grid.h"
 #include "core/quality/validate.h"
-#include "core/sizing/background_grid.h"
 #include "core/shapes/shapes.h"
+#include "core/sizing/background_grid.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "tests/server/cli_test_support.h"
 
 namespace afmesh {
 namespace {
 
 namespace fs = std::filesystem;
+using cli_test::read_file;
+using cli_test::shell_quoted;
 using ::testing::HasSubstr;
-
-// `path` in single quotes, for the shell.
-std::string quoted(const fs::path& path) {
-  std::string text(1, '\'');
-  text.append(path.string()).push_back('\'');
-  return text;
-}
 
 fs::path dome_spec_path() { return fs::path(AFMESH_SOURCE_DIR) / "examples/dome/dome-sizes.json"; }
 
@@ -77,19 +73,15 @@ class CliSizesTest : public ::testing::Test {
     std::ofstream(path) << text;
   }
 
-  static std::string read_file(const fs::path& path) {
-    std::ifstream in(path);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  }
-
   // Runs `afmesh ARGS` (stdin from `input` when given) with TMPDIR in the test folder; stdout and
   // stderr go to files. Returns the exit status.
   int run(const std::string& args, const std::string& input = "") {
-    std::string command = "TMPDIR=" + quoted(dir_ / "tmp") + " " + AFMESH_CLI_BINARY + " " + args +
-                          " >" + quoted(dir_ / "stdout.txt") + " 2>" + quoted(dir_ / "stderr.txt");
+    std::string command = "TMPDIR=" + shell_quoted(dir_ / "tmp") + " " + AFMESH_CLI_BINARY + " " +
+                          args + " >" + shell_quoted(dir_ / "stdout.txt") + " 2>" +
+                          shell_quoted(dir_ / "stderr.txt");
     if (!input.empty()) {
       write_file(dir_ / "stdin.txt", input);
-      command += " <" + quoted(dir_ / "stdin.txt");
+      command += " <" + shell_quoted(dir_ / "stdin.txt");
     }
     const int status = std::system(command.c_str());
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -124,8 +116,8 @@ std::string points_text(const std::vector<Point>& points) {
 
 TEST_F(CliSizesTest, DomeSpecReproducesThePolynomialLawTo1e12) {
   write_file(dir_ / "probe.xyz", points_text(kDomeProbes));
-  ASSERT_EQ(run("sizes --spec " + quoted(dome_spec_path()) + " --points " +
-                quoted(dir_ / "probe.xyz")),
+  ASSERT_EQ(run("sizes --spec " + shell_quoted(dome_spec_path()) + " --points " +
+                shell_quoted(dir_ / "probe.xyz")),
             0)
       << stderr_text();
   const std::vector<double> sizes = printed_sizes();
@@ -140,7 +132,7 @@ TEST_F(CliSizesTest, DomeSpecReproducesThePolynomialLawTo1e12) {
 }
 
 TEST_F(CliSizesTest, ReadsStdinWhenNoPointsFileAndSkipsBlankLines) {
-  ASSERT_EQ(run("sizes --spec " + quoted(dome_spec_path()), "1.2 0 0\n\n0 0 0\n"), 0)
+  ASSERT_EQ(run("sizes --spec " + shell_quoted(dome_spec_path()), "1.2 0 0\n\n0 0 0\n"), 0)
       << stderr_text();
   const std::vector<double> sizes = printed_sizes();
   ASSERT_EQ(sizes.size(), 2u);
@@ -150,8 +142,8 @@ TEST_F(CliSizesTest, ReadsStdinWhenNoPointsFileAndSkipsBlankLines) {
 
 TEST_F(CliSizesTest, MalformedPointLineExitsBadInputNamingTheLine) {
   write_file(dir_ / "probe.xyz", "0 0 0\n1 2\n");
-  EXPECT_EQ(run("sizes --spec " + quoted(dome_spec_path()) + " --points " +
-                quoted(dir_ / "probe.xyz")),
+  EXPECT_EQ(run("sizes --spec " + shell_quoted(dome_spec_path()) + " --points " +
+                shell_quoted(dir_ / "probe.xyz")),
             3);
   EXPECT_THAT(stderr_text(), HasSubstr("probe.xyz:2:"));
 }
@@ -159,14 +151,14 @@ TEST_F(CliSizesTest, MalformedPointLineExitsBadInputNamingTheLine) {
 TEST_F(CliSizesTest, InvalidSpecExitsBadInputNamingFileAndField) {
   write_file(dir_ / "bad.json", R"({"maxSize": 1, "sources": [{"points": [{}], "delta0": 0.1,
       "r1": -1, "power": {"gamma": 1}}]})");
-  EXPECT_EQ(run("sizes --spec " + quoted(dir_ / "bad.json"), "0 0 0\n"), 3);
+  EXPECT_EQ(run("sizes --spec " + shell_quoted(dir_ / "bad.json"), "0 0 0\n"), 3);
   EXPECT_THAT(stderr_text(), HasSubstr("bad.json"));
   EXPECT_THAT(stderr_text(), HasSubstr("sources[0].r1"));
 }
 
 TEST_F(CliSizesTest, MalformedJsonExitsBadInputNamingTheFile) {
   write_file(dir_ / "bad.json", R"({"maxSize": 1, "sources": [{"cubic": {}}]})");
-  EXPECT_EQ(run("sizes --spec " + quoted(dir_ / "bad.json"), "0 0 0\n"), 3);
+  EXPECT_EQ(run("sizes --spec " + shell_quoted(dir_ / "bad.json"), "0 0 0\n"), 3);
   EXPECT_THAT(stderr_text(), HasSubstr("bad.json"));
   EXPECT_THAT(stderr_text(), HasSubstr("cubic"));
 }
@@ -205,7 +197,8 @@ TEST_F(CliSizesTest, BackgroundMshFileBesideTheSpecIsInterpolatedExactly) {
   write_file(dir_ / "specs" / "spec.json",
              R"({"maxSize": 10, "background": {"file": "grids/linear.msh"}})");
   ASSERT_EQ(
-      run("sizes --spec " + quoted(dir_ / "specs" / "spec.json"), points_text(kGridProbes)), 0)
+      run("sizes --spec " + shell_quoted(dir_ / "specs" / "spec.json"), points_text(kGridProbes)),
+      0)
       << stderr_text();
   expect_linear_sizes(printed_sizes());
 }
@@ -214,7 +207,7 @@ TEST_F(CliSizesTest, BackgroundMeditFileWithSolIsInterpolatedExactly) {
   write_linear_grid(dir_ / "linear.mesh");
   ASSERT_TRUE(fs::exists(dir_ / "linear.sol"));
   write_file(dir_ / "spec.json", R"({"maxSize": 10, "background": {"file": "linear.mesh"}})");
-  ASSERT_EQ(run("sizes --spec " + quoted(dir_ / "spec.json"), points_text(kGridProbes)), 0)
+  ASSERT_EQ(run("sizes --spec " + shell_quoted(dir_ / "spec.json"), points_text(kGridProbes)), 0)
       << stderr_text();
   expect_linear_sizes(printed_sizes());
 }
@@ -231,7 +224,7 @@ TEST_F(CliSizesTest, MalformedBackgroundFileExitsBadInputNamingFileAndLine) {
   write_file(dir_ / "bad.msh", text);
   const int bad_line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + line, '\n'));
   write_file(dir_ / "spec.json", R"({"maxSize": 10, "background": {"file": "bad.msh"}})");
-  EXPECT_EQ(run("sizes --spec " + quoted(dir_ / "spec.json"), "0 0 0\n"), 3);
+  EXPECT_EQ(run("sizes --spec " + shell_quoted(dir_ / "spec.json"), "0 0 0\n"), 3);
   EXPECT_THAT(stderr_text(), HasSubstr("spec.json: background.file (\"bad.msh\"): "));
   EXPECT_THAT(stderr_text(), HasSubstr("bad.msh:" + std::to_string(bad_line) +
                                        ": the size of node tag 3 must be finite and > 0"));
@@ -240,16 +233,16 @@ TEST_F(CliSizesTest, MalformedBackgroundFileExitsBadInputNamingFileAndLine) {
 
 TEST_F(CliSizesTest, MissingBackgroundFileOrFileWithInlineGridExitsBadInput) {
   write_file(dir_ / "missing.json", R"({"maxSize": 1, "background": {"file": "nowhere.msh"}})");
-  EXPECT_EQ(run("sizes --spec " + quoted(dir_ / "missing.json"), "0 0 0\n"), 3);
+  EXPECT_EQ(run("sizes --spec " + shell_quoted(dir_ / "missing.json"), "0 0 0\n"), 3);
   EXPECT_THAT(stderr_text(), HasSubstr("nowhere.msh"));
   write_file(dir_ / "sol.json", R"({"maxSize": 1, "background": {"file": "nosol.mesh"}})");
   write_linear_grid(dir_ / "nosol.mesh");
   fs::remove(dir_ / "nosol.sol");
-  EXPECT_EQ(run("sizes --spec " + quoted(dir_ / "sol.json"), "0 0 0\n"), 3);
+  EXPECT_EQ(run("sizes --spec " + shell_quoted(dir_ / "sol.json"), "0 0 0\n"), 3);
   EXPECT_THAT(stderr_text(), HasSubstr("nosol.sol"));
   write_file(dir_ / "both.json", R"({"maxSize": 1, "background": {"file": "nosol.mesh",
       "sizes": [1, 1, 1, 1]}})");
-  EXPECT_EQ(run("sizes --spec " + quoted(dir_ / "both.json"), "0 0 0\n"), 3);
+  EXPECT_EQ(run("sizes --spec " + shell_quoted(dir_ / "both.json"), "0 0 0\n"), 3);
   EXPECT_THAT(stderr_text(), HasSubstr("background gives both a file"));
 }
 
@@ -261,12 +254,13 @@ TEST_F(CliSizesTest, VolumeWithBackgroundFileMeshesValidlyAndFinerThanMaxSize) {
   write_linear_grid(dir_ / "linear.msh", 0.25);
   write_file(dir_ / "spec.json",
              R"({"maxSize": 1.0, "growth": 1.5, "background": {"file": "linear.msh"}})");
-  ASSERT_EQ(run("volume " + quoted(dir_ / "box.mesh") + " -o " + quoted(dir_ / "graded.msh") +
-                " --spec " + quoted(dir_ / "spec.json") + " --quiet"),
-            0)
+  ASSERT_EQ(
+      run("volume " + shell_quoted(dir_ / "box.mesh") + " -o " + shell_quoted(dir_ / "graded.msh") +
+          " --spec " + shell_quoted(dir_ / "spec.json") + " --quiet"),
+      0)
       << stderr_text();
-  ASSERT_EQ(run("volume " + quoted(dir_ / "box.mesh") + " -o " + quoted(dir_ / "uniform.msh") +
-                " --size 1.0 --growth 1.5 --quiet"),
+  ASSERT_EQ(run("volume " + shell_quoted(dir_ / "box.mesh") + " -o " +
+                shell_quoted(dir_ / "uniform.msh") + " --size 1.0 --growth 1.5 --quiet"),
             0)
       << stderr_text();
   absl::StatusOr<Mesh> graded = read_mesh((dir_ / "graded.msh").string());
@@ -311,9 +305,10 @@ TEST_F(CliSizesTest, VolumeWithA200kPointBackgroundGridStreamsItAndFollowsItsFie
   ASSERT_TRUE(write_sized_grid(grid, sizes, (dir_ / "big.msh").string()).ok());
   write_file(dir_ / "spec.json",
              R"({"maxSize": 0.5, "growth": 1.5, "background": {"file": "big.msh"}})");
-  ASSERT_EQ(run("volume " + quoted(dir_ / "box.mesh") + " -o " + quoted(dir_ / "box.msh") +
-                " --spec " + quoted(dir_ / "spec.json") + " --quiet"),
-            0)
+  ASSERT_EQ(
+      run("volume " + shell_quoted(dir_ / "box.mesh") + " -o " + shell_quoted(dir_ / "box.msh") +
+          " --spec " + shell_quoted(dir_ / "spec.json") + " --quiet"),
+      0)
       << stderr_text();
   absl::StatusOr<Mesh> mesh = read_mesh((dir_ / "box.msh").string());
   ASSERT_TRUE(mesh.ok()) << mesh.status();
@@ -333,12 +328,13 @@ TEST_F(CliSizesTest, VolumeWithPointSourceSpecMeshesABoxValidlyAndRefinesNearThe
   write_file(dir_ / "spec.json", R"({"maxSize": 0.5, "growth": 1.2, "sources": [
       {"points": [{"x": 1, "y": 1, "z": 1}], "delta0": 0.15, "r0": 0.0, "r1": 0.5,
        "power": {"gamma": 1.0}}]})");
-  ASSERT_EQ(run("volume " + quoted(dir_ / "box.mesh") + " -o " + quoted(dir_ / "spec.msh") +
-                " --spec " + quoted(dir_ / "spec.json") + " --quiet"),
-            0)
+  ASSERT_EQ(
+      run("volume " + shell_quoted(dir_ / "box.mesh") + " -o " + shell_quoted(dir_ / "spec.msh") +
+          " --spec " + shell_quoted(dir_ / "spec.json") + " --quiet"),
+      0)
       << stderr_text();
-  ASSERT_EQ(run("volume " + quoted(dir_ / "box.mesh") + " -o " + quoted(dir_ / "uniform.msh") +
-                " --size 0.5 --growth 1.2 --quiet"),
+  ASSERT_EQ(run("volume " + shell_quoted(dir_ / "box.mesh") + " -o " +
+                shell_quoted(dir_ / "uniform.msh") + " --size 0.5 --growth 1.2 --quiet"),
             0)
       << stderr_text();
   absl::StatusOr<Mesh> refined = read_mesh((dir_ / "spec.msh").string());
@@ -356,9 +352,10 @@ TEST_F(CliSizesTest, VolumeSpecErrorExitsBadInputBeforeMeshing) {
   ASSERT_TRUE(write_mesh(box_surface({0, 0, 0}, {1, 1, 1}, 0.5), (dir_ / "box.mesh").string()).ok());
   write_file(dir_ / "spec.json", R"({"maxSize": 0.5, "sources": [{"delta0": 0.2, "r1": 0.5,
       "power": {"gamma": 1.0}}]})");
-  EXPECT_EQ(run("volume " + quoted(dir_ / "box.mesh") + " -o " + quoted(dir_ / "box.msh") +
-                " --spec " + quoted(dir_ / "spec.json") + " --quiet"),
-            3);
+  EXPECT_EQ(
+      run("volume " + shell_quoted(dir_ / "box.mesh") + " -o " + shell_quoted(dir_ / "box.msh") +
+          " --spec " + shell_quoted(dir_ / "spec.json") + " --quiet"),
+      3);
   EXPECT_THAT(stderr_text(), HasSubstr("sources[0].points"));
   EXPECT_FALSE(fs::exists(dir_ / "box.msh"));
 }

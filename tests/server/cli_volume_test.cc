@@ -17,31 +17,17 @@
 #include "core/shapes/shapes.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "tests/server/cli_test_support.h"
 
 namespace afmesh {
 namespace {
 
 namespace fs = std::filesystem;
+using cli_test::kTetrahedronFront;
+using cli_test::read_file;
+using cli_test::shell_quoted;
 using ::testing::HasSubstr;
 using ::testing::Not;
-
-// The boundary of the unit corner tetrahedron, outward-oriented, as a Medit file.
-constexpr const char* kTetrahedronFront = R"(MeshVersionFormatted 2
-Dimension 3
-Vertices
-4
-0 0 0 0
-1 0 0 0
-0 1 0 0
-0 0 1 0
-Triangles
-4
-1 3 2 7
-1 2 4 7
-1 4 3 7
-2 3 4 7
-End
-)";
 
 // The same front with one triangle missing: not closed.
 constexpr const char* kOpenFront = R"(MeshVersionFormatted 2
@@ -60,13 +46,6 @@ Triangles
 End
 )";
 
-// `path` in single quotes, for the shell.
-std::string quoted(const fs::path& path) {
-  std::string text(1, '\'');
-  text.append(path.string()).push_back('\'');
-  return text;
-}
-
 class CliVolumeTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -82,17 +61,12 @@ class CliVolumeTest : public ::testing::Test {
 
   static void write_file(const fs::path& path, const char* text) { std::ofstream(path) << text; }
 
-  static std::string read_file(const fs::path& path) {
-    std::ifstream in(path);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  }
-
   // Runs `afmesh volume ARGS` with TMPDIR in the test folder; stdout and stderr go to files.
   // Returns the exit status.
   int run_volume(const std::string& args) {
-    const std::string command = "TMPDIR=" + quoted(dir_ / "tmp") + " " + AFMESH_CLI_BINARY +
-                                " volume " + args + " >" + quoted(dir_ / "stdout.txt") + " 2>" +
-                                quoted(dir_ / "stderr.txt");
+    const std::string command = "TMPDIR=" + shell_quoted(dir_ / "tmp") + " " + AFMESH_CLI_BINARY +
+                                " volume " + args + " >" + shell_quoted(dir_ / "stdout.txt") +
+                                " 2>" + shell_quoted(dir_ / "stderr.txt");
     const int status = std::system(command.c_str());
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
@@ -108,7 +82,9 @@ class CliVolumeTest : public ::testing::Test {
 
 TEST_F(CliVolumeTest, PrivateServerMeshesTetrahedronFrontAndIsCleanedUp) {
   const fs::path out = dir_ / "volume.msh";
-  ASSERT_EQ(run_volume(quoted(dir_ / "front.mesh") + " -o " + quoted(out) + " --size 1 --json"), 0)
+  ASSERT_EQ(run_volume(shell_quoted(dir_ / "front.mesh") + " -o " + shell_quoted(out) +
+                       " --size 1 --json"),
+            0)
       << stderr_text();
   EXPECT_THAT(stdout_text(), HasSubstr("\"tetCount\""));
   EXPECT_THAT(stdout_text(), HasSubstr("\"passed\": true"));
@@ -122,7 +98,8 @@ TEST_F(CliVolumeTest, PrivateServerMeshesTetrahedronFrontAndIsCleanedUp) {
 }
 
 TEST_F(CliVolumeTest, OpenFrontExitsWithBadInputNamingTheProblem) {
-  EXPECT_EQ(run_volume(quoted(dir_ / "open.mesh") + " -o " + quoted(dir_ / "v.msh") + " --quiet"),
+  EXPECT_EQ(run_volume(shell_quoted(dir_ / "open.mesh") + " -o " + shell_quoted(dir_ / "v.msh") +
+                       " --quiet"),
             3);
   EXPECT_THAT(stderr_text(), HasSubstr("edge"));
   EXPECT_FALSE(fs::exists(dir_ / "v.msh"));
@@ -148,7 +125,7 @@ TEST_F(CliVolumeTest, FlippedFacetsAndAnOutwardCavityAreRepairedWithAWarning) {
   ASSERT_TRUE(write_mesh(front, (dir_ / "cavity.mesh").string()).ok());
 
   const fs::path out = dir_ / "cavity.msh";
-  ASSERT_EQ(run_volume(quoted(dir_ / "cavity.mesh") + " -o " + quoted(out) +
+  ASSERT_EQ(run_volume(shell_quoted(dir_ / "cavity.mesh") + " -o " + shell_quoted(out) +
                        " --size 0.3 --json"),
             0)
       << stderr_text();
@@ -169,18 +146,20 @@ TEST_F(CliVolumeTest, FlippedFacetsAndAnOutwardCavityAreRepairedWithAWarning) {
 }
 
 TEST_F(CliVolumeTest, MissingInputFileExitsWithBadInput) {
-  EXPECT_EQ(run_volume(quoted(dir_ / "absent.stl") + " -o " + quoted(dir_ / "v.msh")), 3);
+  EXPECT_EQ(run_volume(shell_quoted(dir_ / "absent.stl") + " -o " + shell_quoted(dir_ / "v.msh")),
+            3);
   EXPECT_THAT(stderr_text(), HasSubstr("absent.stl"));
 }
 
 TEST_F(CliVolumeTest, OutputFormatWithoutTetrahedraIsAUsageError) {
-  EXPECT_EQ(run_volume(quoted(dir_ / "front.mesh") + " -o " + quoted(dir_ / "v.stl")), 2);
+  EXPECT_EQ(run_volume(shell_quoted(dir_ / "front.mesh") + " -o " + shell_quoted(dir_ / "v.stl")),
+            2);
   EXPECT_THAT(stderr_text(), HasSubstr("cannot hold tetrahedra"));
 }
 
 TEST_F(CliVolumeTest, UnreachableServerExitsWithUnavailable) {
   const std::string address = "unix:" + (dir_ / "nobody.sock").string();
-  EXPECT_EQ(run_volume(quoted(dir_ / "front.mesh") + " -o " + quoted(dir_ / "v.msh") +
+  EXPECT_EQ(run_volume(shell_quoted(dir_ / "front.mesh") + " -o " + shell_quoted(dir_ / "v.msh") +
                        " --server " + address + " --retries 1"),
             5);
   EXPECT_THAT(stderr_text(), HasSubstr("retry 1 of 1 in"));
@@ -192,31 +171,26 @@ TEST_F(CliVolumeTest, UnreachableServerExitsWithUnavailable) {
 TEST_F(CliVolumeTest, BusySharedServerIsRetriedWithBackOffUntilItTakesTheCall) {
   const fs::path socket = dir_ / "busy.sock";
   const std::string address = "unix:" + socket.string();
-  const pid_t server = fork();
+  const pid_t server = cli_test::start_server_process(
+      AFMESH_SERVER_BINARY, {"--listen", address, "--workers", "1", "--max-queue", "0", "--quiet"});
   ASSERT_GE(server, 0);
-  if (server == 0) {
-    execl(AFMESH_SERVER_BINARY, AFMESH_SERVER_BINARY, "--listen", address.c_str(), "--workers", "1",
-          "--max-queue", "0", "--quiet", static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (!fs::exists(socket) && std::chrono::steady_clock::now() < give_up) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  ASSERT_TRUE(cli_test::wait_for_socket(socket));
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   // A job of a few seconds takes the only worker (the L-block example at 0.1: about 136k tets).
   const fs::path busy_err = dir_ / "busy-stderr.txt";
-  const std::string busy = std::string(AFMESH_CLI_BINARY) + " volume " +
-                           quoted(fs::path(AFMESH_SOURCE_DIR) / "examples/lblock/lblock.stl") +
-                           " -o " + quoted(dir_ / "busy.vtu") + " --size 0.1 --server " + address +
-                           " >/dev/null 2>" + quoted(busy_err);
+  const std::string busy =
+      std::string(AFMESH_CLI_BINARY) + " volume " +
+      shell_quoted(fs::path(AFMESH_SOURCE_DIR) / "examples/lblock/lblock.stl") + " -o " +
+      shell_quoted(dir_ / "busy.vtu") + " --size 0.1 --server " + address + " >/dev/null 2>" +
+      shell_quoted(busy_err);
   std::thread busy_call([&busy] { EXPECT_EQ(std::system(busy.c_str()), 0); });
   while (read_file(busy_err).find("front") == std::string::npos &&
-         std::chrono::steady_clock::now() < give_up + std::chrono::seconds(20)) {
+         std::chrono::steady_clock::now() < give_up) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
 
-  const std::string small = quoted(dir_ / "front.mesh") + " -o " + quoted(dir_ / "v.msh") +
-                            " --server " + address;
+  const std::string small = shell_quoted(dir_ / "front.mesh") + " -o " +
+                            shell_quoted(dir_ / "v.msh") + " --server " + address;
   EXPECT_EQ(run_volume(small + " --retries 0"), 5);
   EXPECT_THAT(stderr_text(), HasSubstr("the server is busy"));
   EXPECT_THAT(stderr_text(), Not(HasSubstr("retry 1")));
@@ -225,47 +199,31 @@ TEST_F(CliVolumeTest, BusySharedServerIsRetriedWithBackOffUntilItTakesTheCall) {
   EXPECT_THAT(stderr_text(), HasSubstr("the server is busy"));
   EXPECT_THAT(stderr_text(), HasSubstr("retry 1 of 20 in"));
   busy_call.join();
-
-  kill(server, SIGTERM);
-  int status = 0;
-  ASSERT_EQ(waitpid(server, &status, 0), server);
-  EXPECT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(cli_test::stop_server_process(server), 0);
 }
 
 TEST_F(CliVolumeTest, SharedServerServesCliAndExitsZeroOnSigterm) {
   const fs::path socket = dir_ / "shared.sock";
   const std::string address = "unix:" + socket.string();
-  const pid_t server = fork();
+  const pid_t server = cli_test::start_server_process(
+      AFMESH_SERVER_BINARY, {"--listen", address, "--workers", "1", "--quiet"});
   ASSERT_GE(server, 0);
-  if (server == 0) {
-    execl(AFMESH_SERVER_BINARY, AFMESH_SERVER_BINARY, "--listen", address.c_str(), "--workers", "1",
-          "--quiet", static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (!fs::exists(socket) && std::chrono::steady_clock::now() < give_up) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  ASSERT_TRUE(cli_test::wait_for_socket(socket));
 
   const fs::path out = dir_ / "shared.vtu";
-  EXPECT_EQ(run_volume(quoted(dir_ / "front.mesh") + " -o " + quoted(out) + " --server " + address +
-                       " --quiet"),
+  EXPECT_EQ(run_volume(shell_quoted(dir_ / "front.mesh") + " -o " + shell_quoted(out) +
+                       " --server " + address + " --quiet"),
             0)
       << stderr_text();
   EXPECT_TRUE(fs::exists(out));
   EXPECT_TRUE(private_folders_removed());
-
-  kill(server, SIGTERM);
-  int status = 0;
-  ASSERT_EQ(waitpid(server, &status, 0), server);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_EQ(cli_test::stop_server_process(server), 0);
 }
 
 // ----- --envs (crossing environments, paper §2) ----------------------------------------------
 
 TEST_F(CliVolumeTest, BadEnvsValueIsAUsageError) {
-  EXPECT_EQ(run_volume(quoted(dir_ / "front.mesh") + " -o " + quoted(dir_ / "v.msh") +
+  EXPECT_EQ(run_volume(shell_quoted(dir_ / "front.mesh") + " -o " + shell_quoted(dir_ / "v.msh") +
                        " --envs sometimes"),
             2);
   EXPECT_THAT(stderr_text(), HasSubstr("--envs"));
@@ -279,8 +237,8 @@ TEST_F(CliVolumeTest, EnvsTagsWithoutTagsIsBadInput) {
     untagged.replace(at, 3, " 0\n");
   }
   write_file(dir_ / "untagged.mesh", untagged.c_str());
-  EXPECT_EQ(run_volume(quoted(dir_ / "untagged.mesh") + " -o " + quoted(dir_ / "v.msh") +
-                       " --envs tags"),
+  EXPECT_EQ(run_volume(shell_quoted(dir_ / "untagged.mesh") + " -o " +
+                       shell_quoted(dir_ / "v.msh") + " --envs tags"),
             3);
   EXPECT_THAT(stderr_text(), HasSubstr("--envs tags: none of the 4 triangles"));
   EXPECT_FALSE(fs::exists(dir_ / "v.msh"));
@@ -290,14 +248,14 @@ TEST_F(CliVolumeTest, EnvsTagsAndAutoReachTheServer) {
   // The tetrahedron's faces all carry tag 7: one environment, nothing crosses, so it meshes
   // with or without the front filtering; the server says what it marked.
   const fs::path out = dir_ / "tags.msh";
-  ASSERT_EQ(run_volume(quoted(dir_ / "front.mesh") + " -o " + quoted(out) +
+  ASSERT_EQ(run_volume(shell_quoted(dir_ / "front.mesh") + " -o " + shell_quoted(out) +
                        " --size 1 --envs tags"),
             0)
       << stderr_text();
   EXPECT_THAT(stderr_text(), HasSubstr("crossing environments from tags: 1 environment on 4 of 4"));
   EXPECT_THAT(stdout_text(), HasSubstr("environments"));  // the stage's timing
-  ASSERT_EQ(run_volume(quoted(dir_ / "front.mesh") + " -o " + quoted(dir_ / "auto.msh") +
-                       " --size 1 --envs auto"),
+  ASSERT_EQ(run_volume(shell_quoted(dir_ / "front.mesh") + " -o " +
+                       shell_quoted(dir_ / "auto.msh") + " --size 1 --envs auto"),
             0)
       << stderr_text();
   EXPECT_THAT(stderr_text(), HasSubstr("crossing environments found: 0 environments"));
