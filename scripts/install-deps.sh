@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs what afmesh needs to build and test, from Debian 12's apt only.
-# Usage: scripts/install-deps.sh [--peers]   (--peers adds gmsh, netgen, tetgen for bench/)
+# Usage: scripts/install-deps.sh [--peers | --fuzz]
+#   --peers adds gmsh, netgen, tetgen for bench/; --fuzz adds clang-14 and its libFuzzer and
+#   sanitizer runtimes for the fuzz preset (fuzz/run.sh).
 # Does nothing when everything is present; needs root (or sudo) to install what is missing.
 set -euo pipefail
 
@@ -12,6 +14,8 @@ packages=(
 )
 if [[ "${1:-}" == "--peers" ]]; then
   packages+=(gmsh python3-gmsh netgen python3-netgen tetgen time)
+elif [[ "${1:-}" == "--fuzz" ]]; then
+  packages+=(clang-14 libclang-rt-14-dev)
 fi
 
 missing=()
