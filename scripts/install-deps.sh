@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs what afmesh needs to build and test, from Debian 12's apt only.
-# Usage: scripts/install-deps.sh [--peers] [--image]
+# Usage: scripts/install-deps.sh [--peers] [--image] [--fuzz]
 #   --peers adds gmsh, netgen, tetgen for bench/; --image adds buildah and mmdebstrap for
-#   deploy/build-image.sh.
+#   deploy/build-image.sh; --fuzz adds clang-14 and its libFuzzer and sanitizer runtimes for the
+#   fuzz preset (fuzz/run.sh).
 # Does nothing when everything is present; needs root (or sudo) to install what is missing.
 set -euo pipefail
 
@@ -18,6 +19,7 @@ for arg in "$@"; do
   case "$arg" in
     --peers) packages+=(gmsh python3-gmsh netgen python3-netgen tetgen time) ;;
     --image) packages+=(buildah mmdebstrap) ;;
+    --fuzz) packages+=(clang-14 libclang-rt-14-dev) ;;
     *) echo "install-deps: unknown option $arg" >&2; exit 2 ;;
   esac
 done

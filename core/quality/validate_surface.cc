@@ -216,7 +216,9 @@ Check check_self_intersections(const Mesh& surface, const ProperTriangles& prope
   });
   std::sort(hits.begin(), hits.end());
   CheckBuilder builder(check::kNoSelfIntersections, params);
-  for (const auto& [t, u] : hits) {
+  for (const auto& hit : hits) {
+    // Named copies, not a structured binding: clang 14 (the fuzz preset) cannot capture those.
+    const Index t = hit.first, u = hit.second;
     builder.add([&] {
       if (env.empty()) {
         return Finding{absl::StrFormat("triangles %d and %d intersect", t, u), {}, {t, u}, {}};

@@ -1,0 +1,163 @@
+// afmesh-fuzz-seeds OUT_DIR: writes small, valid seed inputs for every fuzz target into
+// OUT_DIR/<target>/ (a unit cube as a surface and as six tets, written by core/io's own writers;
+// MeshVolume request streams of that cube; front descriptions for the mesher). make_corpora.sh
+// adds the files of tests/data and examples/ beside them.
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "afmesh/v1/mesher.pb.h"
+#include "core/io/medit.h"
+#include "core/io/msh.h"
+#include "core/io/obj.h"
+#include "core/io/stl.h"
+#include "google/protobuf/util/json_util.h"
+#include "proto/size_spec_convert.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+afmesh::Mesh cube_surface() {
+  afmesh::Mesh m;
+  for (int i = 0; i < 8; ++i) {
+    m.points.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+  }
+  m.triangles = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                 {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  m.triangle_tags = {1, 1, 2, 2, 1, 1, 2, 2, 1, 1, 2, 2};
+  return m;
+}
+
+// The cube split into six positive tets around its diagonal 0-7.
+afmesh::Mesh cube_tets() {
+  afmesh::Mesh m = cube_surface();
+  m.tets = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
+  m.tet_tags.assign(m.tets.size(), 3);
+  return m;
+}
+
+void write(const fs::path& dir, const std::string& name, const std::string& bytes) {
+  fs::create_directories(dir);
+  std::ofstream(dir / name, std::ios::binary) << bytes;
+}
+
+template <typename Writer>
+std::string written(Writer writer) {
+  std::string text;
+  afmesh::OutputBuffer out(&text);
+  if (!writer(out).ok()) {
+    std::fprintf(stderr, "afmesh-fuzz-seeds: a writer failed\n");
+    std::exit(1);
+  }
+  return text;
+}
+
+// A length-prefixed stream of serialized requests (fuzz_volume_request's input).
+std::string stream(const std::vector<afmesh::v1::MeshVolumeRequest>& requests) {
+  std::string bytes;
+  for (const afmesh::v1::MeshVolumeRequest& r : requests) {
+    const std::string one = r.SerializeAsString();
+    bytes.push_back(static_cast<char>(one.size() & 0xff));
+    bytes.push_back(static_cast<char>(one.size() >> 8));
+    bytes += one;
+  }
+  return bytes;
+}
+
+std::vector<afmesh::v1::MeshVolumeRequest> cube_requests(afmesh::v1::EnvironmentMode mode,
+                                                         bool streamed_grid) {
+  const afmesh::Mesh surface = cube_surface();
+  std::vector<afmesh::v1::MeshVolumeRequest> requests(3);
+  afmesh::v1::MeshVolumeHeader& header = *requests[0].mutable_header();
+  header.mutable_options()->mutable_size()->set_max_size(0.4);
+  header.mutable_options()->set_environments(mode);
+  header.set_point_count(surface.points.size());
+  header.set_triangle_count(surface.triangles.size());
+  for (const afmesh::Point& p : surface.points) {
+    for (double c : p) requests[1].mutable_points()->add_xyz(c);
+  }
+  for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
+    for (afmesh::Index v : surface.triangles[t]) requests[2].mutable_triangles()->add_indices(v);
+    requests[2].mutable_triangles()->add_tags(surface.triangle_tags[t]);
+  }
+  if (streamed_grid) {
+    const afmesh::Mesh grid = cube_tets();
+    header.set_grid_point_count(grid.points.size());
+    header.set_grid_tet_count(grid.tets.size());
+    afmesh::v1::BackgroundGridSlice& slice = *requests.emplace_back().mutable_background_grid();
+    for (const afmesh::Point& p : grid.points) {
+      for (double c : p) slice.add_xyz(c);
+      slice.add_sizes(0.3);
+    }
+    for (const afmesh::Tet& t : grid.tets) {
+      for (afmesh::Index v : t) slice.add_tets(v);
+    }
+  }
+  return requests;
+}
+
+std::string inline_grid_spec_json() {
+  const afmesh::Mesh grid = cube_tets();
+  afmesh::SizeSpec spec;
+  spec.max_size = 0.5;
+  spec.growth = 1.3;
+  spec.sources.push_back({.points = {{0.5, 0.5, 0.5}}, .delta0 = 0.1, .r0 = 0.1, .r1 = 0.3,
+                          .law = afmesh::PowerLaw{.gamma = 1.5}});
+  spec.background = afmesh::BackgroundGridSpec{
+      .points = grid.points, .tets = grid.tets, .sizes = std::vector<double>(8, 0.4)};
+  std::string json;
+  (void)google::protobuf::util::MessageToJsonString(afmesh::size_spec_to_proto(spec), &json);
+  return json;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: afmesh-fuzz-seeds OUT_DIR\n");
+    return 2;
+  }
+  const fs::path out(argv[1]);
+  const afmesh::Mesh surface = cube_surface();
+  const afmesh::Mesh tets = cube_tets();
+  const std::vector<double> sizes(tets.points.size(), 0.25);
+
+  write(out / "stl", "cube_binary.stl", written([&](auto& o) {
+          return afmesh::write_stl(surface, afmesh::StlEncoding::kBinary, o);
+        }));
+  write(out / "stl", "cube_ascii.stl", written([&](auto& o) {
+          return afmesh::write_stl(surface, afmesh::StlEncoding::kAscii, o);
+        }));
+  write(out / "obj", "cube.obj", written([&](auto& o) { return afmesh::write_obj(surface, o); }));
+  write(out / "msh", "cube_41.msh", written([&](auto& o) { return afmesh::write_msh(tets, o); }));
+  write(out / "msh", "cube_41_sizes.msh", written([&](auto& o) {
+          return afmesh::write_msh_sized_grid(tets, sizes, o);
+        }));
+  write(out / "medit", "cube.mesh",
+        written([&](auto& o) { return afmesh::write_medit(tets, o); }));
+  write(out / "medit_sol", "cube.sol",
+        std::string(1, static_cast<char>(tets.points.size())) +
+            written([&](auto& o) { return afmesh::write_medit_sol(sizes, o); }));
+  write(out / "size_spec", "inline_grid.json", inline_grid_spec_json());
+
+  write(out / "volume_request", "cube_none",
+        stream(cube_requests(afmesh::v1::ENVIRONMENT_MODE_NONE, false)));
+  write(out / "volume_request", "cube_tags",
+        stream(cube_requests(afmesh::v1::ENVIRONMENT_MODE_TAGS, false)));
+  write(out / "volume_request", "cube_streamed_grid",
+        stream(cube_requests(afmesh::v1::ENVIRONMENT_MODE_NONE, true)));
+
+  // fuzz_volume_mesher: shape, mode, size, then corner moves, flips and tags (all zero here).
+  write(out / "volume_mesher", "cube", std::string("\x00\x00\x80", 3));
+  write(out / "volume_mesher", "octahedron_tags", std::string("\x01\x01\x40", 3));
+  write(out / "volume_mesher", "cube_cavity_auto", std::string("\x00\x06\xc0", 3));
+  write(out / "volume_mesher", "tetrahedron_free",
+        std::string("\x02\x00\x80\x00" "\x00\x00\x00" "\x20\x00\x00" "\x00\x20\x00"
+                    "\x00\x00\x20" "\x00\x02\x01" "\x00\x01\x03" "\x00\x03\x02" "\x01\x02\x03",
+                    28));
+  return 0;
+}
