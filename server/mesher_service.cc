@@ -254,7 +254,7 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
       timings.push_back({"repair", seconds_since(repair_start)});
       for (std::string& note : repair.notes()) notes.push_back(std::move(note));
       const Clock::time_point start = Clock::now();
-      absl::Status status = admit_by_estimate(front, params);
+      absl::Status status = admit_by_estimate(front, params, notes);
       if (status.ok()) status = run_environments_guarded(mode, front, params, notes);
       if (mode != v1::ENVIRONMENT_MODE_NONE) {
         timings.push_back({"environments", seconds_since(start)});
@@ -278,11 +278,20 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
   // estimate_volume_mesh, against --max-elements and the server's memory budget; the bytes stay
   // reserved until the call is gone (its mesh streamed out). A size specification that cannot
   // be evaluated is the job's to report.
-  absl::Status admit_by_estimate(const Mesh& front, VolumeParams& params) {
+  absl::Status admit_by_estimate(const Mesh& front, VolumeParams& params,
+                                 std::vector<std::string>& notes) {
     params.max_tets = max_elements_;  // the front stops there too, should the estimate be wrong
     absl::StatusOr<VolumeEstimate> estimate = estimate_volume_mesh(front, params);
     if (!estimate.ok()) return absl::OkStatus();
     estimated_tets_ = estimate->tets;
+    if (estimate->coarse_front_triangles > 0) {
+      notes.push_back(absl::StrFormat(
+          "%d of the %d input triangles have edges over %g times the size asked on them (up to "
+          "%.3g times): the elements on them take about their size, not the size asked, and gaps "
+          "narrower than their edges may not close; re-triangulate the surface at the size first",
+          estimate->coarse_front_triangles, front.triangles.size(), kCoarseFrontRatio,
+          estimate->coarsest_front_ratio));
+    }
     if (estimate->tets > static_cast<double>(max_elements_)) {
       return absl::ResourceExhaustedError(absl::StrFormat(
           "the size field asks for about %.3g tetrahedra (estimated before meshing from the "

@@ -171,10 +171,16 @@ VolumeEstimate estimate_volume_mesh(const Mesh& front, const SizeField& size_fie
   // V / A (a slab of thickness t has V / A = t / 2; a ball of radius r, r / 3).
   const double depth = total_area > 0 ? 2.0 * std::max(0.0, volume) / total_area : 0.0;
   double layer = 0.0;
-  for (std::size_t i = 0; i < m; ++i)
-    layer += areas[i] * boundary_layer_tets_per_area(edges[i], sizes[i], g, depth);
-
   VolumeEstimate estimate;
+  for (std::size_t i = 0; i < m; ++i) {
+    layer += areas[i] * boundary_layer_tets_per_area(edges[i], sizes[i], g, depth);
+    const double ratio = edges[i] / sizes[i];
+    if (ratio > kCoarseFrontRatio) {
+      ++estimate.coarse_front_triangles;
+      estimate.coarsest_front_ratio = std::max(estimate.coarsest_front_ratio, ratio);
+    }
+  }
+
   estimate.tets = std::max(0.0, interior) + layer;
   estimate.points = static_cast<double>(front.points.size()) + kPointsPerTet * estimate.tets;
   estimate.bytes = kBytesPerTet * estimate.tets + kBytesPerFrontTriangle * static_cast<double>(m);

@@ -20,7 +20,15 @@ struct VolumeEstimate {
   double tets = 0;    // expected tetrahedra
   double points = 0;  // expected points, the front's included
   double bytes = 0;   // expected peak memory of the job
+  // Front triangles whose mean edge is over kCoarseFrontRatio times the size asked on them, and
+  // the largest such ratio. Not in the paper: a face's element is 0.55 to 1.6 times its edges
+  // (candidates.cc), so the elements on such triangles are coarser than asked, and gaps narrower
+  // than their edges may not close; the surface must be re-triangulated at the size first.
+  std::int64_t coarse_front_triangles = 0;
+  double coarsest_front_ratio = 0;
 };
+
+inline constexpr double kCoarseFrontRatio = 3.0;
 
 // The expected size of the mesh of the closed front `front` (outward oriented) with sizes from
 // `size_field`, none above `max_size`, growing by `growth` (>= 1; below 1.2 counts as 1.2, as

@@ -392,7 +392,8 @@ TEST_F(MesherServiceTest, EventsPrecedeMeshSlicesInPointTriangleTetOrder) {
   ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
   ASSERT_TRUE(outcome.responses.front().has_progress());
   EXPECT_EQ(outcome.responses.front().progress().stage(), "queued");
-  EXPECT_EQ(count_events(outcome.responses, Response::kWarning), 1);
+  // The job's warning, and the server's: the tetrahedron's edges are 4.6 to 5.7 times 0.25.
+  EXPECT_EQ(count_events(outcome.responses, Response::kWarning), 2);
 
   int last_kind = 0;
   bool mesh_started = false;
@@ -1332,6 +1333,20 @@ TEST_F(MesherServiceTest, SummaryCarriesTheEstimateTheLimitsWereCheckedAgainst) 
   ASSERT_TRUE(outcome.responses.back().has_summary());
   // (1/6) / (0.05^3 / (6 sqrt 2)) regular tets, times 1.07 for an advancing-front mesh.
   EXPECT_NEAR(outcome.responses.back().summary().estimated_tet_count(), 12'107, 10);
+}
+
+// Nothing silently: a front far coarser than the size asked is said to be, before meshing.
+TEST_F(MesherServiceTest, AFrontFarCoarserThanTheSizeAskedIsWarnedAbout) {
+  start(counting_job(probe_));
+  const CallOutcome outcome = call(tetrahedron_requests_at(0.05));
+  ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+  std::string warnings;
+  for (const Response& response : outcome.responses) {
+    if (response.has_warning()) warnings += response.warning().message() + "\n";
+  }
+  EXPECT_THAT(warnings, HasSubstr("4 of the 4 input triangles have edges over 3 times the size "
+                                  "asked on them (up to 28.3 times)"));
+  EXPECT_THAT(warnings, HasSubstr("re-triangulate the surface at the size first"));
 }
 
 }  // namespace
