@@ -402,7 +402,9 @@ void add_volume_command(CLI::App& app, Action& action) {
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "tags", "none"}));
   command->add_option("--server", options->server,
-                      "server address (host:port or unix:PATH); default: a private server");
+                      "server address: host:port, unix:PATH, dns:///NAME:PORT (every address the "
+                      "name resolves to) or a comma list of IPv4 host:port, calls spread over "
+                      "them round-robin; default: a private server");
   add_client_security_flags(*command, options->security);
   command->add_flag("--json", options->json, "print the summary as JSON on stdout");
   command->add_flag("--quiet", options->quiet, "print nothing but errors");

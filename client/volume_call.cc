@@ -4,10 +4,16 @@
 #include <chrono>
 #include <memory>
 #include <optional>
+#include <random>
+#include <string>
+#include <vector>
 
 #include "absl/strings/cord.h"
+#include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_format.h"
+#include "absl/strings/str_join.h"
+#include "absl/strings/str_split.h"
 #include "afmesh/v1/mesher.grpc.pb.h"
 #include "google/protobuf/util/json_util.h"
 #include "grpcpp/grpcpp.h"
@@ -257,8 +263,14 @@ absl::StatusOr<VolumeCallResult> call_mesh_volume(const std::string& address, co
                                                   const VolumeCallOptions& options,
                                                   const ProgressCallback& on_progress,
                                                   const WarningCallback& on_warning) {
+  // Issue 13 part 4: round_robin spreads calls over every address of the target (dns:/// names
+  // resolving to several, ipv4:/ipv6: lists) and skips the ones that cannot be reached; with one
+  // address it changes nothing.
+  grpc::ChannelArguments arguments;
+  arguments.SetLoadBalancingPolicyName("round_robin");
   const std::shared_ptr<grpc::Channel> channel =
-      grpc::CreateChannel(address, options.security.channel_credentials());
+      grpc::CreateCustomChannel(channel_target(address, std::random_device{}()),
+                                options.security.channel_credentials(), arguments);
   const std::unique_ptr<v1::Mesher::Stub> stub = v1::Mesher::NewStub(channel);
   grpc::ClientContext context;
   options.security.add_to(context);
@@ -282,6 +294,18 @@ absl::StatusOr<VolumeCallResult> call_mesh_volume(const std::string& address, co
     }
   }
   return result;
+}
+
+std::string channel_target(const std::string& address, std::uint64_t seed) {
+  const bool bare_list = address.find(',') != std::string::npos &&
+                         !absl::StartsWith(address, "ipv4:") && !absl::StartsWith(address, "ipv6:");
+  if (!bare_list) return address;
+  // gRPC 1.51's round_robin starts every new channel at the first address, and each afmesh
+  // command is a new channel: shuffled, the list spreads commands too, not only the calls of one.
+  std::vector<std::string> addresses = absl::StrSplit(address, ',', absl::SkipEmpty());
+  std::mt19937_64 random(seed);
+  std::shuffle(addresses.begin(), addresses.end(), random);
+  return "ipv4:" + absl::StrJoin(addresses, ",");
 }
 
 std::optional<std::chrono::milliseconds> retry_after(const absl::Status& status) {

@@ -94,6 +94,11 @@ struct VolumeCallResult {
 // the server sent none, i.e. asking again unchanged cannot help.
 std::optional<std::chrono::milliseconds> retry_after(const absl::Status& status);
 
+// The gRPC target for --server ADDR: ADDR itself (host:port, unix:PATH, dns:///name:port,
+// ipv4:a:p,b:p, ...), except that a bare comma list of IPv4 addresses "a:p,b:p" becomes the
+// ipv4: list gRPC reads, in an order shuffled by `seed`, so that calls spread over its replicas.
+std::string channel_target(const std::string& address, std::uint64_t seed);
+
 // Runs MeshVolume against `address` with `front` (points N×3, triangles M×3 with tags).
 // Errors: the call's gRPC status as the absl::Status of the same code and message;
 // DATA_LOSS when the server's answer ends without a Summary or disagrees with it. A retry hint

@@ -220,6 +220,41 @@ TEST_F(CliVolumeTest, SharedServerServesCliAndExitsZeroOnSigterm) {
   EXPECT_EQ(cli_test::stop_server_process(server), 0);
 }
 
+// Client-side balancing (issue 13 part 4): a comma list of replicas and dns:/// names; calls
+// go round-robin over the addresses and skip those that cannot be reached.
+TEST_F(CliVolumeTest, ReplicaListAndDnsNamesReachALiveReplicaPastADeadOne) {
+  const fs::path log = dir_ / "replica.log";
+  const pid_t server = cli_test::start_server_process(
+      AFMESH_SERVER_BINARY, {"--listen", "127.0.0.1:0", "--workers", "1"}, log);
+  ASSERT_GE(server, 0);
+  std::string port;
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (port.empty() && std::chrono::steady_clock::now() < give_up) {
+    const std::string text = read_file(log);
+    const std::string::size_type at = text.find("listening on 127.0.0.1:");
+    if (at != std::string::npos && text.find(' ', at + 23) != std::string::npos)
+      port = text.substr(at + 23, text.find(' ', at + 23) - at - 23);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_FALSE(port.empty()) << read_file(log);
+  const std::string front =
+      shell_quoted(dir_ / "front.mesh") + " -o " + shell_quoted(dir_ / "v.vtu");
+  // Port 1 refuses connections: the list's dead replica, first or second after the shuffle.
+  for (int call = 0; call < 4; ++call) {
+    EXPECT_EQ(run_volume(front + " --server 127.0.0.1:1,127.0.0.1:" + port + " --retries 0"), 0)
+        << stderr_text();
+  }
+  EXPECT_EQ(run_volume(front + " --server dns:///localhost:" + port + " --retries 0"), 0)
+      << stderr_text();
+  EXPECT_EQ(cli_test::stop_server_process(server), 0);
+  std::size_t calls = 0;
+  for (std::string::size_type at = 0;
+       (at = read_file(log).find("code=OK", at)) != std::string::npos; ++at) {
+    ++calls;
+  }
+  EXPECT_EQ(calls, 5u);
+}
+
 // ----- --envs (crossing environments, paper §2) ----------------------------------------------
 
 TEST_F(CliVolumeTest, BadEnvsValueIsAUsageError) {
