@@ -312,6 +312,27 @@ class MesherServiceTest : public ::testing::Test {
     return call(requests, context);
   }
 
+  // Opens a call, sends `requests`, half-closes and waits (5 s at most) until the job of a
+  // slow_job server has started. Null, with a test failure, when any of that fails.
+  std::unique_ptr<grpc::ClientReaderWriter<Request, Response>> start_running_call(
+      grpc::ClientContext& context, const std::vector<Request>& requests) {
+    std::unique_ptr<grpc::ClientReaderWriter<Request, Response>> stream =
+        stub_->MeshVolume(&context);
+    for (const Request& request : requests) {
+      if (!stream->Write(request)) {
+        ADD_FAILURE() << "the server ended the call while it was being sent";
+        return nullptr;
+      }
+    }
+    stream->WritesDone();
+    if (probe_->started.get_future().wait_for(std::chrono::seconds(5)) !=
+        std::future_status::ready) {
+      ADD_FAILURE() << "the job did not start within 5 s";
+      return nullptr;
+    }
+    return stream;
+  }
+
   // Expects the call to fail with `code` and a message holding every one of `parts`, with no
   // mesh sent and no job run.
   void expect_rejected(const std::vector<Request>& requests, grpc::StatusCode code,
@@ -493,11 +514,8 @@ TEST_F(MesherServiceTest, CallFindingWorkersAndQueueFullGetsResourceExhausted) {
 
   // Call 1 runs on the only worker.
   grpc::ClientContext running_context;
-  auto running = stub_->MeshVolume(&running_context);
-  for (const Request& request : requests) ASSERT_TRUE(running->Write(request));
-  running->WritesDone();
-  ASSERT_EQ(probe_->started.get_future().wait_for(std::chrono::seconds(5)),
-            std::future_status::ready);
+  auto running = start_running_call(running_context, requests);
+  ASSERT_NE(running, nullptr);
 
   // Call 2 waits in the queue: its first event says so.
   grpc::ClientContext queued_context;
@@ -528,13 +546,8 @@ TEST_F(MesherServiceTest, CallFindingWorkersAndQueueFullGetsResourceExhausted) {
 TEST_F(MesherServiceTest, CancellationReachesRunningJobWithin100ms) {
   start(slow_job(probe_));
   grpc::ClientContext context;
-  auto stream = stub_->MeshVolume(&context);
-  for (const Request& request : requests_for(tetrahedron_front())) {
-    ASSERT_TRUE(stream->Write(request));
-  }
-  stream->WritesDone();
-  ASSERT_EQ(probe_->started.get_future().wait_for(std::chrono::seconds(5)),
-            std::future_status::ready);
+  auto stream = start_running_call(context, requests_for(tetrahedron_front()));
+  ASSERT_NE(stream, nullptr);
 
   std::future<Clock::time_point> stopped = probe_->stopped.get_future();
   const Clock::time_point cancelled_at = Clock::now();
@@ -599,13 +612,8 @@ TEST_F(MesherServiceTest, DrainStopsCallsStillRunningAfterTheGracePeriod) {
   options.grace_period = std::chrono::milliseconds(300);
   start(slow_job(probe_), options);
   grpc::ClientContext context;
-  auto running = stub_->MeshVolume(&context);
-  for (const Request& request : requests_for(tetrahedron_front())) {
-    ASSERT_TRUE(running->Write(request));
-  }
-  running->WritesDone();
-  ASSERT_EQ(probe_->started.get_future().wait_for(std::chrono::seconds(5)),
-            std::future_status::ready);
+  auto running = start_running_call(context, requests_for(tetrahedron_front()));
+  ASSERT_NE(running, nullptr);
 
   const Clock::time_point asked = Clock::now();
   std::thread stopper([this] { server_->shutdown(); });
@@ -624,13 +632,8 @@ TEST_F(MesherServiceTest, DrainStopsCallsStillRunningAfterTheGracePeriod) {
 TEST_F(MesherServiceTest, DrainingServerRefusesNewCallsAndReportsNotServing) {
   start(slow_job(probe_));
   grpc::ClientContext running_context;
-  auto running = stub_->MeshVolume(&running_context);
-  for (const Request& request : requests_for(tetrahedron_front())) {
-    ASSERT_TRUE(running->Write(request));
-  }
-  running->WritesDone();
-  ASSERT_EQ(probe_->started.get_future().wait_for(std::chrono::seconds(5)),
-            std::future_status::ready);
+  auto running = start_running_call(running_context, requests_for(tetrahedron_front()));
+  ASSERT_NE(running, nullptr);
 
   std::thread stopper([this] { server_->shutdown(); });
   auto health = grpc::health::v1::Health::NewStub(channel_);
@@ -1290,11 +1293,8 @@ TEST_F(MesherServiceTest, ABudgetHeldByARunningJobRefusesTheNextUntilItEnds) {
   start(slow_job(probe_), options);
   const std::vector<Request> requests = tetrahedron_requests_at(0.05);
   grpc::ClientContext running_context;
-  auto running = stub_->MeshVolume(&running_context);
-  for (const Request& request : requests) ASSERT_TRUE(running->Write(request));
-  running->WritesDone();
-  ASSERT_EQ(probe_->started.get_future().wait_for(std::chrono::seconds(5)),
-            std::future_status::ready);
+  auto running = start_running_call(running_context, requests);
+  ASSERT_NE(running, nullptr);
 
   grpc::ClientContext refused_context;
   const CallOutcome refused = call(requests, refused_context);
