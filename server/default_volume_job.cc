@@ -30,7 +30,7 @@ absl::Status stop_if_cancelled(const Progress& progress) {
 // summaries of the checks that warned. With crossing environments, the environment_gap check
 // too: no tet may join two environments across a thin gap (paper §2).
 absl::StatusOr<VolumeValidation> validate_result(const Mesh& mesh, const Mesh& front,
-                                                 const VolumeParams& params) {
+                                                 const VolumeParams& params, Progress& progress) {
   ValidationParams validation_params;
   std::vector<std::int32_t> point_environments;
   if (!params.face_environments.empty()) {
@@ -38,13 +38,15 @@ absl::StatusOr<VolumeValidation> validate_result(const Mesh& mesh, const Mesh& f
         afmesh::point_environments(front.points.size(), front.triangles, params.face_environments);
     validation_params.point_environments = point_environments;
   }
-  const ValidationReport report = validate_volume_mesh(mesh, &front, validation_params);
-  if (!report.valid()) {
+  const absl::StatusOr<ValidationReport> report =
+      validate_volume_mesh(mesh, &front, validation_params, progress);
+  if (!report.ok()) return report.status();
+  if (!report->valid()) {
     return absl::InternalError(
-        absl::StrCat("the volume mesh failed validation:\n", report.to_string()));
+        absl::StrCat("the volume mesh failed validation:\n", report->to_string()));
   }
   VolumeValidation validation{.passed = true, .messages = {}};
-  for (const Check& check : report.checks) {
+  for (const Check& check : report->checks) {
     if (check.outcome == CheckOutcome::kWarning) {
       validation.messages.push_back(absl::StrCat(check.name, ": ", check.summary));
     }
@@ -84,10 +86,12 @@ absl::StatusOr<VolumeJobOutput> run_volume_job(const Mesh& front, const VolumePa
   progress.report("quality and validation", -1.0);
   const Clock::time_point start = Clock::now();
   absl::StatusOr<QualitySummary> quality = absl::InternalError("quality not computed");
-  std::thread quality_thread([&] { quality = summarize_quality(output.volume.mesh); });
-  absl::StatusOr<VolumeValidation> validation = validate_result(output.volume.mesh, front, params);
+  std::thread quality_thread([&] { quality = summarize_quality(output.volume.mesh, progress); });
+  absl::StatusOr<VolumeValidation> validation =
+      validate_result(output.volume.mesh, front, params, progress);
   quality_thread.join();
   add_timing(timings, "quality+validation", start);
+  if (absl::Status status = stop_if_cancelled(progress); !status.ok()) return status;
   if (!quality.ok()) return absl::InternalError(quality.status().message());
   output.quality = volume_quality(*quality);
   if (!validation.ok()) return validation.status();

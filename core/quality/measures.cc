@@ -132,10 +132,11 @@ class StatsAccumulator {
   CompensatedSum sum_;
 };
 
-void summarize_tets(const Mesh& mesh, QualitySummary& summary) {
+void summarize_tets(const Mesh& mesh, QualitySummary& summary, CancelCheck& stop) {
   StatsAccumulator min_dihedral, max_dihedral, ratio, volume;
   std::int64_t below_10 = 0, below_20 = 0;
   for (const Tet& tet : mesh.tets) {
+    if (stop.due()) return;
     const TetQuality q = tet_quality(mesh.points, tet);
     min_dihedral.add(q.min_dihedral_deg);
     max_dihedral.add(q.max_dihedral_deg);
@@ -244,13 +245,15 @@ std::int64_t Histogram::total() const {
   return sum;
 }
 
-absl::StatusOr<QualitySummary> summarize_quality(const Mesh& mesh) {
+absl::StatusOr<QualitySummary> summarize_quality(const Mesh& mesh, Progress& progress) {
   if (absl::Status s = check_indices(mesh.tets, mesh.points.size(), "tet"); !s.ok()) return s;
   if (absl::Status s = check_indices(mesh.triangles, mesh.points.size(), "triangle"); !s.ok()) {
     return s;
   }
   QualitySummary summary;
-  summarize_tets(mesh, summary);
+  CancelCheck stop(progress);
+  summarize_tets(mesh, summary, stop);
+  if (stop.stopped()) return absl::CancelledError("the quality summary was cancelled");
   summarize_triangles(mesh, summary);
   return summary;
 }

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "core/common/progress.h"
 #include "core/mesh/mesh.h"
 
 namespace afmesh {
@@ -111,7 +112,9 @@ struct QualitySummary {
 
 // Quality of every tet and triangle of `mesh`, visited in array order (so the result is
 // deterministic: means use compensated summation in that order).
-// Fails with InvalidArgument, naming the element, when an index is out of range.
-absl::StatusOr<QualitySummary> summarize_quality(const Mesh& mesh);
+// Fails with InvalidArgument, naming the element, when an index is out of range, and with
+// CANCELLED within milliseconds once progress.cancelled() turns true.
+absl::StatusOr<QualitySummary> summarize_quality(const Mesh& mesh,
+                                                 Progress& progress = no_progress());
 
 }  // namespace afmesh

@@ -254,12 +254,13 @@ bool has_distinct_indices(const Tet& t) {
 }
 
 void for_each_tet_face(const std::vector<Tet>& tets, const std::vector<Index>& tet_ids,
-                       absl::FunctionRef<void(std::span<const FaceUse>)> visit) {
+                       absl::FunctionRef<void(std::span<const FaceUse>)> visit, CancelCheck* stop) {
   const TetsByVertex filed = file_by_two_smallest_vertices(tets, tet_ids);
   // The faces whose smallest vertex is v, and one group of them as FaceUse; both reused.
   std::vector<FaceAtVertex> faces;
   std::vector<FaceUse> group;
   for (Index v = 0; v + 1 < static_cast<Index>(filed.offsets.size()); ++v) {
+    if (stop != nullptr && stop->due()) return;
     faces.clear();
     for (Index i = filed.offsets[v]; i < filed.offsets[v + 1]; ++i) {
       // The filed tets are scattered over the tet array: fetch a few entries ahead so that

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "absl/functional/function_ref.h"
+#include "core/common/progress.h"
 #include "core/mesh/mesh.h"
 
 namespace afmesh {
@@ -45,9 +46,11 @@ struct FaceUse {
 // sorted_face_uses, without building the whole list: each tet is filed under its two smallest
 // vertices (a counting sort; a face's smallest vertex is one of them), and only the faces whose
 // smallest vertex is v are sorted together. Cost O(K + N) plus sorts of a vertex's few faces;
-// memory two indices per tet and N + 1 offsets, N the largest index + 1.
+// memory two indices per tet and N + 1 offsets, N the largest index + 1. With `stop`, returns
+// early (some faces unvisited) once stop->due() is true; the caller looks at stop->stopped().
 void for_each_tet_face(const std::vector<Tet>& tets, const std::vector<Index>& tet_ids,
-                       absl::FunctionRef<void(std::span<const FaceUse>)> visit);
+                       absl::FunctionRef<void(std::span<const FaceUse>)> visit,
+                       CancelCheck* stop = nullptr);
 
 // All faces of the tets whose ids are listed in `tet_ids` (as for for_each_tet_face), sorted by
 // (key, tet, corner): uses of the same face are adjacent.

@@ -190,8 +190,8 @@ bool crossing_allowed(std::span<const std::int32_t> env, Index t, Index u) {
 // no_self_intersections: exact test of every pair of triangles whose boxes overlap. `env` is
 // empty, or valid face environments whose cross-environment intersections are allowed.
 Check check_self_intersections(const Mesh& surface, const ProperTriangles& proper,
-                               std::span<const std::int32_t> env,
-                               const ValidationParams& params) {
+                               std::span<const std::int32_t> env, const ValidationParams& params,
+                               CancelCheck& stop) {
   std::vector<Box> boxes = triangle_boxes(surface.points, proper.triangles);
   std::int64_t tested = 0;
   for (std::size_t i = 0; i < boxes.size(); ++i) {
@@ -204,16 +204,19 @@ Check check_self_intersections(const Mesh& surface, const ProperTriangles& prope
   const AabbTree tree(std::move(boxes));
   std::vector<std::pair<Index, Index>> hits;
   std::int64_t allowed = 0;
-  tree.for_each_overlapping_pair([&](Index i, Index j) {
-    if (triangles_intersect_improperly(surface.points, proper.triangles[i], proper.triangles[j])) {
-      if (crossing_allowed(env, proper.ids[i], proper.ids[j])) {
-        ++allowed;
-      } else {
-        hits.emplace_back(std::min(proper.ids[i], proper.ids[j]),
-                          std::max(proper.ids[i], proper.ids[j]));
-      }
-    }
-  });
+  tree.for_each_overlapping_pair(
+      [&](Index i, Index j) {
+        if (triangles_intersect_improperly(surface.points, proper.triangles[i],
+                                           proper.triangles[j])) {
+          if (crossing_allowed(env, proper.ids[i], proper.ids[j])) {
+            ++allowed;
+          } else {
+            hits.emplace_back(std::min(proper.ids[i], proper.ids[j]),
+                              std::max(proper.ids[i], proper.ids[j]));
+          }
+        }
+      },
+      &stop);
   std::sort(hits.begin(), hits.end());
   CheckBuilder builder(check::kNoSelfIntersections, params);
   for (const auto& hit : hits) {
@@ -261,8 +264,10 @@ Check check_enclosed_volume(const Mesh& surface, const ProperTriangles& proper,
 
 // The checks that need the topology of the non-degenerate triangles.
 void add_topology_checks(const Mesh& surface, bool finite, const ProperTriangles& proper,
-                         const ValidationParams& params, ValidationReport& report) {
+                         const ValidationParams& params, ValidationReport& report,
+                         CancelCheck& stop) {
   const TriangleTopology topology = analyze_triangle_topology(proper.triangles);
+  if (stop.look()) return;
   report.checks.push_back(check_closed(topology, proper, params));
   report.checks.push_back(check_manifold_edges(topology, proper, params));
   report.checks.push_back(check_manifold_vertices(topology, proper, params));
@@ -277,8 +282,9 @@ void add_topology_checks(const Mesh& surface, bool finite, const ProperTriangles
     report.checks.push_back(check_environments(surface, params, usable));
     if (usable) env = params.face_environments;
   }
-  report.checks.push_back(finite ? check_self_intersections(surface, proper, env, params)
+  report.checks.push_back(finite ? check_self_intersections(surface, proper, env, params, stop)
                                  : not_run(check::kNoSelfIntersections, kNeedsFinite));
+  if (stop.stopped()) return;
   if (!finite) {
     report.checks.push_back(not_run(check::kPositiveEnclosedVolume, kNeedsFinite));
   } else if (!oriented_closed) {
@@ -290,9 +296,10 @@ void add_topology_checks(const Mesh& surface, bool finite, const ProperTriangles
   }
 }
 
-}  // namespace
-
-ValidationReport validate_surface(const Mesh& surface, const ValidationParams& params) {
+// The checks of validate_surface in order; once `stop` finds the caller cancelled, the report
+// ends where it stopped (the caller reports CANCELLED instead).
+ValidationReport surface_checks(const Mesh& surface, const ValidationParams& params,
+                                CancelCheck& stop) {
   ValidationReport report;
   report.checks.push_back(check_element_indices(surface.triangles, surface.triangle_tags.size(),
                                                 surface.points.size(), params));
@@ -311,8 +318,26 @@ ValidationReport validate_surface(const Mesh& surface, const ValidationParams& p
   const bool finite = report.checks.back().passed();
   ProperTriangles proper;
   report.checks.push_back(check_non_degenerate(surface, finite, params, proper));
-  add_topology_checks(surface, finite, proper, params, report);
+  if (stop.look()) return report;
+  add_topology_checks(surface, finite, proper, params, report, stop);
+  if (stop.stopped()) return report;
   report.checks.push_back(check_unused_points(surface.points.size(), surface.triangles, params));
+  return report;
+}
+
+}  // namespace
+
+ValidationReport validate_surface(const Mesh& surface, const ValidationParams& params) {
+  CancelCheck never(no_progress());
+  return surface_checks(surface, params, never);
+}
+
+absl::StatusOr<ValidationReport> validate_surface(const Mesh& surface,
+                                                  const ValidationParams& params,
+                                                  Progress& progress) {
+  CancelCheck stop(progress);
+  ValidationReport report = surface_checks(surface, params, stop);
+  if (stop.stopped()) return absl::CancelledError("validation of the surface cancelled");
   return report;
 }
 

@@ -37,9 +37,10 @@ std::vector<Index> owners(const BoundaryFaces& boundary, const std::vector<Index
 }
 
 // positive_volumes: four distinct points and exact orient3d(a, b, c, d) > 0 for every tet.
-Check check_positive_volumes(const Mesh& mesh, const ValidationParams& params) {
+Check check_positive_volumes(const Mesh& mesh, const ValidationParams& params, CancelCheck& stop) {
   CheckBuilder builder(check::kPositiveVolumes, params);
   for (Index t = 0; t < static_cast<Index>(mesh.tets.size()); ++t) {
+    if (stop.due()) break;
     const Tet& tet = mesh.tets[t];
     if (!has_distinct_indices(tet)) {
       builder.add([&] {
@@ -73,32 +74,40 @@ std::vector<Index> tets_of(std::span<const FaceUse> uses) {
 // face_sharing: a face in more than two tets, or in two with the same orientation. Collects in
 // `boundary` the faces of exactly one tet on the way (the tets' boundary, in key order).
 Check check_face_sharing(const std::vector<Tet>& tets, const std::vector<Index>& tet_ids,
-                         const ValidationParams& params, BoundaryFaces& boundary) {
+                         const ValidationParams& params, BoundaryFaces& boundary,
+                         CancelCheck& stop) {
   CheckBuilder builder(check::kFaceSharing, params);
   std::int64_t interior = 0;
-  for_each_tet_face(tets, tet_ids, [&](std::span<const FaceUse> uses) {
-    const Triangle& key = uses[0].key;
-    if (uses.size() == 1) {
-      boundary.triangles.push_back(tet_face(tets[uses[0].tet], uses[0].corner));
-      boundary.tets.push_back(uses[0].tet);
-    } else if (uses.size() > 2) {
-      builder.add([&] {
-        const std::vector<Index> sharing = tets_of(uses);
-        return Finding{absl::StrFormat("face %s shared by tets %s", format_triple(key),
-                                       join_indices(sharing)),
-                       {key.begin(), key.end()}, {}, sharing};
-      });
-    } else if (uses[0].even == uses[1].even) {
-      builder.add([&] {
-        const std::vector<Index> sharing = tets_of(uses);
-        return Finding{absl::StrFormat("face %s of tets %s with the same orientation",
-                                       format_triple(key), join_indices(sharing)),
-                       {key.begin(), key.end()}, {}, sharing};
-      });
-    } else {
-      ++interior;
-    }
-  });
+  for_each_tet_face(
+      tets, tet_ids,
+      [&](std::span<const FaceUse> uses) {
+        const Triangle& key = uses[0].key;
+        if (uses.size() == 1) {
+          boundary.triangles.push_back(tet_face(tets[uses[0].tet], uses[0].corner));
+          boundary.tets.push_back(uses[0].tet);
+        } else if (uses.size() > 2) {
+          builder.add([&] {
+            const std::vector<Index> sharing = tets_of(uses);
+            return Finding{absl::StrFormat("face %s shared by tets %s", format_triple(key),
+                                           join_indices(sharing)),
+                           {key.begin(), key.end()},
+                           {},
+                           sharing};
+          });
+        } else if (uses[0].even == uses[1].even) {
+          builder.add([&] {
+            const std::vector<Index> sharing = tets_of(uses);
+            return Finding{absl::StrFormat("face %s of tets %s with the same orientation",
+                                           format_triple(key), join_indices(sharing)),
+                           {key.begin(), key.end()},
+                           {},
+                           sharing};
+          });
+        } else {
+          ++interior;
+        }
+      },
+      &stop);
   return builder.finish(
       absl::StrFormat("%d interior faces each shared by two tets with opposite orientations, "
                       "%d boundary faces",
@@ -156,13 +165,14 @@ Check check_boundary_surface(const BoundaryFaces& boundary, const ValidationPara
 
 // volume_balance: sum of signed tet volumes against the enclosed volume of the boundary.
 Check check_volume_balance(const Mesh& mesh, const BoundaryFaces& faces, const Mesh* boundary,
-                           const ValidationParams& params) {
+                           const ValidationParams& params, CancelCheck& stop) {
   if (boundary != nullptr && !indices_and_coordinates_ok(boundary->points, boundary->triangles)) {
     return not_run(check::kVolumeBalance,
                    "the boundary mesh has point indices out of range or non-finite coordinates");
   }
   CompensatedSum tet_sum, tet_scale;
   for (const Tet& t : mesh.tets) {
+    if (stop.due()) break;
     const double v = tet_signed_volume(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]],
                                        mesh.points[t[3]]);
     tet_sum.add(v);
@@ -192,10 +202,10 @@ Check check_volume_balance(const Mesh& mesh, const BoundaryFaces& faces, const M
                       difference));
 }
 
-}  // namespace
-
-ValidationReport validate_volume_mesh(const Mesh& mesh, const Mesh* boundary,
-                                      const ValidationParams& params) {
+// The checks of validate_volume_mesh in order; once `stop` finds the caller cancelled, the
+// report ends where it stopped (the caller reports CANCELLED instead).
+ValidationReport volume_checks(const Mesh& mesh, const Mesh* boundary,
+                               const ValidationParams& params, CancelCheck& stop) {
   ValidationReport report;
   report.checks.push_back(
       check_element_indices(mesh.tets, mesh.tet_tags.size(), mesh.points.size(), params));
@@ -213,21 +223,43 @@ ValidationReport validate_volume_mesh(const Mesh& mesh, const Mesh* boundary,
   const bool finite = report.checks.back().passed();
   constexpr std::string_view kNeedsFinite = "some point coordinates are not finite";
 
-  report.checks.push_back(finite ? check_positive_volumes(mesh, params)
+  report.checks.push_back(finite ? check_positive_volumes(mesh, params, stop)
                                  : not_run(check::kPositiveVolumes, kNeedsFinite));
+  if (stop.stopped()) return report;
   BoundaryFaces boundary_faces;
   report.checks.push_back(check_face_sharing(mesh.tets, tets_with_distinct_indices(mesh.tets),
-                                             params, boundary_faces));
+                                             params, boundary_faces, stop));
+  if (stop.look()) return report;
   report.checks.push_back(check_boundary_surface(boundary_faces, params));
   report.checks.push_back(boundary != nullptr
                               ? check_boundary_match(mesh, boundary_faces, *boundary, params)
                               : not_run(check::kBoundaryMatch, "no boundary mesh given"));
-  report.checks.push_back(finite ? check_volume_balance(mesh, boundary_faces, boundary, params)
-                                 : not_run(check::kVolumeBalance, kNeedsFinite));
+  if (stop.look()) return report;
+  report.checks.push_back(finite
+                              ? check_volume_balance(mesh, boundary_faces, boundary, params, stop)
+                              : not_run(check::kVolumeBalance, kNeedsFinite));
+  if (stop.stopped()) return report;
   if (!params.point_environments.empty()) {
     report.checks.push_back(check_environment_gap(mesh, params));
   }
   report.checks.push_back(check_unused_points(mesh.points.size(), mesh.tets, params));
+  return report;
+}
+
+}  // namespace
+
+ValidationReport validate_volume_mesh(const Mesh& mesh, const Mesh* boundary,
+                                      const ValidationParams& params) {
+  CancelCheck never(no_progress());
+  return volume_checks(mesh, boundary, params, never);
+}
+
+absl::StatusOr<ValidationReport> validate_volume_mesh(const Mesh& mesh, const Mesh* boundary,
+                                                      const ValidationParams& params,
+                                                      Progress& progress) {
+  CancelCheck stop(progress);
+  ValidationReport report = volume_checks(mesh, boundary, params, stop);
+  if (stop.stopped()) return absl::CancelledError("validation of the volume mesh cancelled");
   return report;
 }
 

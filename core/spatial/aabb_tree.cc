@@ -101,15 +101,19 @@ std::vector<Index> AabbTree::overlapping(const Box& query_box) const {
   return ids;
 }
 
-void AabbTree::for_each_overlapping_pair(absl::FunctionRef<void(Index, Index)> visit) const {
+void AabbTree::for_each_overlapping_pair(absl::FunctionRef<void(Index, Index)> visit,
+                                         CancelCheck* stop) const {
   if (nodes_.empty()) return;
-  pairs_within(0, visit);
+  pairs_within(0, visit, stop);
 }
 
 // Pairs with both boxes in the subtree of `node`: those within each child and those across.
-void AabbTree::pairs_within(Index node, absl::FunctionRef<void(Index, Index)> visit) const {
+void AabbTree::pairs_within(Index node, absl::FunctionRef<void(Index, Index)> visit,
+                            CancelCheck* stop) const {
   const Node& n = nodes_[node];
+  if (stop != nullptr && stop->stopped()) return;
   if (n.count > 0) {
+    if (stop != nullptr && stop->due()) return;
     for (Index i = n.first; i < n.first + n.count; ++i) {
       for (Index j = i + 1; j < n.first + n.count; ++j) {
         if (boxes_overlap(boxes_[order_[i]], boxes_[order_[j]])) {
@@ -119,18 +123,21 @@ void AabbTree::pairs_within(Index node, absl::FunctionRef<void(Index, Index)> vi
     }
     return;
   }
-  pairs_within(node + 1, visit);
-  pairs_within(n.right, visit);
-  pairs_across(node + 1, n.right, visit);
+  pairs_within(node + 1, visit, stop);
+  pairs_within(n.right, visit, stop);
+  pairs_across(node + 1, n.right, visit, stop);
 }
 
 // Pairs with one box under node a and the other under node b (disjoint subtrees). The larger
 // inner node is split first, which keeps the two boxes compared of similar size.
-void AabbTree::pairs_across(Index a, Index b, absl::FunctionRef<void(Index, Index)> visit) const {
+void AabbTree::pairs_across(Index a, Index b, absl::FunctionRef<void(Index, Index)> visit,
+                            CancelCheck* stop) const {
   const Node& na = nodes_[a];
   const Node& nb = nodes_[b];
+  if (stop != nullptr && stop->stopped()) return;
   if (!boxes_overlap(na.box, nb.box)) return;
   if (na.count > 0 && nb.count > 0) {
+    if (stop != nullptr && stop->due()) return;
     for (Index i = na.first; i < na.first + na.count; ++i) {
       for (Index j = nb.first; j < nb.first + nb.count; ++j) {
         if (boxes_overlap(boxes_[order_[i]], boxes_[order_[j]])) {
@@ -142,11 +149,11 @@ void AabbTree::pairs_across(Index a, Index b, absl::FunctionRef<void(Index, Inde
   }
   const bool split_a = nb.count > 0 || (na.count == 0 && box_size(na.box) >= box_size(nb.box));
   if (split_a) {
-    pairs_across(a + 1, b, visit);
-    pairs_across(na.right, b, visit);
+    pairs_across(a + 1, b, visit, stop);
+    pairs_across(na.right, b, visit, stop);
   } else {
-    pairs_across(a, b + 1, visit);
-    pairs_across(a, nb.right, visit);
+    pairs_across(a, b + 1, visit, stop);
+    pairs_across(a, nb.right, visit, stop);
   }
 }
 

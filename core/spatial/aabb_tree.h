@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "absl/functional/function_ref.h"
+#include "core/common/progress.h"
 #include "core/mesh/mesh.h"
 #include "core/spatial/box.h"
 
@@ -55,8 +56,10 @@ class AabbTree {
   std::vector<Index> overlapping(const Box& query) const;
 
   // Calls visit(i, j) with i < j once for every pair of distinct boxes that overlap, in tree
-  // order (deterministic).
-  void for_each_overlapping_pair(absl::FunctionRef<void(Index, Index)> visit) const;
+  // order (deterministic). With `stop`, returns early (some pairs unvisited) once stop->due() is
+  // true at a leaf; the caller looks at stop->stopped().
+  void for_each_overlapping_pair(absl::FunctionRef<void(Index, Index)> visit,
+                                 CancelCheck* stop = nullptr) const;
 
   // All overlapping pairs (i, j), i < j, sorted lexicographically.
   std::vector<std::pair<Index, Index>> overlapping_pairs() const;
@@ -73,8 +76,10 @@ class AabbTree {
 
   Index build(Index begin, Index end, const std::vector<Point>& centres, int leaf_size);
   void query(Index node, const Box& q, absl::FunctionRef<void(Index)> visit) const;
-  void pairs_within(Index node, absl::FunctionRef<void(Index, Index)> visit) const;
-  void pairs_across(Index a, Index b, absl::FunctionRef<void(Index, Index)> visit) const;
+  void pairs_within(Index node, absl::FunctionRef<void(Index, Index)> visit,
+                    CancelCheck* stop) const;
+  void pairs_across(Index a, Index b, absl::FunctionRef<void(Index, Index)> visit,
+                    CancelCheck* stop) const;
 
   std::vector<Box> boxes_;   // n boxes, by id
   std::vector<Index> order_;  // ids of the non-empty boxes, grouped by leaf

@@ -428,8 +428,8 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
   }
   if (absl::Status st = check_face_environments(front, params.face_environments); !st.ok())
     return st;
-  if (absl::Status st =
-          validate_front(front, params.face_environments, params.check_self_intersections);
+  if (absl::Status st = validate_front(front, params.face_environments,
+                                       params.check_self_intersections, progress);
       !st.ok())
     return st;
   absl::StatusOr<std::unique_ptr<SizeField>> size_field = make_size_field(params, front);

@@ -67,10 +67,11 @@ struct VolumeResult {
 // Checks that `front` is a valid input front: finite coordinates, indices in range, no degenerate
 // triangle, closed, manifold and consistently oriented with outward normals, no self-intersection
 // (except, with crossing environments, between faces of two different positive environments,
-// paper §2). INVALID_ARGUMENT names the first offending element(s).
-absl::Status validate_front(const Mesh& front,
-                            std::span<const std::int32_t> face_environments = {},
-                            bool check_self_intersections = true);
+// paper §2). INVALID_ARGUMENT names the first offending element(s); CANCELLED once
+// progress.cancelled() turns true.
+absl::Status validate_front(const Mesh& front, std::span<const std::int32_t> face_environments = {},
+                            bool check_self_intersections = true,
+                            Progress& progress = no_progress());
 
 // F2: the size in space: params.spec's sources and background grid (eq. 1–14) over the front's
 // box, or the uniform params.size.

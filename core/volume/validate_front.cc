@@ -8,7 +8,7 @@
 namespace afmesh {
 
 absl::Status validate_front(const Mesh& front, std::span<const std::int32_t> face_environments,
-                            bool check_self_intersections) {
+                            bool check_self_intersections, Progress& progress) {
   if (front.points.empty() || front.triangles.empty())
     return absl::InvalidArgumentError(absl::StrCat("the front is empty: ", front.points.size(),
                                                    " points, ", front.triangles.size(),
@@ -19,8 +19,9 @@ absl::Status validate_front(const Mesh& front, std::span<const std::int32_t> fac
   ValidationParams params;
   params.max_findings_per_check = 3;
   params.face_environments = face_environments;
-  const ValidationReport report = validate_surface(front, params);
-  for (const Check& c : report.checks) {
+  const absl::StatusOr<ValidationReport> report = validate_surface(front, params, progress);
+  if (!report.ok()) return report.status();
+  for (const Check& c : report->checks) {
     if (c.passed()) continue;
     if (c.outcome == CheckOutcome::kNotRun) continue;  // its cause failed before it
     if (!check_self_intersections && c.name == check::kNoSelfIntersections) continue;
