@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <exception>
 #include <thread>
 #include <utility>
@@ -105,6 +106,7 @@ absl::StatusOr<std::unique_ptr<MetricsEndpoint>> MetricsEndpoint::start(
 // between polls, so stopping takes up to 2 s (measured 1.7 s) unless a connection wakes it: knock
 // until the Exposer is gone (about 10 ms).
 MetricsEndpoint::~MetricsEndpoint() {
+  if (exposer_ == nullptr) return;
   std::atomic<bool> stopped{false};
   std::thread knocker([this, &stopped] {
     while (!stopped.load(std::memory_order_acquire)) {
