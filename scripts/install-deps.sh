@@ -12,6 +12,7 @@ packages=(
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libabsl-dev libeigen3-dev libgtest-dev libgmock-dev libcli11-dev
   libssl-dev openssl  # security/: PEM checks at start-up; the TLS tests make their certificates with openssl
+  prometheus-cpp-dev  # afmesh-server --metrics (prometheus-cpp 1.0: core, and pull on civetweb)
   python3-minimal python3-numpy python3-meshio python3-gmsh python3-vtk9  # cross-checks: /usr/bin/python3 with meshio, gmsh and VTK
   yamllint  # deploy/k8s
 )

@@ -4,9 +4,9 @@
 // without credentials).
 #pragma once
 
-#include <cstdio>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "grpcpp/grpcpp.h"
 #include "server/call_log.h"
@@ -29,21 +29,19 @@ class RefusedBidiCall final : public grpc::ServerBidiReactor<Request, Response> 
 };
 
 // For the top of each bidirectional handler: null when the call may go on, else a reactor that
-// refuses it (logged on stderr as a call_log.h line with nothing read, when `log` is set), to be
-// returned instead of the call's own.
+// refuses it (reported with nothing read: a call_log.h line on stderr when `log` is set, and
+// counted into `metrics`), to be returned instead of the call's own.
 template <class Request, class Response>
 grpc::ServerBidiReactor<Request, Response>* refuse_unauthenticated(
-    const char* rpc, grpc::CallbackServerContext* context, std::string_view token, bool log) {
+    const char* rpc, grpc::CallbackServerContext* context, std::string_view token, bool log,
+    ServerMetrics& metrics) {
   const grpc::Status status = check_bearer_token(*context, token);
   if (status.ok()) return nullptr;
-  if (log) {
-    CallRecord record;
-    record.id = next_call_id();
-    record.rpc = rpc;
-    record.peer = context->peer();
-    record.status = status;
-    std::fprintf(stderr, "%s\n", format_call_log(record).c_str());
-  }
+  CallRecord record;
+  record.rpc = rpc;
+  record.peer = context->peer();
+  record.status = status;
+  report_call_end(std::move(record), log, metrics);
   return new RefusedBidiCall<Request, Response>(status);
 }
 

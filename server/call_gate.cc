@@ -32,4 +32,14 @@ std::chrono::steady_clock::time_point CallGate::last_leave() {
   return last_leave_;
 }
 
+int CallGate::active() const {
+  std::lock_guard<std::mutex> lock(mu_);
+  return active_;
+}
+
+bool CallGate::closed() const {
+  std::lock_guard<std::mutex> lock(mu_);
+  return closed_;
+}
+
 }  // namespace afmesh::server

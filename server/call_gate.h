@@ -31,9 +31,13 @@ class CallGate {
   bool aborting() const { return aborting_.load(std::memory_order_acquire); }
   // When the last admitted call ended (the steady clock's epoch if none has).
   std::chrono::steady_clock::time_point last_leave();
+  // Admitted calls that have not ended yet.
+  int active() const;
+  // True once close() was called (the server is draining).
+  bool closed() const;
 
  private:
-  std::mutex mu_;
+  mutable std::mutex mu_;
   std::condition_variable empty_;
   int active_ ABSL_GUARDED_BY(mu_) = 0;
   bool closed_ ABSL_GUARDED_BY(mu_) = false;

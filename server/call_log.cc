@@ -1,9 +1,11 @@
 #include "server/call_log.h"
 
 #include <atomic>
+#include <cstdio>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "server/metrics.h"
 
 namespace afmesh::server {
 namespace {
@@ -119,6 +121,12 @@ std::string format_call_log(const CallRecord& record) {
       outcome_of(record.status.error_code()), code_name(record.status.error_code()),
       record.points_out, record.tets_out,
       record.status.ok() ? std::string("\"\"") : logfmt_value(record.status.error_message()));
+}
+
+void report_call_end(CallRecord record, bool log, ServerMetrics& metrics) {
+  record.id = next_call_id();
+  if (log) std::fprintf(stderr, "%s\n", format_call_log(record).c_str());
+  metrics.observe_call(record);
 }
 
 }  // namespace afmesh::server

@@ -6,12 +6,15 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "afmesh/v1/mesher.pb.h"
 #include "grpcpp/support/status.h"
 
 namespace afmesh::server {
+
+class ServerMetrics;
 
 struct CallRecord {
   std::uint64_t id = 0;  // next_call_id() when the line is written (calls numbered as they end)
@@ -27,7 +30,12 @@ struct CallRecord {
   grpc::Status status;
   // The mesh handed out (0 unless the call succeeded).
   std::int64_t points_out = 0;
+  std::int64_t triangles_out = 0;
   std::int64_t tets_out = 0;
+  // Serialised bytes of the messages the server wrote (events, mesh slices, Summary).
+  std::int64_t bytes_out = 0;
+  // How long the call's job ran on a worker; unset when none ran (refused or stopped before).
+  std::optional<double> job_seconds;
 };
 
 // Counts `request` into record's messages_in, bytes_in, points_in and triangles_in.
@@ -46,5 +54,9 @@ const char* outcome_of(grpc::StatusCode code);
 
 // The line, without a trailing newline.
 std::string format_call_log(const CallRecord& record);
+
+// The one place a finished call is observed, whichever way it ended: numbers `record`
+// (next_call_id), writes its line on stderr when `log` is set and counts it into `metrics`.
+void report_call_end(CallRecord record, bool log, ServerMetrics& metrics);
 
 }  // namespace afmesh::server

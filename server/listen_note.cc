@@ -24,4 +24,11 @@ std::vector<std::string> listen_note(const std::string& address, const ServerSec
   return lines;
 }
 
+std::string metrics_note(const std::string& address) {
+  const bool loopback = security::reach_of(address) == security::Reach::kLoopback;
+  return absl::StrCat("metrics on http://", address, "/metrics (",
+                      loopback ? "loopback only" : "other hosts can connect",
+                      "; plain HTTP, no token: call counts and sizes, never meshes)");
+}
+
 }  // namespace afmesh::server

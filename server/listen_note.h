@@ -14,4 +14,9 @@ namespace afmesh::server {
 // when other hosts can reach a plaintext server.
 std::vector<std::string> listen_note(const std::string& address, const ServerSecurity& security);
 
+// The start-up line for --metrics, `address` as bound: "metrics on
+// http://127.0.0.1:9464/metrics (loopback only; plain HTTP, no token: call counts and sizes,
+// never meshes)", or "other hosts can connect" in place of "loopback only".
+std::string metrics_note(const std::string& address);
+
 }  // namespace afmesh::server

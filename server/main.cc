@@ -99,6 +99,10 @@ void add_flags(CLI::App& app, afmesh::server::ServerOptions& options) {
   app.add_option("--token-file", options.security.token_file,
                  "file holding a bearer token every Mesher call must send "
                  "(authorization: Bearer TOKEN)");
+  app.add_option("--metrics", options.metrics,
+                 "serve Prometheus metrics at http://ADDR/metrics, ADDR = IPV4:PORT (port 0: any "
+                 "free port; 0.0.0.0:9464 for other hosts); off when not given")
+      ->type_name("ADDR");
   app.add_flag_callback(
       "--quiet", [&options] { options.service.log_calls = false; }, "do not log each call");
 }
@@ -125,6 +129,10 @@ int main(int argc, char** argv) {
   for (const std::string& line :
        afmesh::server::listen_note((*server)->address(), (*server)->security())) {
     std::fprintf(stderr, "afmesh-server: %s\n", line.c_str());
+  }
+  if (!(*server)->metrics_address().empty()) {
+    std::fprintf(stderr, "afmesh-server: %s\n",
+                 afmesh::server::metrics_note((*server)->metrics_address()).c_str());
   }
 
   const int signal = wait_for_signal(signals);

@@ -2,7 +2,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <cstdio>
 #include <deque>
 #include <mutex>
 #include <new>
@@ -88,7 +87,8 @@ class CallProgress final : public Progress {
 class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
  public:
   MeshVolumeCall(grpc::CallbackServerContext* context, WorkerPool& pool, CallGate& gate,
-                 MemoryBudget& budget, const VolumeJob& job, const ServiceOptions& options)
+                 MemoryBudget& budget, ServerMetrics& metrics, const VolumeJob& job,
+                 const ServiceOptions& options)
       : context_(context),
         pool_(pool),
         gate_(gate),
@@ -96,6 +96,7 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
         max_elements_(options.limits.max_elements),
         job_(job),
         log_calls_(options.log_calls),
+        metrics_(metrics),
         input_(options.limits),
         progress_(*this),
         deadline_(context->deadline()),
@@ -234,6 +235,7 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
     pool_.run(std::move(slot), [this, front = input_.take_front(), params = input_.params(),
                                 mode = input_.environment_mode(),
                                 queued_at = Clock::now()]() mutable {
+      job_start_ = Clock::now();
       run_job(front, params, mode, queued_at);
       release();
     });
@@ -339,10 +341,12 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
     {
       std::lock_guard<std::mutex> lock(mu_);
       job_state_ = JobState::kDone;
+      record_.job_seconds = seconds_since(job_start_);
       if (stop_requested()) {
         final_status_ = stop_status();
       } else if (output.ok()) {
         record_.points_out = static_cast<std::int64_t>(output->volume.mesh.points.size());
+        record_.triangles_out = static_cast<std::int64_t>(output->volume.mesh.triangles.size());
         record_.tets_out = static_cast<std::int64_t>(output->volume.mesh.tets.size());
         output_ = std::make_unique<VolumeOutputStream>(*std::move(output), std::move(timings));
         final_status_ = grpc::Status::OK;
@@ -397,26 +401,25 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
       const std::optional<int> retry_after_ms = status.ok() ? std::nullopt : retry_after_ms_;
       lock.unlock();
       if (retry_after_ms) context_->AddTrailingMetadata(kRetryAfterKey, std::to_string(*retry_after_ms));
-      log_finish(status, std::move(record));
+      report_finish(status, std::move(record));
       Finish(status);
       return;
     } else {
       return;
     }
     writing_ = true;
+    record_.bytes_out += static_cast<std::int64_t>(current_.ByteSizeLong());
     lock.unlock();
     StartWrite(&current_);
   }
 
-  // One structured line per call on stderr (call_log.h).
-  void log_finish(const grpc::Status& status, CallRecord record) const {
-    if (!log_calls_) return;
-    record.id = next_call_id();
+  // The call's end, to its log line and the metrics (call_log.h).
+  void report_finish(const grpc::Status& status, CallRecord record) const {
     record.rpc = "MeshVolume";
     record.peer = context_->peer();
     record.seconds = seconds_since(receive_start_);
     record.status = status;
-    std::fprintf(stderr, "%s\n", format_call_log(record).c_str());
+    report_call_end(std::move(record), log_calls_, metrics_);
   }
 
   // Drops one reference (gRPC's at OnDone, the job's when it returns); the last one deletes.
@@ -435,6 +438,7 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
   std::optional<MemoryBudget::Reservation> reservation_;
   const VolumeJob& job_;
   const bool log_calls_;
+  ServerMetrics& metrics_;
   VolumeInput input_;  // touched by reads only, one at a time
   Request request_;    // the read in flight
   std::optional<WorkerPool::Slot> slot_;
@@ -442,6 +446,7 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
   const std::chrono::system_clock::time_point deadline_;
   const Clock::time_point receive_start_;
   double receive_seconds_ = 0.0;  // written before the job is queued, read by the job
+  Clock::time_point job_start_;   // written and read by the job
   std::atomic<bool> cancel_requested_{false};
   std::atomic<int> references_{1};  // gRPC's, plus the job's while it is queued or running
 
@@ -467,35 +472,39 @@ bool CallProgress::cancelled() const { return call_.stop_requested(); }
 
 class MesherService final : public v1::Mesher::CallbackService {
  public:
-  MesherService(WorkerPool& pool, CallGate& gate, VolumeJob job, const ServiceOptions& options)
+  MesherService(WorkerPool& pool, CallGate& gate, MemoryBudget& budget, ServerMetrics& metrics,
+                VolumeJob job, const ServiceOptions& options)
       : pool_(pool),
         gate_(gate),
-        budget_(options.memory_budget_bytes),
+        budget_(budget),
+        metrics_(metrics),
         job_(std::move(job)),
         options_(options) {}
 
   grpc::ServerBidiReactor<Request, Response>* MeshVolume(
       grpc::CallbackServerContext* context) override {
     if (auto* refused = refuse_unauthenticated<Request, Response>(
-            "MeshVolume", context, options_.bearer_token, options_.log_calls)) {
+            "MeshVolume", context, options_.bearer_token, options_.log_calls, metrics_)) {
       return refused;
     }
-    return new MeshVolumeCall(context, pool_, gate_, budget_, job_, options_);
+    return new MeshVolumeCall(context, pool_, gate_, budget_, metrics_, job_, options_);
   }
 
  private:
   WorkerPool& pool_;
   CallGate& gate_;
-  MemoryBudget budget_;  // outlives the calls, like job_
-  const VolumeJob job_;
+  MemoryBudget& budget_;
+  ServerMetrics& metrics_;
+  const VolumeJob job_;  // outlives the calls
   const ServiceOptions options_;
 };
 
 }  // namespace
 
-std::unique_ptr<grpc::Service> make_mesher_service(WorkerPool& pool, CallGate& gate, VolumeJob job,
-                                                   const ServiceOptions& options) {
-  return std::make_unique<MesherService>(pool, gate, std::move(job), options);
+std::unique_ptr<grpc::Service> make_mesher_service(WorkerPool& pool, CallGate& gate,
+                                                   MemoryBudget& budget, ServerMetrics& metrics,
+                                                   VolumeJob job, const ServiceOptions& options) {
+  return std::make_unique<MesherService>(pool, gate, budget, metrics, std::move(job), options);
 }
 
 }  // namespace afmesh::server

@@ -17,6 +17,8 @@ class Service;
 
 namespace afmesh::server {
 
+class ServerMetrics;
+
 struct ServiceOptions {
   InputLimits limits;
   // Bytes the jobs running at once may be expected to need together (--memory-budget-mb).
@@ -29,9 +31,12 @@ struct ServiceOptions {
 };
 
 // The Mesher service: MeshVolume calls pass `gate` (UNAVAILABLE once it is closed), reserve a
-// slot of `pool` (RESOURCE_EXHAUSTED when none is free), assemble and check their input, run
-// `job` on a worker and stream its result. `pool` and `gate` must outlive every call.
-std::unique_ptr<grpc::Service> make_mesher_service(WorkerPool& pool, CallGate& gate, VolumeJob job,
-                                                   const ServiceOptions& options);
+// slot of `pool` (RESOURCE_EXHAUSTED when none is free), assemble and check their input, reserve
+// their estimated bytes of `budget`, run `job` on a worker and stream its result; each call is
+// counted into `metrics` when it ends. `pool`, `gate`, `budget` and `metrics` must outlive
+// every call. (options.memory_budget_bytes is for whoever makes `budget`.)
+std::unique_ptr<grpc::Service> make_mesher_service(WorkerPool& pool, CallGate& gate,
+                                                   MemoryBudget& budget, ServerMetrics& metrics,
+                                                   VolumeJob job, const ServiceOptions& options);
 
 }  // namespace afmesh::server

@@ -10,6 +10,8 @@
 #include "grpcpp/grpcpp.h"
 #include "grpcpp/health_check_service_interface.h"
 #include "grpcpp/impl/service_type.h"
+#include "server/metrics.h"
+#include "server/metrics_endpoint.h"
 
 namespace afmesh::server {
 namespace {
@@ -50,8 +52,17 @@ absl::StatusOr<std::unique_ptr<MesherServer>> MesherServer::start(const ServerOp
   std::unique_ptr<MesherServer> server(new MesherServer());
   server->security_ = *std::move(security);
   server->pool_ = std::make_unique<WorkerPool>(worker_count(options.workers), options.max_queue);
-  server->service_ =
-      make_mesher_service(*server->pool_, server->gate_, std::move(job), service_options);
+  server->budget_ = std::make_unique<MemoryBudget>(service_options.memory_budget_bytes);
+  server->metrics_ =
+      std::make_shared<ServerMetrics>(server->gate_, *server->pool_, *server->budget_);
+  if (!options.metrics.empty()) {
+    absl::StatusOr<std::unique_ptr<MetricsEndpoint>> endpoint =
+        MetricsEndpoint::start(options.metrics, server->metrics_);
+    if (!endpoint.ok()) return endpoint.status();
+    server->metrics_endpoint_ = *std::move(endpoint);
+  }
+  server->service_ = make_mesher_service(*server->pool_, server->gate_, *server->budget_,
+                                         *server->metrics_, std::move(job), service_options);
 
   grpc::ServerBuilder builder;
   int port = 0;
@@ -68,6 +79,11 @@ absl::StatusOr<std::unique_ptr<MesherServer>> MesherServer::start(const ServerOp
 }
 
 MesherServer::MesherServer() = default;
+
+const std::string& MesherServer::metrics_address() const {
+  static const std::string kNone;
+  return metrics_endpoint_ != nullptr ? metrics_endpoint_->address() : kNone;
+}
 
 MesherServer::~MesherServer() { shutdown(); }
 
@@ -87,6 +103,7 @@ void MesherServer::shutdown() {
     server_->Wait();
     server_.reset();
   }
+  metrics_endpoint_.reset();  // its scrapes read the pool and the budget
   service_.reset();
   pool_.reset();  // joins the workers (their queue is empty once every call is done)
 }

@@ -49,8 +49,21 @@ void WorkerPool::run(Slot slot, absl::AnyInvocable<void() &&> task) {
   ready_.notify_one();
 }
 
+WorkerPool::Load WorkerPool::load() const {
+  std::lock_guard<std::mutex> lock(mu_);
+  return Load{
+      .reserved = reserved_, .queued = static_cast<int>(tasks_.size()), .running = running_};
+}
+
 void WorkerPool::release_slot() {
   std::lock_guard<std::mutex> lock(mu_);
+  --reserved_;
+}
+
+// A task has returned: its worker is free and its slot released.
+void WorkerPool::task_done() {
+  std::lock_guard<std::mutex> lock(mu_);
+  --running_;
   --reserved_;
 }
 
@@ -64,9 +77,10 @@ void WorkerPool::work() {
       if (tasks_.empty()) return;
       task = std::move(tasks_.front());
       tasks_.pop_front();
+      ++running_;
     }
     std::move(task)();
-    release_slot();
+    task_done();
   }
 }
 

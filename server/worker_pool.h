@@ -54,16 +54,27 @@ class WorkerPool {
   int workers() const { return static_cast<int>(threads_.size()); }
   int max_queue() const { return max_queue_; }
 
+  // How full the pool is, read at one instant (for the metrics' gauges).
+  struct Load {
+    // Slots held by calls uploading, queued or running (at most workers + max_queue).
+    int reserved = 0;
+    int queued = 0;   // jobs waiting for a worker
+    int running = 0;  // jobs on a worker
+  };
+  Load load() const;
+
  private:
   void release_slot();
   void work();
+  void task_done();
 
   const int max_queue_;
   std::vector<std::thread> threads_;
-  std::mutex mu_;
+  mutable std::mutex mu_;
   std::condition_variable ready_;
   std::deque<absl::AnyInvocable<void() &&>> tasks_ ABSL_GUARDED_BY(mu_);
   int reserved_ ABSL_GUARDED_BY(mu_) = 0;
+  int running_ ABSL_GUARDED_BY(mu_) = 0;
   bool stopping_ ABSL_GUARDED_BY(mu_) = false;
 };
 

@@ -81,5 +81,35 @@ TEST(WorkerPool, RunsAtMostWorkersTasksAtOnce) {
   EXPECT_GE(most.load(), 1);
 }
 
+TEST(WorkerPool, LoadCountsReservedQueuedAndRunning) {
+  WorkerPool pool(1, 2);
+  std::promise<void> started;
+  std::promise<void> release;
+  std::shared_future<void> released = release.get_future().share();
+  std::optional<WorkerPool::Slot> first = pool.try_reserve();
+  std::optional<WorkerPool::Slot> second = pool.try_reserve();
+  std::optional<WorkerPool::Slot> third = pool.try_reserve();
+  ASSERT_TRUE(first && second && third);
+  pool.run(std::move(*first), [&started, released] {
+    started.set_value();
+    released.wait();
+  });
+  started.get_future().wait();
+  pool.run(std::move(*second), [] {});  // waits: the only worker is busy
+  const WorkerPool::Load busy = pool.load();
+  EXPECT_EQ(busy.reserved, 3);  // the third slot is held, its task not yet queued
+  EXPECT_EQ(busy.queued, 1);
+  EXPECT_EQ(busy.running, 1);
+
+  third.reset();
+  release.set_value();
+  WorkerPool::Load idle = pool.load();
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (idle.reserved != 0 && std::chrono::steady_clock::now() < give_up) idle = pool.load();
+  EXPECT_EQ(idle.reserved, 0);
+  EXPECT_EQ(idle.queued, 0);
+  EXPECT_EQ(idle.running, 0);
+}
+
 }  // namespace
 }  // namespace afmesh::server

@@ -8,7 +8,8 @@
 //  3. what no schema says: the Deployment's selector matches its template's labels, the
 //     Services and the PDB select those pods, the HPA targets the Deployment, probes and
 //     targetPorts name a container port, the CPU request equals --workers, every --flag in
-//     args is one `afmesh-server --help` lists, the security context is non-root, read-only,
+//     args is one `afmesh-server --help` lists, the --metrics port is a container port and the
+//     prometheus.io/port annotation names it, the security context is non-root, read-only,
 //     without capabilities; kustomization.yaml lists every manifest and only existing files.
 // Usage: node validate.cjs MODULES_DIR K8S_DIR SERVER_BINARY [--self-test]
 //   --self-test: breaks the good manifests one way at a time and requires each check to fail.
@@ -90,6 +91,7 @@ function deploymentErrors(d, serverFlags) {
   if (d.spec?.selector?.matchExpressions) errors.push(`${name}: matchExpressions are not checked here; use matchLabels`);
   if (!selects(d.spec?.selector?.matchLabels, labels)) errors.push(`${name}: spec.selector does not match the template's labels`);
   const pod = d.spec?.template?.spec ?? {};
+  const metricsPorts = new Set();
   if (pod.securityContext?.runAsNonRoot !== true) errors.push(`${name}: pod securityContext.runAsNonRoot is not true`);
   for (const c of pod.containers ?? []) {
     const cname = `${name} container ${c.name}`;
@@ -119,7 +121,19 @@ function deploymentErrors(d, serverFlags) {
     const listen = args.find((a) => a.startsWith("--listen="));
     const listenPort = listen ? Number(listen.split(":").pop()) : 50051;
     if (!portNumbers.has(listenPort)) errors.push(`${cname}: --listen port ${listenPort} is not a container port`);
+    const metrics = args.find((a) => a.startsWith("--metrics="));
+    if (metrics) {
+      const metricsPort = Number(metrics.split(":").pop());
+      if (!portNumbers.has(metricsPort)) errors.push(`${cname}: --metrics port ${metricsPort} is not a container port`);
+      metricsPorts.add(metricsPort);
+    }
     c.__ports = ports;
+  }
+  const annotations = d.spec?.template?.metadata?.annotations ?? {};
+  if (annotations["prometheus.io/scrape"] === "true") {
+    const port = Number(annotations["prometheus.io/port"]);
+    if (!metricsPorts.has(port))
+      errors.push(`${name}: prometheus.io/port ${annotations["prometheus.io/port"]} is not a --metrics port`);
   }
   return errors;
 }
@@ -192,7 +206,9 @@ const SELF_TESTS = [
   ["Service targetPort not a container port", "service.yaml", (d) => { d.spec.ports[0].targetPort = "grcp"; }, "targetPort grcp is not a container port"],
   ["HPA targeting another Deployment", "hpa.yaml", (d) => { d.spec.scaleTargetRef.name = "afmesh"; }, "scaleTargetRef is not Deployment/afmesh-server"],
   ["PDB selecting other pods", "pdb.yaml", (d) => { d.spec.selector.matchLabels = { app: "afmesh" }; }, "PodDisruptionBudget/afmesh-server: selector does not select"],
-  ["flag the server does not have", "deployment.yaml", (d) => { d.spec.template.spec.containers[0].args.push("--metrics=0.0.0.0:9464"); }, "--metrics is not an afmesh-server flag"],
+  ["flag the server does not have", "deployment.yaml", (d) => { d.spec.template.spec.containers[0].args.push("--metrics-port=9464"); }, "--metrics-port is not an afmesh-server flag"],
+  ["metrics on a port the pod does not open", "deployment.yaml", (d) => { const c = d.spec.template.spec.containers[0]; c.args = c.args.map((a) => (a.startsWith("--metrics=") ? "--metrics=0.0.0.0:9465" : a)); }, "--metrics port 9465 is not a container port"],
+  ["scrape annotation on another port", "deployment.yaml", (d) => { d.spec.template.metadata.annotations["prometheus.io/port"] = "50051"; }, "prometheus.io/port 50051 is not a --metrics port"],
   ["CPU request not --workers", "deployment.yaml", (d) => { d.spec.template.spec.containers[0].resources.requests.cpu = "1500m"; }, "requests.cpu 1500m is not --workers"],
   ["writable root file system", "deployment.yaml", (d) => { d.spec.template.spec.containers[0].securityContext.readOnlyRootFilesystem = false; }, "readOnlyRootFilesystem is not true"],
   ["probe on a port the pod does not open", "deployment.yaml", (d) => { d.spec.template.spec.containers[0].livenessProbe.grpc.port = 50052; }, "livenessProbe port 50052 is not a container port"],
