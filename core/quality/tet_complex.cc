@@ -22,54 +22,6 @@ int permutation_sign(int i0, int i1, int i2, int i3) {
 
 Triangle reversed(const Triangle& f) { return {f[0], f[2], f[1]}; }
 
-// The tets keyed by the smallest point of each of their faces: a tet's three faces at its
-// smallest point, and its fourth face (opposite that point) at its second smallest. In compressed
-// rows: the tets of point p are tets[offsets[p] .. offsets[p+1]), ascending. Two entries per tet.
-struct FaceKeys {
-  std::vector<Index> offsets;
-  std::vector<Index> tets;
-};
-
-// The corners of tet q by ascending point: q[order[0]] < q[order[1]] < ...
-std::array<int, 4> ascending_corners(const Tet& q) {
-  std::array<int, 4> order = {0, 1, 2, 3};
-  // A sorting network of five compare-exchanges.
-  const auto exchange = [&](int i, int j) {
-    if (q[order[j]] < q[order[i]]) std::swap(order[i], order[j]);
-  };
-  exchange(0, 1);
-  exchange(2, 3);
-  exchange(0, 2);
-  exchange(1, 3);
-  exchange(1, 2);
-  return order;
-}
-
-// The two smallest points of tet q.
-std::pair<Index, Index> two_smallest(const Tet& q) {
-  const std::array<int, 4> order = ascending_corners(q);
-  return {q[order[0]], q[order[1]]};
-}
-
-FaceKeys face_keys(const std::vector<Tet>& tets, std::size_t point_count) {
-  FaceKeys keys;
-  keys.offsets.assign(point_count + 1, 0);
-  for (const Tet& q : tets) {
-    const auto [first, second] = two_smallest(q);
-    ++keys.offsets[first + 1];
-    ++keys.offsets[second + 1];
-  }
-  for (std::size_t p = 0; p < point_count; ++p) keys.offsets[p + 1] += keys.offsets[p];
-  keys.tets.resize(2 * tets.size());
-  std::vector<Index> fill(keys.offsets.begin(), keys.offsets.end() - 1);
-  for (Index t = 0; t < static_cast<Index>(tets.size()); ++t) {
-    const auto [first, second] = two_smallest(tets[t]);
-    keys.tets[fill[first]++] = t;
-    keys.tets[fill[second]++] = t;
-  }
-  return keys;
-}
-
 }  // namespace
 
 absl::StatusOr<TetComplex> TetComplex::build(Mesh& mesh) {
@@ -91,47 +43,22 @@ absl::StatusOr<TetComplex> TetComplex::build(Mesh& mesh) {
   TetComplex c(mesh);
   c.adjacent_.assign(mesh.tets.size(), {kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex});
   c.point_tet_.assign(mesh.points.size(), kInvalidIndex);
-  // Each face is matched at its smallest point p, among the tets keyed there: their faces whose
-  // smallest point is p, sorted by the other two points, pair up.
-  const FaceKeys keys = face_keys(mesh.tets, mesh.points.size());
-  struct Side {
-    Index u, v;  // the face's other two points, p < u < v
-    Index tet;
-    int corner;  // the face is opposite this corner of tet
-    bool operator<(const Side& o) const {
-      return u < o.u || (u == o.u && (v < o.v || (v == o.v && tet < o.tet)));
+  // The faces shared by two tets make them neighbours across those corners.
+  std::vector<Index> ids(mesh.tets.size());
+  for (Index t = 0; t < k; ++t) ids[t] = t;
+  absl::Status shared_by_more;
+  for_each_tet_face(mesh.tets, ids, [&](std::span<const FaceUse> uses) {
+    if (uses.size() > 2 && shared_by_more.ok()) {
+      shared_by_more = absl::InvalidArgumentError(absl::StrFormat(
+          "face (%d, %d, %d) is in more than two tets (%d, %d, %d)", uses[0].key[0],
+          uses[0].key[1], uses[0].key[2], uses[0].tet, uses[1].tet, uses[2].tet));
     }
-  };
-  std::vector<Side> sides;
-  for (Index p = 0; p < n; ++p) {
-    sides.clear();
-    for (Index e = keys.offsets[p]; e < keys.offsets[p + 1]; ++e) {
-      const Index t = keys.tets[e];
-      const Tet& q = mesh.tets[t];
-      const std::array<int, 4> o = ascending_corners(q);
-      if (q[o[0]] == p) {  // the three faces at the tet's smallest point
-        sides.push_back({q[o[2]], q[o[3]], t, o[1]});
-        sides.push_back({q[o[1]], q[o[3]], t, o[2]});
-        sides.push_back({q[o[1]], q[o[2]], t, o[3]});
-      } else {  // the face opposite it
-        sides.push_back({q[o[2]], q[o[3]], t, o[0]});
-      }
+    if (uses.size() == 2) {
+      c.adjacent_[uses[0].tet][uses[0].corner] = uses[1].tet;
+      c.adjacent_[uses[1].tet][uses[1].corner] = uses[0].tet;
     }
-    std::sort(sides.begin(), sides.end());
-    for (std::size_t i = 0; i < sides.size();) {
-      std::size_t j = i + 1;
-      while (j < sides.size() && sides[j].u == sides[i].u && sides[j].v == sides[i].v) ++j;
-      if (j - i > 2)
-        return absl::InvalidArgumentError(absl::StrFormat(
-            "face (%d, %d, %d) is in more than two tets (%d, %d, %d)", p, sides[i].u, sides[i].v,
-            sides[i].tet, sides[i + 1].tet, sides[i + 2].tet));
-      if (j - i == 2) {
-        c.adjacent_[sides[i].tet][sides[i].corner] = sides[i + 1].tet;
-        c.adjacent_[sides[i + 1].tet][sides[i + 1].corner] = sides[i].tet;
-      }
-      i = j;
-    }
-  }
+  });
+  if (!shared_by_more.ok()) return shared_by_more;
   for (Index t = 0; t < k; ++t)
     for (Index p : mesh.tets[t]) c.point_tet_[p] = t;
   return c;

@@ -33,7 +33,7 @@ class TetComplex {
  public:
   // Adjacency of mesh.tets over mesh.points (kept by reference; both are edited by the calls
   // below). O(K log v) time with v the mean number of tets at a point; 16 bytes per tet and 4
-  // per point are kept, 8 bytes per tet more while building.
+  // per point are kept, 12 bytes per tet more while building.
   // Fails with InvalidArgument, naming what is wrong, when an index is out of range or repeated
   // in a tet and when a face is in more than two tets.
   static absl::StatusOr<TetComplex> build(Mesh& mesh);
