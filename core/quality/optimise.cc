@@ -236,7 +236,7 @@ std::vector<BadTet> next_work(const TetComplex& c, const Optimiser& opt,
 
 absl::StatusOr<OptimiseStats> optimise_tets(Mesh& mesh, Index fixed_points,
                                             const OptimiseParams& params, Progress& progress) {
-  absl::StatusOr<TetComplex> complex = TetComplex::build(mesh);
+  absl::StatusOr<TetComplex> complex = TetComplex::build(mesh, progress);
   if (!complex.ok()) return complex.status();
   Optimiser opt(*complex, fixed_points, params);
   absl::Status status;

@@ -24,7 +24,7 @@ Triangle reversed(const Triangle& f) { return {f[0], f[2], f[1]}; }
 
 }  // namespace
 
-absl::StatusOr<TetComplex> TetComplex::build(Mesh& mesh) {
+absl::StatusOr<TetComplex> TetComplex::build(Mesh& mesh, Progress& progress) {
   const auto n = static_cast<Index>(mesh.points.size());
   const auto k = static_cast<Index>(mesh.tets.size());
   for (Index t = 0; t < k; ++t) {
@@ -47,6 +47,7 @@ absl::StatusOr<TetComplex> TetComplex::build(Mesh& mesh) {
   std::vector<Index> ids(mesh.tets.size());
   for (Index t = 0; t < k; ++t) ids[t] = t;
   absl::Status shared_by_more;
+  CancelCheck stop(progress);
   for_each_tet_face(mesh.tets, ids, [&](std::span<const FaceUse> uses) {
     if (uses.size() > 2 && shared_by_more.ok()) {
       shared_by_more = absl::InvalidArgumentError(absl::StrFormat(
@@ -57,7 +58,8 @@ absl::StatusOr<TetComplex> TetComplex::build(Mesh& mesh) {
       c.adjacent_[uses[0].tet][uses[0].corner] = uses[1].tet;
       c.adjacent_[uses[1].tet][uses[1].corner] = uses[0].tet;
     }
-  });
+  }, &stop);
+  if (stop.stopped()) return absl::CancelledError("mesh optimisation cancelled");
   if (!shared_by_more.ok()) return shared_by_more;
   for (Index t = 0; t < k; ++t)
     for (Index p : mesh.tets[t]) c.point_tet_[p] = t;

@@ -16,6 +16,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
+#include "core/common/progress.h"
 #include "core/mesh/mesh.h"
 
 namespace afmesh {
@@ -36,7 +37,8 @@ class TetComplex {
   // per point are kept, 12 bytes per tet more while building.
   // Fails with InvalidArgument, naming what is wrong, when an index is out of range or repeated
   // in a tet and when a face is in more than two tets.
-  static absl::StatusOr<TetComplex> build(Mesh& mesh);
+  // CANCELLED within milliseconds once progress.cancelled() turns true.
+  static absl::StatusOr<TetComplex> build(Mesh& mesh, Progress& progress = no_progress());
 
   const Mesh& mesh() const { return *m_; }
   const std::vector<Point>& points() const { return m_->points; }

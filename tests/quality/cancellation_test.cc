@@ -9,6 +9,8 @@
 #include "core/common/progress.h"
 #include "core/quality/measures.h"
 #include "core/quality/mesh_topology.h"
+#include "core/quality/optimise.h"
+#include "core/quality/tet_complex.h"
 #include "core/quality/validate.h"
 #include "core/shapes/shapes.h"
 #include "core/spatial/aabb_tree.h"
@@ -88,6 +90,16 @@ TEST(Cancellation, QualitySummaryStopsWhenCancelled) {
   ASSERT_TRUE(summary.ok()) << summary.status();
   EXPECT_EQ(summary->tet_count, static_cast<std::int64_t>(grid().tets.size()));
   EXPECT_EQ(summary->tet_min_dihedral_deg.min, summarize_quality(grid())->tet_min_dihedral_deg.min);
+}
+
+TEST(Cancellation, TheOptimiserStopsWhileBuildingItsAdjacency) {
+  Mesh mesh = grid();
+  CancelAfter progress(0);
+  EXPECT_EQ(TetComplex::build(mesh, progress).status().code(), absl::StatusCode::kCancelled);
+  EXPECT_EQ(optimise_tets(mesh, 0, OptimiseParams{}, progress).status().code(),
+            absl::StatusCode::kCancelled);
+  CancelAfter never(1 << 30);
+  EXPECT_TRUE(TetComplex::build(mesh, never).ok());
 }
 
 TEST(Cancellation, FaceAndPairVisitsEndEarlyOnceStopped) {
