@@ -81,6 +81,16 @@ void add_flags(CLI::App& app, afmesh::server::ServerOptions& options) {
          "(they end UNAVAILABLE)")
       ->default_str(std::to_string(options.grace_period.count() / 1000))
       ->check(CLI::Range(0.0, 86400.0));
+  app.add_option_function<double>(
+         "--stall-timeout",
+         [&options](double seconds) {
+           options.service.stall_timeout =
+               std::chrono::milliseconds(static_cast<long long>(seconds * 1000));
+         },
+         "seconds a read or write of a call may stay pending before the call is cancelled (a "
+         "client that stops reading its result frees the mesh's memory then)")
+      ->default_str(std::to_string(options.service.stall_timeout.count() / 1000))
+      ->check(CLI::Range(0.05, 86400.0));
   app.add_option("--max-elements", options.service.limits.max_elements,
                  "most tetrahedra a request may ask for, by the estimate made before meshing")
       ->capture_default_str()

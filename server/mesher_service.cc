@@ -21,6 +21,7 @@
 #include "core/volume/repair_front.h"
 #include "server/call_auth.h"
 #include "server/call_log.h"
+#include "server/stall_watch.h"
 #include "server/volume_environments.h"
 #include "server/volume_output.h"
 
@@ -87,9 +88,10 @@ class CallProgress final : public Progress {
 class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
  public:
   MeshVolumeCall(grpc::CallbackServerContext* context, WorkerPool& pool, CallGate& gate,
-                 MemoryBudget& budget, ServerMetrics& metrics, const VolumeJob& job,
-                 const ServiceOptions& options)
+                 MemoryBudget& budget, ServerMetrics& metrics, StallWatch& stall_watch,
+                 const VolumeJob& job, const ServiceOptions& options)
       : context_(context),
+        stall_watch_(stall_watch),
         pool_(pool),
         gate_(gate),
         budget_(budget),
@@ -116,7 +118,7 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
                   kRetryAfterBusyMs);
       return;
     }
-    StartRead(&request_);
+    start_read();
   }
 
   ~MeshVolumeCall() override {
@@ -124,6 +126,7 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
   }
 
   void OnReadDone(bool ok) override {
+    stall_watch_.ended(context_, StallWatch::Transfer::kRead);
     {
       std::lock_guard<std::mutex> lock(mu_);
       if (finished_) return;
@@ -137,10 +140,11 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
       finish_with(status);
       return;
     }
-    StartRead(&request_);
+    start_read();
   }
 
   void OnWriteDone(bool ok) override {
+    stall_watch_.ended(context_, StallWatch::Transfer::kWrite);
     {
       std::lock_guard<std::mutex> lock(mu_);
       writing_ = false;
@@ -410,6 +414,7 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
     writing_ = true;
     record_.bytes_out += static_cast<std::int64_t>(current_.ByteSizeLong());
     lock.unlock();
+    stall_watch_.started(context_, StallWatch::Transfer::kWrite);
     StartWrite(&current_);
   }
 
@@ -427,7 +432,13 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
     if (references_.fetch_sub(1, std::memory_order_acq_rel) == 1) delete this;
   }
 
+  void start_read() {
+    stall_watch_.started(context_, StallWatch::Transfer::kRead);
+    StartRead(&request_);
+  }
+
   grpc::CallbackServerContext* const context_;
+  StallWatch& stall_watch_;
   WorkerPool& pool_;
   CallGate& gate_;
   bool admitted_ = false;  // passed the gate: counted until this object is deleted
@@ -479,7 +490,8 @@ class MesherService final : public v1::Mesher::CallbackService {
         budget_(budget),
         metrics_(metrics),
         job_(std::move(job)),
-        options_(options) {}
+        options_(options),
+        stall_watch_(options.stall_timeout) {}
 
   grpc::ServerBidiReactor<Request, Response>* MeshVolume(
       grpc::CallbackServerContext* context) override {
@@ -487,7 +499,8 @@ class MesherService final : public v1::Mesher::CallbackService {
             "MeshVolume", context, options_.bearer_token, options_.log_calls, metrics_)) {
       return refused;
     }
-    return new MeshVolumeCall(context, pool_, gate_, budget_, metrics_, job_, options_);
+    return new MeshVolumeCall(context, pool_, gate_, budget_, metrics_, stall_watch_, job_,
+                              options_);
   }
 
  private:
@@ -497,6 +510,7 @@ class MesherService final : public v1::Mesher::CallbackService {
   ServerMetrics& metrics_;
   const VolumeJob job_;  // outlives the calls
   const ServiceOptions options_;
+  StallWatch stall_watch_;  // outlives the calls: the server ends them before the service goes
 };
 
 }  // namespace

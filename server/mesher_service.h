@@ -1,6 +1,7 @@
 // The afmesh.v1.Mesher gRPC service (callback API, one reactor per call).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -28,6 +29,9 @@ struct ServiceOptions {
   bool log_calls = true;
   // When set, calls must carry "authorization: Bearer <bearer_token>" (call_auth.h).
   std::string bearer_token;
+  // A read or write pending this long cancels its call (--stall-timeout; stall_watch.h): a
+  // client that stops reading holds its mesh and its memory budget no longer than this.
+  std::chrono::milliseconds stall_timeout{60000};
 };
 
 // The Mesher service: MeshVolume calls pass `gate` (UNAVAILABLE once it is closed), reserve a

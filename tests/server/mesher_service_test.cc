@@ -1318,6 +1318,47 @@ TEST_F(MesherServiceTest, ABudgetHeldByARunningJobRefusesTheNextUntilItEnds) {
   EXPECT_GE(probe_->runs.load(), 2);
 }
 
+// A client that stops reading its result would hold the finished mesh and its share of the
+// budget for as long as it liked: after --stall-timeout with a write pending the call ends.
+TEST_F(MesherServiceTest, AClientThatStopsReadingIsCancelledAfterTheStallTimeoutFreeingItsBudget) {
+  ServerOptions options;
+  options.service.memory_budget_bytes = std::int64_t{5} << 20;  // one job of ~3 MB fits
+  options.service.stall_timeout = std::chrono::milliseconds(300);
+  start(fixed_job(large_mesh()), options);
+  const std::vector<Request> requests = tetrahedron_requests_at(0.05);
+  // A receive window of 64 KiB that does not grow: the ~4 MB result cannot all be in flight.
+  grpc::ChannelArguments small_window;
+  small_window.SetInt(GRPC_ARG_HTTP2_BDP_PROBE, 0);
+  small_window.SetInt(GRPC_ARG_HTTP2_STREAM_LOOKAHEAD_BYTES, 64 * 1024);
+  std::unique_ptr<v1::Mesher::Stub> stalled_stub = v1::Mesher::NewStub(grpc::CreateCustomChannel(
+      server_->address(), grpc::InsecureChannelCredentials(), small_window));
+  grpc::ClientContext stalled_context;
+  auto stalled = stalled_stub->MeshVolume(&stalled_context);
+  for (const Request& request : requests) ASSERT_TRUE(stalled->Write(request));
+  stalled->WritesDone();
+  Response response;
+  int read = 0;
+  while (stalled->Read(&response) && !carries_mesh(response)) ++read;  // then stops reading
+  ASSERT_TRUE(carries_mesh(response)) << "no mesh slice after " << read << " messages";
+
+  // While the stalled call holds the budget, a second job is refused; once the stall timeout
+  // has ended the stalled call, the next one is admitted and streams whole to a client that
+  // reads (the same 300 ms timeout does not touch it).
+  bool admitted = false;
+  for (int attempt = 0; attempt < 100 && !admitted; ++attempt) {
+    const CallOutcome outcome = call(requests);
+    admitted = outcome.status.ok();
+    if (!admitted) {
+      ASSERT_EQ(outcome.status.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED)
+          << outcome.status.error_message();
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  }
+  EXPECT_TRUE(admitted);
+  while (stalled->Read(&response)) ++read;
+  EXPECT_EQ(stalled->Finish().error_code(), grpc::StatusCode::CANCELLED) << read << " read";
+}
+
 TEST_F(MesherServiceTest, ARequestOverTheByteLimitIsRefusedNamingTheFlag) {
   ServerOptions options;
   options.service.limits.max_request_bytes = 100;
