@@ -3,7 +3,7 @@
 # Usage: scripts/install-deps.sh [--peers] [--image] [--fuzz] [--balancers]
 #   --peers adds gmsh, netgen, tetgen for bench/; --image adds buildah and mmdebstrap for
 #   deploy/build-image.sh; --fuzz adds clang-14 and its libFuzzer and sanitizer runtimes for the
-#   fuzz preset (fuzz/run.sh); --balancers adds nginx-light and haproxy for the scale-out run
+#   fuzz preset (fuzz/run.sh); --balancers adds nginx and haproxy for the scale-out run
 #   (bench/load/scaleout.sh, run unprivileged on loopback ports: the packages' own services are
 #   not needed).
 # Does nothing when everything is present; needs root (or sudo) to install what is missing.
@@ -23,7 +23,7 @@ for arg in "$@"; do
     --peers) packages+=(gmsh python3-gmsh netgen python3-netgen tetgen time) ;;
     --image) packages+=(buildah mmdebstrap) ;;
     --fuzz) packages+=(clang-14 libclang-rt-14-dev) ;;
-    --balancers) packages+=(nginx-light haproxy) ;;
+    --balancers) packages+=(nginx haproxy) ;;
     *) echo "install-deps: unknown option $arg" >&2; exit 2 ;;
   esac
 done

@@ -13,6 +13,7 @@ import time
 
 import driver
 import kinds
+import scaleout
 import servers
 
 
@@ -25,17 +26,17 @@ class Checks:
     def add(self, name, passed, detail=""):
         self.items.append((name, bool(passed), detail))
 
+    def note(self, name, detail):
+        """A finding reported beside the checks, passing or failing none."""
+        self.items.append((name, None, detail))
+
     def failed(self):
-        return [item for item in self.items if not item[1]]
+        return [item for item in self.items if item[1] is False]
 
     def report(self):
-        return "\n".join(f"  [{'PASS' if ok else 'FAIL'}] {name}" + (f": {detail}" if detail else "")
+        mark = {True: "PASS", False: "FAIL", None: "NOTE"}
+        return "\n".join(f"  [{mark[ok]}] {name}" + (f": {detail}" if detail else "")
                          for name, ok, detail in self.items)
-
-
-def load_average():
-    with open("/proc/loadavg") as loadavg:
-        return " ".join(loadavg.read().split()[:3])
 
 
 def mib(kib):
@@ -59,7 +60,7 @@ def faults(args):
     server = servers.Server(args.server_binary, workdir, "server", flags)
     print(f"afmesh-load faults: server pid {server.pid} on {server.address} "
           f"({' '.join(flags)}); {args.clients} clients for {args.seconds:g} s; work folder "
-          f"{workdir}; load average {load_average()}", flush=True)
+          f"{workdir}; load average {driver.load_average()}", flush=True)
     rss_start = server.rss_kib()
     target = kinds.Target(server.address, args.cli, workdir, args.slow_pause)
     mix = kinds.fault_mix(args.slow_pause)
@@ -94,7 +95,7 @@ def faults(args):
     print(f"server log: {sum(logged.values())} calls logged for {sent} sent "
           f"({format(len(results))} requests + {reference_results} alone, retries included): "
           f"{driver.format_counts(logged)}")
-    print(f"run: {wall:.1f} s wall, {len(results)} requests, load average {load_average()}")
+    print(f"run: {wall:.1f} s wall, {len(results)} requests, load average {driver.load_average()}")
 
     checks = Checks()
     checks.add("server alive after the load", alive)
@@ -151,12 +152,32 @@ def main():
     one.add_argument("--no-unmeshable", dest="unmeshable", action="store_false",
                      help="leave out the unmeshable request (12 s of one worker)")
     one.add_argument("--seed", type=int, default=1)
+    out = commands.add_parser("scaleout", help="K replicas behind nginx and haproxy")
+    out.add_argument("--seconds", type=float, default=20.0, help="of each run")
+    out.add_argument("--clients", type=int, default=4)
+    out.add_argument("--max-requests", type=int, default=2000, help="of each run")
+    out.add_argument("--runs", nargs="*", default=None,
+                     help="some of 1 2 2kill 2drain (default: all four)")
+    out.add_argument("--balancers", nargs="*", default=None, help="nginx, haproxy (default both)")
+    out.add_argument("--seed", type=int, default=1)
     args = parser.parse_args()
     args.server_binary = os.path.join(args.build, "client", "afmesh-server")
     args.cli = os.path.join(args.build, "client", "afmesh")
     if args.command == "faults":
         return faults(args)
-    return 2
+    return scale(args)
+
+
+def scale(args):
+    """Issue 13 part 3; exit 77 (CTest's skip) when neither balancer is installed."""
+    workdir = tempfile.mkdtemp(prefix="afmesh-scaleout-", dir=args.workdir)
+    print(f"afmesh-load scaleout: work folder {workdir}; load average {driver.load_average()}")
+    checks = Checks()
+    if scaleout.scaleout(args, workdir, checks) is None:
+        print("afmesh-load scaleout: SKIPPED: neither nginx nor haproxy is installed")
+        return 77
+    print("\nchecks:\n" + checks.report())
+    return finish(checks, workdir)
 
 
 if __name__ == "__main__":

@@ -124,3 +124,8 @@ def problems(results, limit=12):
     if len(wrong) > limit:
         lines.append(f"  ... and {len(wrong) - limit} more")
     return lines
+
+
+def load_average():
+    with open("/proc/loadavg") as loadavg:
+        return " ".join(loadavg.read().split()[:3])
