@@ -92,8 +92,8 @@ def faults(args):
           f"{reference_results} requests alone) {mib(rss_before)}, peak {mib(rss_peak)}, "
           f"1 s after {mib(rss_after)}")
     sent = attempts_of(results) + reference_results
-    print(f"server log: {sum(logged.values())} calls logged for {sent} sent "
-          f"({format(len(results))} requests + {reference_results} alone, retries included): "
+    print(f"server log: {sum(logged.values())} calls logged for {sent} sent ({len(results)} "
+          f"requests, {attempts_of(results) - len(results)} retries, {reference_results} alone): "
           f"{driver.format_counts(logged)}")
     print(f"run: {wall:.1f} s wall, {len(results)} requests, load average {driver.load_average()}")
 
