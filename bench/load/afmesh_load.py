@@ -175,6 +175,7 @@ def scale(args):
     checks = Checks()
     if scaleout.scaleout(args, workdir, checks) is None:
         print("afmesh-load scaleout: SKIPPED: neither nginx nor haproxy is installed")
+        shutil.rmtree(workdir, ignore_errors=True)
         return 77
     print("\nchecks:\n" + checks.report())
     return finish(checks, workdir)
