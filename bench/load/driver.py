@@ -129,3 +129,26 @@ def problems(results, limit=12):
 def load_average():
     with open("/proc/loadavg") as loadavg:
         return " ".join(loadavg.read().split()[:3])
+
+
+class Checks:
+    """Named pass/fail checks; the driver's exit code is 1 when any failed."""
+
+    def __init__(self):
+        self.items = []
+
+    def add(self, name, passed, detail=""):
+        self.items.append((name, bool(passed), detail))
+
+    def note(self, name, detail):
+        """A finding reported beside the checks, passing or failing none."""
+        self.items.append((name, None, detail))
+
+    def failed(self):
+        return [item for item in self.items if item[1] is False]
+
+    def report(self):
+        mark = {True: "PASS", False: "FAIL", None: "NOTE"}
+        return "\n".join(f"  [{mark[ok]}] {name}" + (f": {detail}" if detail else "")
+                         for name, ok, detail in self.items)
+

@@ -16,7 +16,6 @@ import time
 
 import grpc
 
-from afmesh.v1 import mesher_pb2 as pb
 from afmesh.v1 import mesher_pb2_grpc as pb_grpc
 import fronts
 
@@ -92,9 +91,12 @@ class Target:
             return os.path.join(self.workdir, f"out-{self._counter}{suffix}")
 
     def front_file(self, name, front):
+        """`front` as a Medit file for the CLI, written once (under the lock: client threads
+        ask for it at the same time, and none may read it half written)."""
         path = os.path.join(self.workdir, f"{name}.mesh")
-        if not os.path.exists(path):
-            fronts.write_medit(path, front)
+        with self._lock:
+            if not os.path.exists(path):
+                fronts.write_medit(path, front)
         return path
 
 
