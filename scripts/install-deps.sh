@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Installs what afmesh needs to build and test, from Debian 12's apt only.
-# Usage: scripts/install-deps.sh [--peers] [--image] [--fuzz]
+# Usage: scripts/install-deps.sh [--peers] [--image] [--fuzz] [--balancers]
 #   --peers adds gmsh, netgen, tetgen for bench/; --image adds buildah and mmdebstrap for
 #   deploy/build-image.sh; --fuzz adds clang-14 and its libFuzzer and sanitizer runtimes for the
-#   fuzz preset (fuzz/run.sh).
+#   fuzz preset (fuzz/run.sh); --balancers adds nginx and haproxy for the scale-out run
+#   (bench/load/scaleout.sh, run unprivileged on loopback ports: the packages' own services are
+#   not needed).
 # Does nothing when everything is present; needs root (or sudo) to install what is missing.
 set -euo pipefail
 
@@ -15,12 +17,14 @@ packages=(
   prometheus-cpp-dev  # afmesh-server --metrics (prometheus-cpp 1.0: core, and pull on civetweb)
   python3-minimal python3-numpy python3-meshio python3-gmsh python3-vtk9  # cross-checks: /usr/bin/python3 with meshio, gmsh and VTK
   yamllint  # deploy/k8s
+  python3-grpcio python3-protobuf  # deploy/health_probe.py and the load driver (bench/load/)
 )
 for arg in "$@"; do
   case "$arg" in
     --peers) packages+=(gmsh python3-gmsh netgen python3-netgen tetgen time) ;;
     --image) packages+=(buildah mmdebstrap) ;;
     --fuzz) packages+=(clang-14 libclang-rt-14-dev) ;;
+    --balancers) packages+=(nginx haproxy) ;;
     *) echo "install-deps: unknown option $arg" >&2; exit 2 ;;
   esac
 done
