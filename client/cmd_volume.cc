@@ -84,14 +84,6 @@ int exit_code_for(const absl::Status& status) {
   }
 }
 
-// Backpressure (issue 12, part 2): a call is sent again when the server said it may pass later
-// (retry_after: workers or memory budget busy), or when a shared server could not be reached or
-// is draining (UNAVAILABLE: the call did no work there, and another replica behind the same
-// address may take it). Other failures are final.
-bool is_retryable(const absl::Status& status, bool shared_server) {
-  if (retry_after(status)) return true;
-  return shared_server && status.code() == absl::StatusCode::kUnavailable;
-}
 
 // The wait before retry `attempt` (1, 2, ...): the server's hint or 0.25 s doubling per attempt,
 // whichever is longer, at most 30 s, times a random factor in [0.5, 1.5) so that clients
@@ -328,7 +320,7 @@ int run_volume(const VolumeCommandOptions& options) {
   std::mt19937_64 random(std::random_device{}());
   for (int attempt = 1; attempt <= options.retries && !result.ok() &&
                         interrupts.signal() == 0 &&
-                        is_retryable(result.status(), private_server == nullptr);
+                        worth_retrying(result.status(), private_server == nullptr);
        ++attempt) {
     const std::chrono::milliseconds delay =
         retry_delay(attempt, retry_after(result.status()), random);

@@ -17,14 +17,16 @@
 #include "afmesh/v1/mesher.grpc.pb.h"
 #include "google/protobuf/util/json_util.h"
 #include "grpcpp/grpcpp.h"
+#include "proto/call_metadata.h"
 #include "proto/size_spec_convert.h"
 
 namespace afmesh::cli {
 namespace {
 
 // The server's retry hint (server/mesher_service.cc) and where it travels in an absl::Status.
-constexpr char kRetryAfterKey[] = "retry-after-ms";
+using wire::kRetryAfterKey;
 constexpr char kRetryAfterPayload[] = "type.afmesh.dev/retry-after-ms";
+constexpr char kCutOnTheWayPayload[] = "type.afmesh.dev/cut-on-the-way";
 
 using Request = v1::MeshVolumeRequest;
 using Response = v1::MeshVolumeResponse;
@@ -286,12 +288,15 @@ absl::StatusOr<VolumeCallResult> call_mesh_volume(const std::string& address, co
   if (options.canceller != nullptr) options.canceller->attach(nullptr);
   if (!result.ok()) {
     const auto& trailers = context.GetServerTrailingMetadata();
+    absl::Status status = result.status();
     if (const auto hint = trailers.find(kRetryAfterKey); hint != trailers.end()) {
-      absl::Status status = result.status();
       status.SetPayload(kRetryAfterPayload,
                         absl::Cord(std::string(hint->second.data(), hint->second.size())));
-      return status;
     }
+    if (trailers.find(wire::kFinalStatusKey) == trailers.end()) {
+      status.SetPayload(kCutOnTheWayPayload, absl::Cord(std::string("1")));
+    }
+    return status;
   }
   return result;
 }
@@ -306,6 +311,24 @@ std::string channel_target(const std::string& address, std::uint64_t seed) {
   std::mt19937_64 random(seed);
   std::shuffle(addresses.begin(), addresses.end(), random);
   return "ipv4:" + absl::StrJoin(addresses, ",");
+}
+
+bool cut_on_the_way(const absl::Status& status) {
+  return status.GetPayload(kCutOnTheWayPayload).has_value();
+}
+
+bool worth_retrying(const absl::Status& status, bool shared_server) {
+  if (retry_after(status)) return true;
+  if (!shared_server) return false;
+  switch (status.code()) {
+    case absl::StatusCode::kUnavailable:
+      return true;
+    case absl::StatusCode::kInternal:
+    case absl::StatusCode::kUnknown:
+      return cut_on_the_way(status);
+    default:
+      return false;
+  }
 }
 
 std::optional<std::chrono::milliseconds> retry_after(const absl::Status& status) {

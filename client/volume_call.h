@@ -94,6 +94,17 @@ struct VolumeCallResult {
 // the server sent none, i.e. asking again unchanged cannot help.
 std::optional<std::chrono::milliseconds> retry_after(const absl::Status& status);
 
+// True when the failed call's status did not come from the service (no wire::kFinalStatusKey
+// trailer): gRPC or a proxy on the way ended it, e.g. a replica killed mid-call.
+bool cut_on_the_way(const absl::Status& status);
+
+// Whether the CLI sends a failed call again: always when the server gave a retry hint; against
+// a shared server (--server) also UNAVAILABLE (a replica draining or gone), and INTERNAL or
+// UNKNOWN when cut_on_the_way (a balancer's answer for a replica killed mid-call). Never
+// INVALID_ARGUMENT, FAILED_PRECONDITION, a refusal without a hint, CANCELLED, DEADLINE_EXCEEDED,
+// or an INTERNAL the service itself sent (a mesh that failed validation fails again).
+bool worth_retrying(const absl::Status& status, bool shared_server);
+
 // The gRPC target for --server ADDR: ADDR itself (host:port, unix:PATH, dns:///name:port,
 // ipv4:a:p,b:p, ...), except that a bare comma list of IPv4 addresses "a:p,b:p" becomes the
 // ipv4: list gRPC reads, in an order shuffled by `seed`, so that calls spread over its replicas.

@@ -19,6 +19,7 @@
 #include "grpcpp/grpcpp.h"
 #include "core/volume/estimate_elements.h"
 #include "core/volume/repair_front.h"
+#include "proto/call_metadata.h"
 #include "server/call_auth.h"
 #include "server/call_log.h"
 #include "server/stall_watch.h"
@@ -36,9 +37,9 @@ using Response = v1::MeshVolumeResponse;
 constexpr auto kProgressInterval = std::chrono::milliseconds(100);
 
 // Backpressure (issue 12, part 2): a refusal that may succeed later carries the trailing
-// metadata kRetryAfterKey, the milliseconds to wait first. Refusals that cannot succeed later
-// (input or estimate over a limit) carry none.
-constexpr char kRetryAfterKey[] = "retry-after-ms";
+// metadata wire::kRetryAfterKey (proto/call_metadata.h), the milliseconds to wait first.
+// Refusals that cannot succeed later (input or estimate over a limit) carry none.
+using wire::kRetryAfterKey;
 constexpr int kRetryAfterBusyMs = 1000;    // all workers and queue slots taken
 constexpr int kRetryAfterBudgetMs = 2000;  // the memory budget held by running jobs
 
@@ -404,7 +405,10 @@ class MeshVolumeCall final : public grpc::ServerBidiReactor<Request, Response> {
       CallRecord record = record_;
       const std::optional<int> retry_after_ms = status.ok() ? std::nullopt : retry_after_ms_;
       lock.unlock();
-      if (retry_after_ms) context_->AddTrailingMetadata(kRetryAfterKey, std::to_string(*retry_after_ms));
+      if (retry_after_ms) {
+        context_->AddTrailingMetadata(kRetryAfterKey, std::to_string(*retry_after_ms));
+      }
+      context_->AddTrailingMetadata(wire::kFinalStatusKey, "1");
       report_finish(status, std::move(record));
       Finish(status);
       return;

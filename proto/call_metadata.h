@@ -1,0 +1,17 @@
+// Trailing metadata the Mesher service sends with a call's final status, read by the CLI: the
+// wire's names in one place for both sides (not in the paper; design.md's wire contract).
+#pragma once
+
+namespace afmesh::wire {
+
+// On a refusal that may succeed if sent again later (a full server, a held memory budget): the
+// milliseconds to wait first. Refusals that cannot succeed later carry none.
+inline constexpr char kRetryAfterKey[] = "retry-after-ms";
+
+// On every status the service itself finishes a MeshVolume call with ("1"). A failed status
+// without it did not come from a server that saw the call through: gRPC or a proxy on the way
+// made it (a replica killed mid-call behind nginx gives INTERNAL "Received RST_STREAM", behind
+// haproxy UNKNOWN "Stream removed"). Meshing is idempotent, so such a call can be sent again.
+inline constexpr char kFinalStatusKey[] = "afmesh-final-status";
+
+}  // namespace afmesh::wire

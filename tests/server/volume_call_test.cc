@@ -1,0 +1,129 @@
+// Which failed MeshVolume calls the CLI sends again (client/volume_call.h, worth_retrying):
+// a status the service finished the call with carries wire::kFinalStatusKey, and is retried only
+// when the service said so; a status made on the way (a balancer whose replica was killed
+// mid-call answers INTERNAL or UNKNOWN) is retried against a shared server.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+
+#include "absl/status/status.h"
+#include "client/volume_call.h"
+#include "grpc/grpc.h"
+#include "grpcpp/generic/async_generic_service.h"
+#include "grpcpp/grpcpp.h"
+#include "server/server.h"
+
+namespace afmesh::cli {
+namespace {
+
+Mesh tetrahedron() {
+  Mesh front;
+  front.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  front.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  front.triangle_tags = {7, 7, 7, 7};
+  return front;
+}
+
+absl::Status call(const std::string& address) {
+  VolumeCallOptions options;
+  options.size = 1.0;
+  return call_mesh_volume(address, tetrahedron(), options, [](std::string_view, double) {},
+                          [](std::string_view) {})
+      .status();
+}
+
+// Answers every call with `status` at once, as nginx does for a replica that died mid-call.
+class StandInProxy final : public grpc::CallbackGenericService {
+ public:
+  explicit StandInProxy(grpc::Status status) : status_(std::move(status)) {}
+  grpc::ServerGenericBidiReactor* CreateReactor(grpc::GenericCallbackServerContext*) override {
+    class Reactor final : public grpc::ServerGenericBidiReactor {
+     public:
+      explicit Reactor(const grpc::Status& status) { Finish(status); }
+      void OnDone() override { delete this; }
+    };
+    return new Reactor(status_);
+  }
+
+ private:
+  const grpc::Status status_;
+};
+
+class VolumeCallRetryTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    static const bool initialised = (grpc_init(), true);
+    (void)initialised;
+  }
+
+  // Serves `proxy` on a port picked by the system; returns its address.
+  std::string serve(StandInProxy& proxy) {
+    grpc::ServerBuilder builder;
+    int port = 0;
+    builder.AddListeningPort("127.0.0.1:0", grpc::InsecureServerCredentials(), &port);
+    builder.RegisterCallbackGenericService(&proxy);
+    proxy_server_ = builder.BuildAndStart();
+    return "127.0.0.1:" + std::to_string(port);
+  }
+
+  void TearDown() override {
+    if (proxy_server_ != nullptr) proxy_server_->Shutdown();
+  }
+
+  std::unique_ptr<grpc::Server> proxy_server_;
+};
+
+TEST_F(VolumeCallRetryTest, AStreamResetByAProxyIsRetriedAgainstASharedServer) {
+  for (const grpc::Status& cut :
+       {grpc::Status(grpc::StatusCode::INTERNAL, "Received RST_STREAM with error code 2"),
+        grpc::Status(grpc::StatusCode::UNKNOWN, "Stream removed")}) {
+    StandInProxy proxy(cut);
+    const absl::Status status = call(serve(proxy));
+    EXPECT_EQ(static_cast<int>(status.code()), static_cast<int>(cut.error_code()));
+    EXPECT_TRUE(cut_on_the_way(status)) << status;
+    EXPECT_TRUE(worth_retrying(status, /*shared_server=*/true)) << status;
+    EXPECT_FALSE(worth_retrying(status, /*shared_server=*/false)) << status;
+    proxy_server_->Shutdown();
+    proxy_server_.reset();
+  }
+}
+
+TEST_F(VolumeCallRetryTest, FinalAnswersOnTheWayAreNotRetried) {
+  for (grpc::StatusCode code : {grpc::StatusCode::INVALID_ARGUMENT, grpc::StatusCode::CANCELLED,
+                                grpc::StatusCode::FAILED_PRECONDITION}) {
+    StandInProxy proxy(grpc::Status(code, "no"));
+    const absl::Status status = call(serve(proxy));
+    EXPECT_FALSE(worth_retrying(status, true)) << status;
+    proxy_server_->Shutdown();
+    proxy_server_.reset();
+  }
+}
+
+TEST_F(VolumeCallRetryTest, AnInternalErrorTheServiceSentIsNotRetried) {
+  server::ServerOptions options;
+  options.listen = "127.0.0.1:0";
+  options.workers = 1;
+  options.service.log_calls = false;
+  absl::StatusOr<std::unique_ptr<server::MesherServer>> server = server::MesherServer::start(
+      options, [](const Mesh&, const VolumeParams&, Progress&)
+                   -> absl::StatusOr<server::VolumeJobOutput> {
+        return absl::InternalError("the volume mesh failed validation");
+      });
+  ASSERT_TRUE(server.ok()) << server.status();
+  const absl::Status status = call((*server)->address());
+  EXPECT_EQ(status.code(), absl::StatusCode::kInternal) << status;
+  EXPECT_FALSE(cut_on_the_way(status));
+  EXPECT_FALSE(worth_retrying(status, true));
+  (*server)->shutdown();
+}
+
+TEST_F(VolumeCallRetryTest, AnUnreachableSharedServerIsRetried) {
+  const absl::Status status = call("unix:/nonexistent/afmesh.sock");
+  EXPECT_EQ(status.code(), absl::StatusCode::kUnavailable) << status;
+  EXPECT_TRUE(worth_retrying(status, true));
+  EXPECT_FALSE(worth_retrying(status, false));
+}
+
+}  // namespace
+}  // namespace afmesh::cli
