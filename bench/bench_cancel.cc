@@ -2,7 +2,7 @@
 // front, compaction, optimisation, then quality and validation) runs on after its call is
 // cancelled, stage by stage (issue 12: a cancelled call frees its worker within 100 ms).
 //
-//   afmesh-bench-cancel --shape lblock --size 0.035 [--trials 8] [--seed 1] [--json]
+//   afmesh-bench-cancel --shape lblock --size 0.02 [--trials 8] [--seed 1] [--stage S] [--json]
 //   afmesh-bench-cancel --input front.stl --size H ...
 //
 // A first run without cancelling gives each stage's interval (the job's own timings). Then
@@ -84,7 +84,8 @@ double percentile(std::vector<double> values, double p) {
   return values[i];
 }
 
-int run(const Mesh& front, double size, int trials, unsigned seed, bool json) {
+int run(const Mesh& front, double size, int trials, unsigned seed, const std::string& only,
+        bool json) {
   VolumeParams params;
   params.size = size;
   TimedCancel never(std::nullopt);
@@ -109,7 +110,7 @@ int run(const Mesh& front, double size, int trials, unsigned seed, bool json) {
   std::mt19937 random(seed);
   int failures = 0;
   for (const StageInterval& stage : stages) {
-    if (stage.end - stage.begin < 0.02) continue;
+    if (stage.end - stage.begin < 0.02 || (!only.empty() && stage.name != only)) continue;
     std::uniform_real_distribution<double> when(stage.begin + 0.05 * (stage.end - stage.begin),
                                                 stage.end - 0.05 * (stage.end - stage.begin));
     std::vector<double> latencies_ms, unwind_ms;
@@ -162,6 +163,8 @@ int main(int argc, char** argv) {
   int trials = 8;
   unsigned seed = 1;
   bool json = false;
+  std::string only;
+  app.add_option("--stage", only, "cancel in this stage only (e.g. front)");
   app.add_option("--shape", shape, "benchmark solid (bench/bench_shapes.h)");
   app.add_option("--input", input, "a closed front from a file instead of --shape");
   app.add_option("--size", size, "element size")->check(CLI::PositiveNumber);
@@ -175,5 +178,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "afmesh-bench-cancel: %s\n", front.status().ToString().c_str());
     return 1;
   }
-  return afmesh::bench::run(*front, size, trials, seed, json);
+  return afmesh::bench::run(*front, size, trials, seed, only, json);
 }

@@ -156,10 +156,12 @@ int smallest_corner(const Tet& tet) {
 
 // Each listed tet under its smallest and second smallest vertex, by a counting sort: every face
 // of a tet has one of these two as its smallest vertex.
+// With `stop`, the filing ends early (incomplete) once stop->due() is true.
 TetsByVertex file_by_two_smallest_vertices(const std::vector<Tet>& tets,
-                                           const std::vector<Index>& tet_ids) {
+                                           const std::vector<Index>& tet_ids, CancelCheck* stop) {
   Index point_count = 0;
   for (Index id : tet_ids) {
+    if (stop != nullptr && stop->due()) return {};
     for (Index v : tets[id]) point_count = std::max(point_count, v + 1);
   }
   auto two_smallest = [&](Index id) {
@@ -172,11 +174,13 @@ TetsByVertex file_by_two_smallest_vertices(const std::vector<Tet>& tets,
   TetsByVertex filed{std::vector<Index>(point_count + 1, 0),
                      std::vector<Index>(2 * tet_ids.size())};
   for (Index id : tet_ids) {
+    if (stop != nullptr && stop->due()) return {};
     for (Index v : two_smallest(id)) ++filed.offsets[v + 1];
   }
   std::partial_sum(filed.offsets.begin(), filed.offsets.end(), filed.offsets.begin());
   std::vector<Index> next(filed.offsets.begin(), filed.offsets.end() - 1);
   for (Index id : tet_ids) {
+    if (stop != nullptr && stop->due()) return {};
     for (Index v : two_smallest(id)) filed.tets[next[v]++] = id;
   }
   return filed;
@@ -255,7 +259,8 @@ bool has_distinct_indices(const Tet& t) {
 
 void for_each_tet_face(const std::vector<Tet>& tets, const std::vector<Index>& tet_ids,
                        absl::FunctionRef<void(std::span<const FaceUse>)> visit, CancelCheck* stop) {
-  const TetsByVertex filed = file_by_two_smallest_vertices(tets, tet_ids);
+  const TetsByVertex filed = file_by_two_smallest_vertices(tets, tet_ids, stop);
+  if (stop != nullptr && stop->stopped()) return;
   // The faces whose smallest vertex is v, and one group of them as FaceUse; both reused.
   std::vector<FaceAtVertex> faces;
   std::vector<FaceUse> group;

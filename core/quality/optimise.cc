@@ -70,7 +70,8 @@ class Optimiser {
   // Laplacian smoothing over every movable point, kept where the worst tet around it improves.
   absl::Status smoothing_sweep(Progress& progress);
   // The tets under the target, worst first.
-  std::vector<BadTet> bad_tets() const;
+  // The tets under the threshold, worst first; empty once `stop` finds the call cancelled.
+  std::vector<BadTet> bad_tets(CancelCheck& stop) const;
   // One round over `work` (sorted); the tets to look at in the next round are appended to
   // `next`. Returns CANCELLED when asked to stop.
   absl::Status round(const std::vector<BadTet>& work, std::vector<BadTet>& next, bool& changed,
@@ -110,16 +111,17 @@ class Optimiser {
 
 absl::Status Optimiser::smoothing_sweep(Progress& progress) {
   for (Index v = fixed_; v < static_cast<Index>(c_.points().size()); ++v) {
-    if ((v & 4095) == 0 && progress.cancelled())
+    if ((v & 511) == 0 && progress.cancelled())
       return absl::CancelledError("mesh optimisation cancelled");
     stats.points_moved += smooth_point(c_, v, fixed_, /*climb_too=*/false, smoothing_);
   }
   return absl::OkStatus();
 }
 
-std::vector<BadTet> Optimiser::bad_tets() const {
+std::vector<BadTet> Optimiser::bad_tets(CancelCheck& stop) const {
   std::vector<BadTet> bad;
   for (Index t = 0; t < c_.slots(); ++t) {
+    if (stop.due()) return {};
     if (!c_.alive(t)) continue;
     const double q = quality(t);
     if (q < threshold_) bad.push_back({q, t});
@@ -242,7 +244,9 @@ absl::StatusOr<OptimiseStats> optimise_tets(Mesh& mesh, Index fixed_points,
   absl::Status status;
   for (int sweep = 0; sweep < params.smoothing_sweeps && status.ok(); ++sweep)
     status = opt.smoothing_sweep(progress);
-  std::vector<BadTet> work = opt.bad_tets(), next;
+  CancelCheck stop(progress);
+  std::vector<BadTet> work = status.ok() ? opt.bad_tets(stop) : std::vector<BadTet>{}, next;
+  if (status.ok() && stop.stopped()) status = absl::CancelledError("mesh optimisation cancelled");
   opt.stats.bad_tets = static_cast<std::int64_t>(work.size());
   for (int pass = 0; pass < params.passes && status.ok() && !work.empty(); ++pass) {
     bool changed = false;

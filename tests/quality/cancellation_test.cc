@@ -107,13 +107,16 @@ TEST(Cancellation, FaceAndPairVisitsEndEarlyOnceStopped) {
   for (Index t = 0; t < static_cast<Index>(ids.size()); ++t) ids[t] = t;
   std::int64_t all = 0, some = 0;
   for_each_tet_face(grid().tets, ids, [&](std::span<const FaceUse>) { ++all; });
-  CancelAfter progress(0);
-  CancelCheck stop(progress, 64);
+  // Filing the 24,576 tets takes three passes, 1152 looks at one per 64 tets; 8 more looks go
+  // by 576 of the 4913 points, which own about a third of the faces (a face is grouped at its
+  // smallest point, and the low indices are the smallest of many faces).
+  CancelAfter late(1160);
+  CancelCheck stop(late, 64);
   for_each_tet_face(
       grid().tets, ids, [&](std::span<const FaceUse>) { ++some; }, &stop);
   EXPECT_TRUE(stop.stopped());
   EXPECT_GT(some, 0);
-  EXPECT_LT(some, all / 4);
+  EXPECT_LT(some, all / 2);
 
   const Mesh sphere = sphere_surface({0, 0, 0}, 1.0, 0.05);
   std::vector<Box> boxes;
@@ -121,6 +124,7 @@ TEST(Cancellation, FaceAndPairVisitsEndEarlyOnceStopped) {
   const AabbTree tree(std::move(boxes));
   std::int64_t pairs = 0, pairs_until_stop = 0;
   tree.for_each_overlapping_pair([&](Index, Index) { ++pairs; });
+  CancelAfter progress(0);
   CancelCheck tree_stop(progress, 16);
   tree.for_each_overlapping_pair([&](Index, Index) { ++pairs_until_stop; }, &tree_stop);
   EXPECT_TRUE(tree_stop.stopped());
