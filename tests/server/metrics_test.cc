@@ -31,6 +31,7 @@
 #include "grpcpp/grpcpp.h"
 #include "gtest/gtest.h"
 #include "server/server.h"
+#include "tests/server/request_support.h"
 #include "tests/server/cli_test_support.h"
 
 namespace afmesh::server {
@@ -152,24 +153,7 @@ class Scrape {
 // ---------------------------------------------------------------------------------------------
 // Requests and fake jobs.
 
-// The unit corner tetrahedron's boundary (4 points, 4 triangles) at size `size`.
-std::vector<Request> tetrahedron_requests(double size = 0.5) {
-  Request header;
-  header.mutable_header()->mutable_options()->mutable_size()->set_max_size(size);
-  header.mutable_header()->mutable_options()->mutable_size()->set_growth(1.2);
-  header.mutable_header()->set_point_count(4);
-  header.mutable_header()->set_triangle_count(4);
-  Request points;
-  for (const double c : {0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1.}) {
-    points.mutable_points()->add_xyz(c);
-  }
-  Request triangles;
-  for (const int i : {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}) {
-    triangles.mutable_triangles()->add_indices(i);
-  }
-  for (int t = 0; t < 4; ++t) triangles.mutable_triangles()->add_tags(0);
-  return {header, points, triangles};
-}
+using afmesh::testing::tetrahedron_requests;
 
 std::int64_t bytes_of(const std::vector<Request>& requests) {
   std::int64_t bytes = 0;

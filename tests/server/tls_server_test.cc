@@ -22,6 +22,7 @@
 #include "server/credentials.h"
 #include "server/listen_note.h"
 #include "server/server.h"
+#include "tests/server/request_support.h"
 #include "tests/server/test_certificates.h"
 
 namespace afmesh::server {
@@ -37,24 +38,7 @@ using Response = v1::MeshVolumeResponse;
 
 constexpr const char* kToken = "afmesh-test-token-7f3a9c";
 
-// The boundary of the unit corner tetrahedron: header, points, triangles.
-std::vector<Request> tetrahedron_requests() {
-  Request header;
-  header.mutable_header()->mutable_options()->mutable_size()->set_max_size(0.5);
-  header.mutable_header()->mutable_options()->mutable_size()->set_growth(1.2);
-  header.mutable_header()->set_point_count(4);
-  header.mutable_header()->set_triangle_count(4);
-  Request points;
-  for (const double c : {0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1.}) {
-    points.mutable_points()->add_xyz(c);
-  }
-  Request triangles;
-  for (const int i : {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}) {
-    triangles.mutable_triangles()->add_indices(i);
-  }
-  for (int t = 0; t < 4; ++t) triangles.mutable_triangles()->add_tags(0);
-  return {header, points, triangles};
-}
+using afmesh::testing::tetrahedron_requests;
 
 // Counts its runs and meshes the tetrahedron as one tet.
 VolumeJob counting_job(std::shared_ptr<std::atomic<int>> runs) {

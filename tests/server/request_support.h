@@ -1,0 +1,30 @@
+// MeshVolume requests the in-process server tests send.
+#pragma once
+
+#include <vector>
+
+#include "afmesh/v1/mesher.pb.h"
+
+namespace afmesh::testing {
+
+// The unit corner tetrahedron's boundary (4 points, 4 triangles of tag 0) at size `size`,
+// growth 1.2: header, points, triangles.
+inline std::vector<v1::MeshVolumeRequest> tetrahedron_requests(double size = 0.5) {
+  v1::MeshVolumeRequest header;
+  header.mutable_header()->mutable_options()->mutable_size()->set_max_size(size);
+  header.mutable_header()->mutable_options()->mutable_size()->set_growth(1.2);
+  header.mutable_header()->set_point_count(4);
+  header.mutable_header()->set_triangle_count(4);
+  v1::MeshVolumeRequest points;
+  for (const double c : {0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1.}) {
+    points.mutable_points()->add_xyz(c);
+  }
+  v1::MeshVolumeRequest triangles;
+  for (const int i : {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}) {
+    triangles.mutable_triangles()->add_indices(i);
+  }
+  for (int t = 0; t < 4; ++t) triangles.mutable_triangles()->add_tags(0);
+  return {header, points, triangles};
+}
+
+}  // namespace afmesh::testing
