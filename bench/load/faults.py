@@ -101,13 +101,14 @@ def check(args, m, mix, checks):
     peak_mib = (m.rss_kib["peak"] - before) / 1024
     checks.add(f"peak RSS within the memory budget ({args.memory_budget_mb} MiB) over before",
                peak_mib <= args.memory_budget_mb, f"+{peak_mib:.1f} MiB")
-    # A slow reader's call, in the server's log: the only OK calls with its tet count, besides
-    # the one sent alone.
+    # A slow reader's call, in the server's log: an OK call with its tet count open at least the
+    # pause. Other calls of that front (the one sent alone) may take as long on a slow machine,
+    # so at least one such call per slow reader.
     slow = sum(r.kind == "slow-reader" for r in m.results)
     held = sum(c["code"] == "OK" and int(c["tets_out"]) == m.slow_reader_tets
                and float(c["seconds"]) >= args.slow_pause for c in m.logged)
     checks.add("the server waited for each slow reader (its call open >= the pause)",
-               held == slow, f"{held} of {slow}")
+               held >= slow, f"{held} for {slow}")
 
 
 def faults(args, workdir, checks):
