@@ -33,6 +33,7 @@
 #include "proto/size_spec_convert.h"
 #include "server/server.h"
 #include "server/volume_output.h"
+#include "tests/server/request_support.h"
 
 namespace afmesh::server {
 namespace {
@@ -47,14 +48,7 @@ constexpr std::size_t kMessageCap = 1 << 20;  // bytes of payload per message
 // ---------------------------------------------------------------------------------------------
 // Meshes and requests.
 
-// The boundary of the unit corner tetrahedron, outward-oriented: 4 points, 4 triangles.
-Mesh tetrahedron_front() {
-  Mesh front;
-  front.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  front.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-  front.triangle_tags = {1, 2, 3, 4};
-  return front;
-}
+using afmesh::testing::tetrahedron_front;
 
 // A mesh large enough to need several slices of each kind, with coordinates that only survive
 // a bit-exact transfer (thirds, -0.0, subnormals, extremes) and negative tags (the longest

@@ -1,11 +1,22 @@
-// MeshVolume requests the in-process server tests send.
+// The fronts and MeshVolume requests the in-process server tests send.
 #pragma once
 
 #include <vector>
 
 #include "afmesh/v1/mesher.pb.h"
+#include "core/mesh/mesh.h"
 
 namespace afmesh::testing {
+
+// The boundary of the unit corner tetrahedron, outward-oriented: 4 points, 4 triangles tagged
+// 1 to 4.
+inline Mesh tetrahedron_front() {
+  Mesh front;
+  front.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  front.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  front.triangle_tags = {1, 2, 3, 4};
+  return front;
+}
 
 // The unit corner tetrahedron's boundary (4 points, 4 triangles of tag 0) at size `size`,
 // growth 1.2: header, points, triangles.

@@ -13,22 +13,17 @@
 #include "grpcpp/generic/async_generic_service.h"
 #include "grpcpp/grpcpp.h"
 #include "server/server.h"
+#include "tests/server/request_support.h"
 
 namespace afmesh::cli {
 namespace {
 
-Mesh tetrahedron() {
-  Mesh front;
-  front.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  front.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-  front.triangle_tags = {7, 7, 7, 7};
-  return front;
-}
+using afmesh::testing::tetrahedron_front;
 
 absl::Status call(const std::string& address) {
   VolumeCallOptions options;
   options.size = 1.0;
-  return call_mesh_volume(address, tetrahedron(), options, [](std::string_view, double) {},
+  return call_mesh_volume(address, tetrahedron_front(), options, [](std::string_view, double) {},
                           [](std::string_view) {})
       .status();
 }
