@@ -21,8 +21,8 @@ FrontBins::FrontBins(const Box& domain, double cell_size, std::int64_t max_cells
   }
   inverse_cell_ = 1.0 / cell_;
   const auto n = static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]);
-  point_cells_.resize(n);
-  face_cells_.resize(n);
+  point_cells_ = CellLists<Index, 15>(n);
+  face_cells_ = CellLists<FaceEntry, kFaceRun>(n);
 }
 
 std::array<std::uint32_t, 2> FrontBins::cell_words(const CellBox& ends, const CellRange& r,
@@ -41,23 +41,12 @@ std::array<std::uint32_t, 2> FrontBins::cell_words(const CellBox& ends, const Ce
   return {lo, hi};
 }
 
-void FrontBins::erase_from(std::vector<Index>& cell, Index item) {
-  auto it = std::find(cell.begin(), cell.end(), item);
-  if (it != cell.end()) {
-    *it = cell.back();
-    cell.pop_back();
-  }
-}
-
 void FrontBins::insert_point(Index p, const Point& x) {
-  point_cells_[cell_index(cell_coord(x[0], 0), cell_coord(x[1], 1), cell_coord(x[2], 2))]
-      .push_back(p);
+  point_cells_.push_back(point_cell(x), p);
 }
 
 void FrontBins::erase_point(Index p, const Point& x) {
-  erase_from(point_cells_[cell_index(cell_coord(x[0], 0), cell_coord(x[1], 1),
-                                     cell_coord(x[2], 2))],
-             p);
+  point_cells_.erase_first(point_cell(x), [p](Index q) { return q == p; });
 }
 
 void FrontBins::insert_face(Index f, const Box& box) {
@@ -66,18 +55,14 @@ void FrontBins::insert_face(Index f, const Box& box) {
   span_of(box, r, ends);
   for_each_cell(r, [&](std::int64_t c, std::int64_t i, std::int64_t j, std::int64_t k) {
     const auto [lo, hi] = cell_words(ends, r, i, j, k);
-    face_cells_[c].push_back({lo, hi, f});
+    face_cells_.push_back(static_cast<std::size_t>(c), {lo, hi, f});
   });
 }
 
 void FrontBins::erase_face(Index f, const Box& box) {
   for_each_cell(cells_of(box), [&](std::int64_t c, std::int64_t, std::int64_t, std::int64_t) {
-    std::vector<FaceEntry>& cell = face_cells_[c];
-    auto it = std::find_if(cell.begin(), cell.end(), [f](const FaceEntry& e) { return e.face == f; });
-    if (it != cell.end()) {
-      *it = cell.back();
-      cell.pop_back();
-    }
+    face_cells_.erase_first(static_cast<std::size_t>(c),
+                            [f](const FaceEntry& e) { return e.face == f; });
   });
 }
 

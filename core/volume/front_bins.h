@@ -20,6 +20,7 @@
 
 #include "core/mesh/mesh.h"
 #include "core/spatial/box.h"
+#include "core/spatial/cell_lists.h"
 
 namespace afmesh {
 
@@ -48,7 +49,7 @@ class FrontBins {
   template <typename Fn>
   void for_each_point_near(const Box& box, Fn&& fn) const {
     for_each_cell(cells_of(box), [&](std::int64_t c, std::int64_t, std::int64_t, std::int64_t) {
-      for (Index p : point_cells_[c]) fn(p);
+      point_cells_.for_each(static_cast<std::size_t>(c), fn);
     });
   }
   // Appends the points of for_each_point_near to `out`.
@@ -82,6 +83,11 @@ class FrontBins {
   std::int64_t cell_index(std::int64_t i, std::int64_t j, std::int64_t k) const {
     return (k * dims_[1] + j) * dims_[0] + i;
   }
+  // The cell holding point x.
+  std::size_t point_cell(const Point& x) const {
+    return static_cast<std::size_t>(
+        cell_index(cell_coord(x[0], 0), cell_coord(x[1], 1), cell_coord(x[2], 2)));
+  }
   // Calls fn(cell index, i, j, k) for each cell of the range.
   template <typename Fn>
   void for_each_cell(const CellRange& r, Fn&& fn) const {
@@ -89,13 +95,12 @@ class FrontBins {
       for (std::int64_t j = r[1][0]; j <= r[1][1]; ++j)
         for (std::int64_t i = r[0][0]; i <= r[0][1]; ++i) fn(cell_index(i, j, k), i, j, k);
   }
-  static void erase_from(std::vector<Index>& cell, Index item);
-
   Point origin_{};
   double cell_ = 1.0;
   double inverse_cell_ = 1.0;  // 1 / cell_: cell coordinates by multiplication
   std::array<std::int64_t, 3> dims_{1, 1, 1};
-  std::vector<std::vector<Index>> point_cells_;
+  // The cells' lists in flat storage (cell_lists.h), chunks of 64 and 256 bytes.
+  CellLists<Index, 15> point_cells_;
   // A face's entry in a cell: its id and the part of its bounding box inside the cell, in units
   // of 1/255 of the cell from the cell's low corner, rounded outward, packed for a branch-free
   // overlap test: three 9-bit lanes (x, y, z) per word,
@@ -108,6 +113,7 @@ class FrontBins {
     std::uint32_t lo, hi;
     Index face;
   };
+  static constexpr std::size_t kFaceRun = 21;  // face entries per chunk of face_cells_
   static constexpr std::uint32_t kLanes = 0x07FFFFFF;  // the three 9-bit lanes
   static constexpr std::uint32_t kTops = (1u << 8) | (1u << 17) | (1u << 26);
   static constexpr std::uint32_t kStartsBefore = 1u << 27;  // shifted by the axis
@@ -131,7 +137,7 @@ class FrontBins {
   // starts-before bits.
   static std::array<std::uint32_t, 2> cell_words(const CellBox& ends, const CellRange& r,
                                                  std::int64_t i, std::int64_t j, std::int64_t k);
-  std::vector<std::vector<FaceEntry>> face_cells_;
+  CellLists<FaceEntry, kFaceRun> face_cells_;
 };
 
 // A face's entry passes in cell (i, j, k) of the query's range when, on each axis, the query's
@@ -145,21 +151,19 @@ bool FrontBins::find_face_near(const Box& box, Fn&& fn) const {
   CellRange r;
   CellBox ends;
   span_of(box, r, ends);
-  constexpr std::size_t kChunk = 64;
-  Index passed[kChunk];
+  Index passed[kFaceRun];
   for (std::int64_t k = r[2][0]; k <= r[2][1]; ++k) {
     for (std::int64_t j = r[1][0]; j <= r[1][1]; ++j) {
       for (std::int64_t i = r[0][0]; i <= r[0][1]; ++i) {
-        const std::vector<FaceEntry>& cell = face_cells_[cell_index(i, j, k)];
-        if (cell.empty()) continue;
+        const auto c = static_cast<std::size_t>(cell_index(i, j, k));
+        if (face_cells_.empty(c)) continue;
         const auto [q_lo, q_hi] = cell_words(ends, r, i, j, k);
         const std::uint32_t query_before = q_lo & ~kLanes;  // axes where the query starts before
         const std::uint32_t q_low_ends = q_lo & kLanes;
-        for (std::size_t start = 0; start < cell.size(); start += kChunk) {
-          const std::size_t end = std::min(cell.size(), start + kChunk);
+        const bool found = face_cells_.find_run(c, [&](const FaceEntry* run, std::size_t size) {
           std::size_t n = 0;
-          for (std::size_t e = start; e < end; ++e) {
-            const FaceEntry& entry = cell[e];
+          for (std::size_t e = 0; e < size; ++e) {
+            const FaceEntry& entry = run[e];
             const std::uint32_t overlap =
                 (q_hi - (entry.lo & kLanes)) & (entry.hi - q_low_ends) & kTops;
             passed[n] = entry.face;
@@ -167,7 +171,9 @@ bool FrontBins::find_face_near(const Box& box, Fn&& fn) const {
           }
           for (std::size_t m = 0; m < n; ++m)
             if (fn(passed[m])) return true;
-        }
+          return false;
+        });
+        if (found) return true;
       }
     }
   }

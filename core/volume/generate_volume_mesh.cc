@@ -315,13 +315,17 @@ absl::Status stuck_report(const MesherState& s, const Mesh& input, Index face,
 
 
 // Drops deleted tets and points no tet uses any more; input points keep their indices.
-Mesh compact_result(const MesherState& s, const Mesh& input) {
+// CANCELLED when the call is cancelled: a 2M-tet compaction takes ~100 ms, too long to finish
+// for a caller that no longer waits (issue 12, part 3).
+absl::StatusOr<Mesh> compact_result(const MesherState& s, const Mesh& input, Progress& progress) {
+  CancelCheck cancel(progress);
   Mesh out;
   std::vector<Index> new_index(s.points.size(), kInvalidIndex);
   for (Index p = 0; p < s.input_points; ++p) new_index[p] = p;
   Index next = s.input_points;
   out.tets.reserve(static_cast<std::size_t>(s.live_tets));
   for (const Tet& t : s.tets) {
+    if (cancel.due()) return absl::CancelledError("volume meshing cancelled");
     if (t[0] == kInvalidIndex) continue;
     Tet u;
     for (int k = 0; k < 4; ++k) {
@@ -396,7 +400,8 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
         "the front queue ran empty with %d faces left on the front", s.front.size()));
   clock.lap("front");
 
-  Mesh mesh = compact_result(s, front);
+  absl::StatusOr<Mesh> mesh = compact_result(s, front, progress);
+  if (!mesh.ok()) return mesh.status();
   clock.lap("compact");
   return mesh;
 }
