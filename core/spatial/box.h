@@ -52,6 +52,13 @@ inline void enclose(Box& box, const Box& b) {
 // The smallest box containing triangle t of `points` (N×3). Indices must be in range.
 Box triangle_box(const std::vector<Point>& points, const Triangle& t);
 
+// The smallest box containing tet t of `points`.
+inline Box tet_box(const std::vector<Point>& points, const Tet& t) {
+  Box b{points[t[0]], points[t[0]]};
+  for (int k = 1; k < 4; ++k) enclose(b, points[t[k]]);
+  return b;
+}
+
 // The boxes of `triangles` (M×3) over `points` (N×3): M boxes, in triangle order.
 // Indices must be in range.
 std::vector<Box> triangle_boxes(const std::vector<Point>& points,

@@ -66,9 +66,9 @@ bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictne
               (point_visible(s, env, q) && squared_norm(sub(s.points[q], x)) < spacing * spacing);
   });
   if (crowded) return false;
-  const bool near_a_face = s.front.bins().find_face_near(cube_around(x, clearance), [&](Index g) {
+  const bool near_a_face = s.front.bins().find_item_near(cube_around(x, clearance), [&](Index g) {
     if (!face_visible(s, env, g)) return false;
-    const Triangle& w = s.front.face(g).v;
+    const Triangle& w = s.front.item(g).v;
     return squared_distance_to_triangle(x, s.points[w[0]], s.points[w[1]], s.points[w[2]]) <
            clearance * clearance;
   });
@@ -146,8 +146,8 @@ Point ideal_point(const MesherState& s, const Triangle& v, double d) {
 
 void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
                        const Strictness& rules) {
-  const Triangle v = s.front.face(face).v;
-  const Index env = s.front.face(face).env;
+  const Triangle v = s.front.item(face).v;
+  const Index env = s.front.item(face).env;
   const Point& a = s.points[v[0]];
   const Point& b = s.points[v[1]];
   const Point& c = s.points[v[2]];

@@ -80,7 +80,7 @@ class TetPlanes {
 bool side_is_a_meshed_face(MesherState& s, const Triangle (&sides)[3], Index p) {
   std::vector<Index>& around = s.tets_around;
   for (const Triangle& side : sides) {
-    if (s.front.find(side[0], side[2], side[1])) continue;  // the face this side closes
+    if (s.front.find({side[0], side[2], side[1]})) continue;  // the face this side closes
     around.clear();
     s.incidence.tets_of(s.tets, p, around);
     for (const Index t : around) {
@@ -93,8 +93,8 @@ bool side_is_a_meshed_face(MesherState& s, const Triangle (&sides)[3], Index p) 
 }  // namespace
 
 bool element_crosses_front(MesherState& s, Index face, Index p) {
-  const Triangle v = s.front.face(face).v;
-  const Index env = s.front.face(face).env;
+  const Triangle v = s.front.item(face).v;
+  const Index env = s.front.item(face).env;
   const std::vector<Point>& x = s.points;
   const Tet tet{v[0], v[1], v[2], p};
   const Box box = tet_box(x, tet);
@@ -108,7 +108,7 @@ bool element_crosses_front(MesherState& s, Index face, Index p) {
   // Does the element meet front face g improperly?
   const auto crosses_face = [&](Index g) {
     if (g == face) return false;
-    const Triangle& w = s.front.face(g).v;
+    const Triangle& w = s.front.item(g).v;
     // A front face on p and two corners of `face` is the face one side of the element closes.
     // It must look at the element (F10), whatever its environment: a face of another
     // environment on the element's own points (three ridge points, say, where the rim of a
@@ -152,7 +152,7 @@ bool element_crosses_front(MesherState& s, Index face, Index p) {
     }
     return false;
   };
-  if (s.front.bins().find_face_near(box, crosses_face)) return true;
+  if (s.front.bins().find_item_near(box, crosses_face)) return true;
 
   const bool positive = planes.positive();
   bool contains_point = false;

@@ -37,14 +37,14 @@ Point pocket_centre(const MesherState& s, const std::vector<Index>& pocket) {
   Point c{0, 0, 0};
   double count = 0;
   for (Index f : pocket)
-    for (Index p : s.front.face(f).v) {
+    for (Index p : s.front.item(f).v) {
       c = add(c, s.points[p]);
       count += 1;
     }
   c = scale(c, 1.0 / count);
   double step = 0;
   for (Index f : pocket) {
-    const Triangle& v = s.front.face(f).v;
+    const Triangle& v = s.front.item(f).v;
     step = std::max(step, norm(sub(s.points[v[0]], c)));
   }
   step *= 0.25;
@@ -53,7 +53,7 @@ Point pocket_centre(const MesherState& s, const std::vector<Index>& pocket) {
     Point direction{0, 0, 0};
     bool first = true;
     for (Index f : pocket) {
-      const Triangle& v = s.front.face(f).v;
+      const Triangle& v = s.front.item(f).v;
       const Point& a = s.points[v[0]];
       const Point& b = s.points[v[1]];
       const Point& cc = s.points[v[2]];
@@ -79,13 +79,13 @@ bool collect_pocket(MesherState& s, Index face, std::size_t max_faces,
   pocket.push_back(face);
   std::vector<Index>& near = s.near_faces;
   for (std::size_t i = 0; i < pocket.size(); ++i) {
-    const Triangle v = s.front.face(pocket[i]).v;
+    const Triangle v = s.front.item(pocket[i]).v;
     for (int e = 0; e < 3; ++e) {
       const Index a = v[e], b = v[(e + 1) % 3];
       near.clear();
-      s.front.bins().faces_near(segment_box(s.points[a], s.points[b]), near);
+      s.front.bins().items_near(segment_box(s.points[a], s.points[b]), near);
       for (Index g : near) {
-        const Triangle& w = s.front.face(g).v;
+        const Triangle& w = s.front.item(g).v;
         if (!has_corner(w, a) || !has_corner(w, b)) continue;
         if (std::find(pocket.begin(), pocket.end(), g) != pocket.end()) continue;
         if (pocket.size() == max_faces) return false;
@@ -104,13 +104,13 @@ std::int64_t fill_pocket(MesherState& s, Index face, std::size_t max_faces) {
   // The kernel point: a new point at the pocket's centre, else one of its corners.
   std::vector<Index> corners;
   for (Index f : pocket)
-    for (Index p : s.front.face(f).v) corners.push_back(p);
+    for (Index p : s.front.item(f).v) corners.push_back(p);
   std::sort(corners.begin(), corners.end());
   corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
 
   auto sees_all = [&](Index p) {
     for (Index f : pocket) {
-      const Triangle& v = s.front.face(f).v;
+      const Triangle& v = s.front.item(f).v;
       if (has_corner(v, p)) continue;
       if (orient3d(s.points[v[0]], s.points[v[1]], s.points[v[2]], s.points[p]) <= 0)
         return false;
@@ -147,11 +147,11 @@ std::int64_t fill_pocket(MesherState& s, Index face, std::size_t max_faces) {
   // the front (F7.3) exactly as in the normal loop, so the mesh stays valid whatever happens.
   // Adding an element frees and reuses face slots: remember which face each slot held.
   std::vector<std::uint32_t> stamps;
-  for (Index f : pocket) stamps.push_back(s.front.face(f).stamp);
+  for (Index f : pocket) stamps.push_back(s.front.item(f).stamp);
   std::int64_t added = 0;
   for (std::size_t i = 0; i < pocket.size(); ++i) {
     const Index f = pocket[i];
-    const FrontFace& ff = s.front.face(f);
+    const FrontItem<3>& ff = s.front.item(f);
     if (!ff.alive || ff.stamp != stamps[i] || has_corner(ff.v, kernel)) continue;
     if (element_crosses_front(s, f, kernel)) continue;
     add_element(s, f, kernel);

@@ -28,7 +28,7 @@ inline bool point_visible(const MesherState& s, Index env, Index q) {
 // §2 (b): only faces of the face's own environment or of none enter its checks.
 inline bool face_visible(const MesherState& s, Index env, Index g) {
   if (env <= 0) return true;
-  const Index e = s.front.face(g).env;
+  const Index e = s.front.item(g).env;
   return e == 0 || e == env;
 }
 // §2: a new face takes LFACR = max(0, LPOCR of its three points).

@@ -97,8 +97,8 @@ absl::Status check_face_environments(const Mesh& front, const std::vector<std::i
 // F7: tries the candidates of the face in order; adds the first element that does not cross the
 // front (F8–F10). Returns false when none fits.
 bool delete_face(MesherState& s, Index face) {
-  const Triangle v = s.front.face(face).v;
-  const volume::Strictness rules = volume::strictness_for(s.front.face(face).attempts);
+  const Triangle v = s.front.item(face).v;
+  const volume::Strictness rules = volume::strictness_for(s.front.item(face).attempts);
   const double target = volume::target_size_for_face(s, v);           // F5/F9, eq. 15
   const double d = volume::element_size_for_target(s, v, target);
   // A face much smaller than the size wanted there (a sliver of front left between elements)
@@ -112,7 +112,7 @@ bool delete_face(MesherState& s, Index face) {
     Index p = c.point;
     if (p == kInvalidIndex) {  // a new point: eq. 15 sets its size
       if (!volume::new_point_is_clear(s, c.position, c.clearance_size, rules,
-                                      s.front.face(face).env, min_spacing))
+                                      s.front.item(face).env, min_spacing))
         continue;
       p = static_cast<Index>(s.points.size());
       s.points.push_back(c.position);
@@ -200,10 +200,10 @@ class RepairCounts {
 // bounds from one kernel point; failing that, re-open the elements around it, one ring more each
 // time the same region needs it again.
 absl::Status back_off(MesherState& s, const Mesh& input, Index face, RepairCounts& repairs) {
-  const Triangle v = s.front.face(face).v;
-  const std::uint32_t stamp = s.front.face(face).stamp;
+  const Triangle v = s.front.item(face).v;
+  const std::uint32_t stamp = s.front.item(face).stamp;
   if (volume::fill_pocket(s, face, kMaxPocketFaces) > 0) {
-    const FrontFace& f = s.front.face(face);
+    const FrontItem<3>& f = s.front.item(face);
     if (f.alive && f.stamp == stamp) s.front.requeue(face, volume::queue_size_for_face(s, v));
     return absl::OkStatus();
   }
@@ -222,26 +222,26 @@ absl::Status back_off(MesherState& s, const Mesh& input, Index face, RepairCount
   }
   ++count;
   volume::open_cavity(s, face, rings);
-  const FrontFace& f = s.front.face(face);
+  const FrontItem<3>& f = s.front.item(face);
   if (f.alive && f.stamp == stamp) s.front.requeue(face, volume::queue_size_for_face(s, v));
   return absl::OkStatus();
 }
 
 absl::Status overlap_report(const MesherState& s, Index face, double domain_volume) {
-  const Triangle v = s.front.face(face).v;
+  const Triangle v = s.front.item(face).v;
   const Point& x = s.points[v[0]];
   return absl::FailedPreconditionError(absl::StrFormat(
       "the elements overlap: their volume %g exceeds the enclosed volume %g after %d tets; the "
       "fronts passed through each other near (%g, %g, %g), face environment %d. With crossing "
       "environments, give the faces on each side of a thin region one environment (paper §2)",
-      s.meshed_volume, domain_volume, s.live_tets, x[0], x[1], x[2], s.front.face(face).env));
+      s.meshed_volume, domain_volume, s.live_tets, x[0], x[1], x[2], s.front.item(face).env));
 }
 
 // FAILED_PRECONDITION: `what` went wrong, then the face being worked on, where it is, and what
 // the input looks like there (describe_input_near_face).
 absl::Status failure_at_face(const MesherState& s, const Mesh& input, Index face,
                              const std::string& what) {
-  const Triangle v = s.front.face(face).v;
+  const Triangle v = s.front.item(face).v;
   const Point& x = s.points[v[0]];
   return absl::FailedPreconditionError(
       absl::StrCat(what,
@@ -388,7 +388,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
       progress.report("front", std::min(0.99, static_cast<double>(s.live_tets) / expected_tets));
     }
     if (delete_face(s, *face)) continue;
-    const FrontFace& f = s.front.face(*face);
+    const FrontItem<3>& f = s.front.item(*face);
     if (f.attempts + 1 < kAttemptsBeforeBackOff) {
       s.front.defer(*face, volume::queue_size_for_face(s, f.v));
       continue;

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/front/advancing_front.h"
 #include "core/mesh/mesh.h"
 #include "core/sizing/size_field.h"
-#include "core/volume/front.h"
 #include "core/volume/generate_volume_mesh.h"
 
 namespace afmesh::volume {
@@ -48,14 +48,14 @@ struct MesherState {
   std::vector<Point> points;
   std::vector<double> point_size;  // delta of each point (eq. 15)
   // Crossing environments (paper §2): LPOCR per point (0 none, -1 on several, new points 0);
-  // empty when the input has none. The environment of a front face is FrontFace::env (LFACR).
+  // empty when the input has none. The environment of a front face is FrontItem::env (LFACR).
   std::vector<std::int32_t> point_env;
   std::vector<Tet> tets;           // a deleted tet has tet[0] == kInvalidIndex
   std::int64_t live_tets = 0;
   // Sum of the live tets' volumes (a measure, for the guard against overlapping elements).
   double meshed_volume = 0;
   TetIncidence incidence;
-  Front front;
+  AdvancingFront<3> front;  // the faces of the volume front
 
   // Scratch buffers reused for every face: no allocation per element in the loop.
   std::vector<Index> near_faces;

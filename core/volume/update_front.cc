@@ -20,7 +20,7 @@ void delete_tet(MesherState& s, Index t) {
   const Triangle faces[4] = {{k[0], k[2], k[1]}, {k[0], k[1], k[3]}, {k[1], k[2], k[3]},
                              {k[0], k[3], k[2]}};
   for (const Triangle& f : faces) {
-    if (auto g = s.front.find(f[0], f[1], f[2])) {  // a front face looking out of t
+    if (auto g = s.front.find(f)) {  // a front face looking out of t
       s.front.remove(*g);
     } else {
       const Triangle inward{f[0], f[2], f[1]};
@@ -36,7 +36,7 @@ void delete_tet(MesherState& s, Index t) {
 }  // namespace
 
 void add_element(MesherState& s, Index face, Index p) {
-  const Triangle v = s.front.face(face).v;
+  const Triangle v = s.front.item(face).v;
   const Index t = static_cast<Index>(s.tets.size());
   s.tets.push_back({v[0], v[1], v[2], p});  // F8
   s.incidence.add(s.tets, t);
@@ -48,7 +48,7 @@ void add_element(MesherState& s, Index face, Index p) {
     // F10: the element closes the front face facing it (the side reversed). A face with the
     // side's own orientation would look into the same space as the element: that is another
     // layer's face where two sides of a thin region cross (paper §2), not one to close.
-    if (auto g = s.front.find(side[0], side[2], side[1])) {
+    if (auto g = s.front.find({side[0], side[2], side[1]})) {
       s.front.remove(*g);
     } else {
       s.front.add(side, queue_size_for_face(s, side), face_environment(s, side));  // F8, F9
@@ -59,7 +59,7 @@ void add_element(MesherState& s, Index face, Index p) {
 std::int64_t open_cavity(MesherState& s, Index face, int rings) {
   std::vector<Index>& cavity = s.cavity;
   cavity.clear();
-  for (Index p : s.front.face(face).v) s.incidence.tets_of(s.tets, p, cavity);
+  for (Index p : s.front.item(face).v) s.incidence.tets_of(s.tets, p, cavity);
   for (int ring = 1; ring < rings; ++ring) {
     std::sort(cavity.begin(), cavity.end());
     cavity.erase(std::unique(cavity.begin(), cavity.end()), cavity.end());

@@ -1,15 +1,17 @@
-// Bins over the active front (the search structure of steps F7.2 and F7.3).
+// Bins over the active front (the search structure of steps F7.2 and F7.3 of the volume front,
+// S5 and S6 of the surface front).
 //
-// Only points and faces that are on the current front live here; they leave when they leave
-// the front, so a query visits O(1) cells holding O(1) items each and the front loop stays
-// O(N log N) overall. The bins are a dense uniform grid over the front's bounding box; a point
-// sits in the one cell containing it, a face in every cell its bounding box overlaps, so a box
-// query finds every face whose bounding box meets the query box (never a false negative). Each cell
-// keeps, beside each face id, the part of the face's box inside the cell in 1/255ths of the cell
-// (rounded outward), so a face query filters by box overlap while it walks the cell's memory in
-// order and returns few faces that miss the box. A query lists a face only in the lowest cell
-// (per axis) shared by the face's and the query's cell ranges, where their boxes' overlap begins,
-// so it lists each face once without marking what it listed.
+// Only points and items (faces of the volume front, sides of the surface front) that are on
+// the current front live here; they leave when they leave the front, so a query visits O(1)
+// cells holding O(1) entries each and the front loop stays O(N log N) overall. The bins are a
+// dense uniform grid over the front's bounding box; a point sits in the one cell containing it,
+// an item in every cell its bounding box overlaps, so a box query finds every item whose
+// bounding box meets the query box (never a false negative). Each cell keeps, beside each item
+// id, the part of the item's box inside the cell in 1/255ths of the cell (rounded outward), so
+// an item query filters by box overlap while it walks the cell's memory in order and returns
+// few items that miss the box. A query lists an item only in the lowest cell (per axis) shared
+// by the item's and the query's cell ranges, where their boxes' overlap begins, so it lists each
+// item once without marking what it listed.
 #pragma once
 
 #include <algorithm>
@@ -24,13 +26,6 @@
 
 namespace afmesh {
 
-// The smallest box containing tet t of `points`.
-inline Box tet_box(const std::vector<Point>& points, const Tet& t) {
-  Box b{points[t[0]], points[t[0]]};
-  for (int k = 1; k < 4; ++k) enclose(b, points[t[k]]);
-  return b;
-}
-
 class FrontBins {
  public:
   // `domain` bounds every point that will ever be inserted (points outside are clamped into the
@@ -40,8 +35,8 @@ class FrontBins {
 
   void insert_point(Index p, const Point& x);
   void erase_point(Index p, const Point& x);
-  void insert_face(Index f, const Box& box);
-  void erase_face(Index f, const Box& box);
+  void insert_item(Index f, const Box& box);
+  void erase_item(Index f, const Box& box);
 
   // Calls fn(p) for every point in cells overlapping `box` (a superset of the points inside
   // `box`; callers test exact containment), each once, in an order fixed by the history of
@@ -54,13 +49,13 @@ class FrontBins {
   }
   // Appends the points of for_each_point_near to `out`.
   void points_near(const Box& box, std::vector<Index>& out) const;
-  // Calls fn(f) for every face whose bounding box overlaps `box` (and a few whose box misses it
+  // Calls fn(f) for every item whose bounding box overlaps `box` (and a few whose box misses it
   // by less than 1/255 of a cell), each once, in a deterministic order (not sorted), until fn
   // returns true; returns whether it did. fn must not change the bins.
   template <typename Fn>
-  bool find_face_near(const Box& box, Fn&& fn) const;
-  // Appends to `out` the faces find_face_near visits.
-  void faces_near(const Box& box, std::vector<Index>& out) const;
+  bool find_item_near(const Box& box, Fn&& fn) const;
+  // Appends to `out` the items find_item_near visits.
+  void items_near(const Box& box, std::vector<Index>& out) const;
 
   double cell_size() const { return cell_; }
 
@@ -101,19 +96,19 @@ class FrontBins {
   std::array<std::int64_t, 3> dims_{1, 1, 1};
   // The cells' lists in flat storage (cell_lists.h), chunks of 64 and 256 bytes.
   CellLists<Index, 15> point_cells_;
-  // A face's entry in a cell: its id and the part of its bounding box inside the cell, in units
+  // An item's entry in a cell: its id and the part of its bounding box inside the cell, in units
   // of 1/255 of the cell from the cell's low corner, rounded outward, packed for a branch-free
   // overlap test: three 9-bit lanes (x, y, z) per word,
-  //   lo: the low ends, and in bits 27..29 whether the face's cell range starts before this cell
+  //   lo: the low ends, and in bits 27..29 whether the item's cell range starts before this cell
   //       along x, y, z;
   //   hi: the high ends, each with its lane's top bit (256) set.
   // Subtracting a lane of one word from that of the other leaves the top bit set exactly when
-  // the difference is >= 0 (see faces_near).
-  struct FaceEntry {
+  // the difference is >= 0 (see items_near).
+  struct ItemEntry {
     std::uint32_t lo, hi;
-    Index face;
+    Index item;
   };
-  static constexpr std::size_t kFaceRun = 21;  // face entries per chunk of face_cells_
+  static constexpr std::size_t kItemRun = 21;  // item entries per chunk of item_cells_
   static constexpr std::uint32_t kLanes = 0x07FFFFFF;  // the three 9-bit lanes
   static constexpr std::uint32_t kTops = (1u << 8) | (1u << 17) | (1u << 26);
   static constexpr std::uint32_t kStartsBefore = 1u << 27;  // shifted by the axis
@@ -132,41 +127,41 @@ class FrontBins {
       ends[a][1] = static_cast<std::uint8_t>(std::clamp(hi, 0.0, 255.0));  // hold finite points
     }
   }
-  // The part of the box inside cell (i, j, k) of its range, packed as FaceEntry::lo and ::hi (the
+  // The part of the box inside cell (i, j, k) of its range, packed as ItemEntry::lo and ::hi (the
   // ends in the first and last cells, the whole cell 0..255 between them), and the cell's
   // starts-before bits.
   static std::array<std::uint32_t, 2> cell_words(const CellBox& ends, const CellRange& r,
                                                  std::int64_t i, std::int64_t j, std::int64_t k);
-  CellLists<FaceEntry, kFaceRun> face_cells_;
+  CellLists<ItemEntry, kItemRun> item_cells_;
 };
 
-// A face's entry passes in cell (i, j, k) of the query's range when, on each axis, the query's
-// part of the cell (q) and the face's (e) overlap: q.hi - e.lo >= 0 and e.hi - q.lo >= 0, read
+// An item's entry passes in cell (i, j, k) of the query's range when, on each axis, the query's
+// part of the cell (q) and the item's (e) overlap: q.hi - e.lo >= 0 and e.hi - q.lo >= 0, read
 // from the lanes' top bits; and the cell is the lowest of both ranges: no axis along which both
-// the face's range and the query's start before this cell. The entries of a cell are filtered
+// the item's range and the query's start before this cell. The entries of a cell are filtered
 // branch-free into a buffer (every entry is written, the count advances by the test's outcome)
 // before fn sees them.
 template <typename Fn>
-bool FrontBins::find_face_near(const Box& box, Fn&& fn) const {
+bool FrontBins::find_item_near(const Box& box, Fn&& fn) const {
   CellRange r;
   CellBox ends;
   span_of(box, r, ends);
-  Index passed[kFaceRun];
+  Index passed[kItemRun];
   for (std::int64_t k = r[2][0]; k <= r[2][1]; ++k) {
     for (std::int64_t j = r[1][0]; j <= r[1][1]; ++j) {
       for (std::int64_t i = r[0][0]; i <= r[0][1]; ++i) {
         const auto c = static_cast<std::size_t>(cell_index(i, j, k));
-        if (face_cells_.empty(c)) continue;
+        if (item_cells_.empty(c)) continue;
         const auto [q_lo, q_hi] = cell_words(ends, r, i, j, k);
         const std::uint32_t query_before = q_lo & ~kLanes;  // axes where the query starts before
         const std::uint32_t q_low_ends = q_lo & kLanes;
-        const bool found = face_cells_.find_run(c, [&](const FaceEntry* run, std::size_t size) {
+        const bool found = item_cells_.find_run(c, [&](const ItemEntry* run, std::size_t size) {
           std::size_t n = 0;
           for (std::size_t e = 0; e < size; ++e) {
-            const FaceEntry& entry = run[e];
+            const ItemEntry& entry = run[e];
             const std::uint32_t overlap =
                 (q_hi - (entry.lo & kLanes)) & (entry.hi - q_low_ends) & kTops;
-            passed[n] = entry.face;
+            passed[n] = entry.item;
             n += (overlap | (entry.lo & query_before)) == kTops;
           }
           for (std::size_t m = 0; m < n; ++m)

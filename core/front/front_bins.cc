@@ -1,4 +1,4 @@
-#include "core/volume/front_bins.h"
+#include "core/front/front_bins.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,7 +22,7 @@ FrontBins::FrontBins(const Box& domain, double cell_size, std::int64_t max_cells
   inverse_cell_ = 1.0 / cell_;
   const auto n = static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]);
   point_cells_ = CellLists<Index, 15>(n);
-  face_cells_ = CellLists<FaceEntry, kFaceRun>(n);
+  item_cells_ = CellLists<ItemEntry, kItemRun>(n);
 }
 
 std::array<std::uint32_t, 2> FrontBins::cell_words(const CellBox& ends, const CellRange& r,
@@ -49,20 +49,20 @@ void FrontBins::erase_point(Index p, const Point& x) {
   point_cells_.erase_first(point_cell(x), [p](Index q) { return q == p; });
 }
 
-void FrontBins::insert_face(Index f, const Box& box) {
+void FrontBins::insert_item(Index f, const Box& box) {
   CellRange r;
   CellBox ends;
   span_of(box, r, ends);
   for_each_cell(r, [&](std::int64_t c, std::int64_t i, std::int64_t j, std::int64_t k) {
     const auto [lo, hi] = cell_words(ends, r, i, j, k);
-    face_cells_.push_back(static_cast<std::size_t>(c), {lo, hi, f});
+    item_cells_.push_back(static_cast<std::size_t>(c), {lo, hi, f});
   });
 }
 
-void FrontBins::erase_face(Index f, const Box& box) {
+void FrontBins::erase_item(Index f, const Box& box) {
   for_each_cell(cells_of(box), [&](std::int64_t c, std::int64_t, std::int64_t, std::int64_t) {
-    face_cells_.erase_first(static_cast<std::size_t>(c),
-                            [f](const FaceEntry& e) { return e.face == f; });
+    item_cells_.erase_first(static_cast<std::size_t>(c),
+                            [f](const ItemEntry& e) { return e.item == f; });
   });
 }
 
@@ -70,8 +70,8 @@ void FrontBins::points_near(const Box& box, std::vector<Index>& out) const {
   for_each_point_near(box, [&](Index p) { out.push_back(p); });
 }
 
-void FrontBins::faces_near(const Box& box, std::vector<Index>& out) const {
-  find_face_near(box, [&](Index f) {
+void FrontBins::items_near(const Box& box, std::vector<Index>& out) const {
+  find_item_near(box, [&](Index f) {
     out.push_back(f);
     return false;
   });
