@@ -21,6 +21,8 @@
 //     crossing faces".
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -65,5 +67,39 @@ absl::StatusOr<FrontEnvironments> environments_from_tags(const Mesh& front);
 
 // Number of distinct positive environments in `face_environments`.
 int count_environments(std::span<const std::int32_t> face_environments);
+
+// The filters of paper §2 as a front applies them, for faces of the volume front and sides of
+// the surface front alike. `point_env` is LPOCR of the front's first points (the input points;
+// empty when the input has no environments); points past its end are new points, LPOCR 0.
+
+// LPOCR of point q.
+inline std::int32_t point_environment(std::span<const std::int32_t> point_env, Index q) {
+  return static_cast<std::size_t>(q) < point_env.size() ? point_env[q] : kNoEnvironment;
+}
+
+// §2 (a): an item (face or side) of environment `env` ignores the points of any other positive
+// environment. An item of no environment (its points all new) ignores them too: a point of
+// environment k is reached only from the items of k's side, which are the items touching k's
+// surface. Without this, a face off a thin shell connects to the other side's points where the
+// two surfaces cross, its new faces take that side's environment and, blind to this side's
+// faces, cross them.
+inline bool point_visible(std::span<const std::int32_t> point_env, Index env, Index q) {
+  const std::int32_t e = point_environment(point_env, q);
+  return e <= 0 || e == env;
+}
+
+// §2 (b): only items of the item's own environment or of none enter its crossing checks; an
+// item of no environment checks against all.
+inline bool item_visible(Index env, Index other_env) {
+  return env <= 0 || other_env == kNoEnvironment || other_env == env;
+}
+
+// §2: a new item takes LFACR = max(0, LPOCR of its points).
+template <std::size_t N>
+Index item_environment(std::span<const std::int32_t> point_env, const std::array<Index, N>& v) {
+  Index env = kNoEnvironment;
+  for (const Index p : v) env = std::max<Index>(env, point_environment(point_env, p));
+  return env;
+}
 
 }  // namespace afmesh

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <algorithm>
+#include <span>
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
@@ -44,11 +45,23 @@ struct AttachedSizeParams {
 absl::StatusOr<std::vector<double>> attached_point_sizes(const Mesh& surface,
                                                          const AttachedSizeParams& params = {});
 
-// eq. 15: min(field_size, growth · min(size_a, size_b, size_c)), with field_size =
-// min(delta_bg, delta_s) (SizeField::size_at at the new point) and growth = c_i.
-inline double new_point_size(double field_size, double growth, double size_a, double size_b,
-                             double size_c) {
-  return std::min(field_size, growth * std::min({size_a, size_b, size_c}));
+// Eq. 15's last term: c_i · min(delta_A, delta_B, ...), the smallest attached size among
+// `corners` (the points of the face or side being deleted, or of an end-game pocket; not empty)
+// grown by `growth` = c_i. point_size[p] is delta_p.
+inline double grown_corner_size(double growth, const std::vector<double>& point_size,
+                                std::span<const Index> corners) {
+  double smallest = point_size[corners[0]];
+  for (const Index p : corners.subspan(1)) smallest = std::min(smallest, point_size[p]);
+  return growth * smallest;
+}
+
+// Eq. 15: the size of a new point, min(field_size, c_i · min over the corners), with
+// field_size = min(delta_bg, delta_s) (SizeField::size_at at the new point). One rule for the
+// volume front, the surface front and the end game.
+inline double new_point_size(double field_size, double growth,
+                             const std::vector<double>& point_size,
+                             std::span<const Index> corners) {
+  return std::min(field_size, grown_corner_size(growth, point_size, corners));
 }
 
 }  // namespace afmesh

@@ -4,6 +4,7 @@
 
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
+#include "core/sizing/attached_sizes.h"
 #include "core/volume/front_steps.h"
 
 namespace afmesh::volume {
@@ -102,8 +103,7 @@ double target_size_for_face(const MesherState& s, const Triangle& v) {
   const Point& b = s.points[v[1]];
   const Point& c = s.points[v[2]];
   const Point centroid = scale(add(a, add(b, c)), 1.0 / 3.0);
-  const double attached =
-      s.growth * std::min({s.point_size[v[0]], s.point_size[v[1]], s.point_size[v[2]]});
+  const double attached = grown_corner_size(s.growth, s.point_size, v);
   const double at_face = std::min(s.size_field.size_at(centroid), attached);  // eq. 15
   if (!s.size_field_varies) return at_face;
   // Not in the paper: where the field varies, it is read where the element's new edges are,

@@ -7,6 +7,7 @@
 
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
+#include "core/sizing/attached_sizes.h"
 #include "core/volume/front_steps.h"
 
 namespace afmesh::volume {
@@ -125,9 +126,10 @@ std::int64_t fill_pocket(MesherState& s, Index face, std::size_t max_faces) {
     s.points.push_back(c);
     const Index p = static_cast<Index>(s.points.size() - 1);
     if (sees_all(p)) {
-      double smallest = s.point_size[corners[0]];
-      for (Index q : corners) smallest = std::min(smallest, s.point_size[q]);
-      s.point_size.push_back(std::min(s.size_field.size_at(c), smallest));
+      // Eq. 15 without growth (c_i = 1): the kernel point is joined to every corner of the
+      // pocket, so its elements are no larger than the pocket's smallest corner size.
+      s.point_size.push_back(
+          new_point_size(s.size_field.size_at(c), 1.0, s.point_size, corners));
       kernel = p;
       new_point = true;
     } else {

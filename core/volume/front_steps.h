@@ -5,38 +5,25 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "core/environments/environments.h"
 #include "core/volume/mesher_state.h"
 
 namespace afmesh::volume {
 
-// Relaxation of the acceptance rules for a face that has failed `attempts` times: later
-// attempts accept worse elements and points closer to the front.
-// Crossing environments (paper §2). LPOCR of point q: its environment when it is an input point
-// of one, -1 on several, 0 otherwise (new points are always 0).
-inline std::int32_t point_environment(const MesherState& s, Index q) {
-  return static_cast<std::size_t>(q) < s.point_env.size() ? s.point_env[q] : 0;
-}
-// §2 (a): a face of environment `env` ignores the points of any other positive environment.
-// A face of no environment (its three points new) ignores them too: a point of environment k is
-// reached only from the faces of k's side, which are the faces touching k's surface. Without
-// this, a face off a thin shell connects to the other side's points where the two surfaces
-// cross, its new faces take that side's environment and, blind to this side's faces, cross them.
+// Crossing environments (paper §2): the filters of core/environments/environments.h on the
+// mesher's points and front faces.
 inline bool point_visible(const MesherState& s, Index env, Index q) {
-  const std::int32_t e = point_environment(s, q);
-  return e <= 0 || e == env;
+  return afmesh::point_visible(s.point_env, env, q);
 }
-// §2 (b): only faces of the face's own environment or of none enter its checks.
 inline bool face_visible(const MesherState& s, Index env, Index g) {
-  if (env <= 0) return true;
-  const Index e = s.front.item(g).env;
-  return e == 0 || e == env;
+  return item_visible(env, s.front.item(g).env);
 }
-// §2: a new face takes LFACR = max(0, LPOCR of its three points).
 inline Index face_environment(const MesherState& s, const Triangle& v) {
-  return std::max({0, point_environment(s, v[0]), point_environment(s, v[1]),
-                   point_environment(s, v[2])});
+  return afmesh::item_environment(s.point_env, v);
 }
 
+// Relaxation of the acceptance rules for a face that has failed `attempts` times: later
+// attempts accept worse elements and points closer to the front.
 struct Strictness {
   double min_quality;     // smallest accepted tet quality (tet_shape_quality)
   double point_spacing;   // a new point keeps this fraction of d from front points

@@ -116,9 +116,8 @@ bool delete_face(MesherState& s, Index face) {
         continue;
       p = static_cast<Index>(s.points.size());
       s.points.push_back(c.position);
-      s.point_size.push_back(new_point_size(s.size_field.size_at(c.position), s.growth,
-                                            s.point_size[v[0]], s.point_size[v[1]],
-                                            s.point_size[v[2]]));
+      s.point_size.push_back(
+          new_point_size(s.size_field.size_at(c.position), s.growth, s.point_size, v));
     }
     if (!volume::element_crosses_front(s, face, p)) {                  // F7.3
       volume::add_element(s, face, p);                                 // F8–F10

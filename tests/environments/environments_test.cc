@@ -104,5 +104,31 @@ TEST(EnvironmentsFromTags, TagCountAndIndicesAreChecked) {
   EXPECT_THAT(environments_from_tags(m).status().message(), HasSubstr("triangle 2 refers to"));
 }
 
+// The filters of paper §2 as both fronts apply them.
+TEST(EnvironmentFilters, PointsOfOtherPositiveEnvironmentsAreHidden) {
+  const std::vector<std::int32_t> lpocr = {0, 1, 2, kSharedEnvironment};
+  EXPECT_TRUE(point_visible(lpocr, 1, 0));   // a point of no environment
+  EXPECT_TRUE(point_visible(lpocr, 1, 1));   // of the item's own
+  EXPECT_FALSE(point_visible(lpocr, 1, 2));  // of another: §2 (a)
+  EXPECT_TRUE(point_visible(lpocr, 1, 3));   // a ridge point of several
+  EXPECT_FALSE(point_visible(lpocr, 0, 2));  // items of no environment do not see it either
+  EXPECT_TRUE(point_visible(lpocr, 2, 7));   // new points (past the input's) are of none
+}
+
+TEST(EnvironmentFilters, ItemsSeeTheirOwnEnvironmentAndNone) {
+  EXPECT_TRUE(item_visible(1, 0));
+  EXPECT_TRUE(item_visible(1, 1));
+  EXPECT_FALSE(item_visible(1, 2));  // §2 (b)
+  EXPECT_TRUE(item_visible(0, 2));   // an item of no environment checks against all
+}
+
+TEST(EnvironmentFilters, NewItemsTakeTheLargestEnvironmentOfTheirPoints) {
+  const std::vector<std::int32_t> lpocr = {0, 3, kSharedEnvironment, 1};
+  EXPECT_EQ(item_environment(lpocr, Triangle{0, 1, 2}), 3);
+  EXPECT_EQ(item_environment(lpocr, Triangle{0, 2, 9}), 0);
+  EXPECT_EQ(item_environment(lpocr, std::array<Index, 2>{3, 9}), 1);  // a side
+  EXPECT_EQ(item_environment({}, Triangle{0, 1, 2}), 0);              // no environments
+}
+
 }  // namespace
 }  // namespace afmesh

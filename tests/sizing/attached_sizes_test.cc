@@ -3,8 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace afmesh {
 namespace {
@@ -72,9 +74,14 @@ TEST(AttachedSizes, BadOverridesAndTrianglesAreNamed) {
 }
 
 TEST(AttachedSizes, NewPointSizeIsEquation15) {
-  EXPECT_EQ(new_point_size(1.0, 1.2, 0.5, 0.4, 0.6), 1.2 * 0.4);
-  EXPECT_EQ(new_point_size(0.3, 1.2, 0.5, 0.4, 0.6), 0.3);
-  EXPECT_EQ(new_point_size(2.0, 1.0, 0.5, kInf, 0.6), 0.5);
+  const std::vector<double> sizes = {0.5, 0.4, 0.6, kInf};
+  const Triangle face{0, 1, 2};
+  EXPECT_EQ(new_point_size(1.0, 1.2, sizes, face), 1.2 * 0.4);
+  EXPECT_EQ(new_point_size(0.3, 1.2, sizes, face), 0.3);
+  EXPECT_EQ(new_point_size(2.0, 1.0, sizes, Triangle{0, 3, 2}), 0.5);
+  // A side of the surface front (two corners) and a pocket's corner list follow the same rule.
+  EXPECT_EQ(new_point_size(2.0, 1.5, sizes, std::array<Index, 2>{2, 3}), 1.5 * 0.6);
+  EXPECT_EQ(grown_corner_size(1.0, sizes, std::vector<Index>{3, 2, 1, 0}), 0.4);
 }
 
 }  // namespace
