@@ -4,6 +4,7 @@
 
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
+#include "core/front/front_sizes.h"
 #include "core/sizing/attached_sizes.h"
 #include "core/volume/front_steps.h"
 
@@ -118,8 +119,8 @@ double target_size_for_face(const MesherState& s, const Triangle& v) {
 }
 
 double element_size_for_target(const MesherState& s, const Triangle& v, double target) {
-  const double edge = mean_edge(s.points[v[0]], s.points[v[1]], s.points[v[2]]);
-  return std::clamp(target, 0.55 * edge, 1.6 * edge);
+  return afmesh::element_size_for_target(target,
+                                         mean_edge(s.points[v[0]], s.points[v[1]], s.points[v[2]]));
 }
 
 double element_size_for_face(const MesherState& s, const Triangle& v) {
@@ -128,8 +129,7 @@ double element_size_for_face(const MesherState& s, const Triangle& v) {
 
 double queue_size_for_face(const MesherState& s, const Triangle& v) {
   const double target = target_size_for_face(s, v);
-  const double d = element_size_for_target(s, v, target);
-  return d <= target ? d : target * target / d;
+  return queue_key_for_element(target, element_size_for_target(s, v, target));
 }
 
 Point ideal_point(const MesherState& s, const Triangle& v, double d) {

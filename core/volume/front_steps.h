@@ -42,21 +42,15 @@ double tet_shape_quality(const Point& a, const Point& b, const Point& c, const P
 double target_size_for_face(const MesherState& s, const Triangle& v);
 
 // F5/F9: the size of the element face `v` should form for the wanted size `target`
-// (target_size_for_face), kept within [0.55, 1.6] × the face's mean edge so the element is not
-// needle- or flat-shaped.
+// (target_size_for_face): element_size_for_target of core/front/front_sizes.h over the face's
+// mean edge.
 double element_size_for_target(const MesherState& s, const Triangle& v, double target);
 
 // element_size_for_target(s, v, target_size_for_face(s, v)).
 double element_size_for_face(const MesherState& s, const Triangle& v);
 
-// F6: the queue key of face v, the size of the element it forms (element_size_for_face), except
-// for a face whose element is clamped above the target size (a face of an input much coarser
-// than the size wanted inside): its key is target² / d, below the target. Ordered by its element
-// size, such a face would wait until every face of the target size was deleted: the front grown
-// from the target-size faces would sweep the domain and leave the coarse boundary faces for the
-// end, in thin gaps along the solid's edges where only ever smaller elements fit (the front got
-// stuck there). Queued first, the coarse faces form the layer that takes the front from the
-// boundary's size down to the target, as the first layer does on a matching boundary.
+// F6: the queue key of face v: queue_key_for_element (core/front/front_sizes.h) of its target
+// and element sizes.
 double queue_size_for_face(const MesherState& s, const Triangle& v);
 
 // F7.1: the 'best point' for face v and element size d: above the centroid, along the face
