@@ -13,6 +13,8 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/geometry/closest_points.h"
 #include "core/geometry/vec.h"
@@ -206,6 +208,36 @@ TEST(DiscreteSurface, WalkAgreesWithTheTreeNearANoisyScanLikeSphere) {
   print("noisy sphere", s, f);
   EXPECT_EQ(f.same_distance, f.queries);
   EXPECT_LE(f.fell_back, f.queries / 100);
+}
+
+// Three sheets on one segment (a T): across the non-manifold segment there are no edge
+// neighbours, so the walk goes round the segment's vertices. Points near one sheet, hinted from
+// another sheet whose distance to them is least on the segment, must cross it. (A hint on a
+// sheet where the distance has its own local minimum, e.g. the wall for a point just above the
+// floor, stays there: see the header.)
+TEST(DiscreteSurface, WalkCrossesANonManifoldSegment) {
+  const DiscreteSurface s = build_or_die(testing::three_sheet_t(8));
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const FaceId on_left = s.nearest_face(s.to_local({-0.5, 0.5, 0.0})).face;
+  const FaceId on_right = s.nearest_face(s.to_local({0.5, 0.5, 0.0})).face;
+  int crossed = 0;
+  for (int i = 0; i < 300; ++i) {
+    const double u = 0.2 + 0.7 * unit(rng), y = 0.1 + 0.8 * unit(rng), w = 0.1 * unit(rng) - 0.05;
+    // Near the left floor, the right floor, the wall; hinted from the other floor (for the wall:
+    // the floor on the other side of it, whose nearest point to x is on the segment).
+    const std::vector<std::pair<Point, FaceId>> queries = {
+        {{-u, y, w}, on_right}, {{u, y, w}, on_left}, {{w, y, u}, w > 0 ? on_left : on_right}};
+    for (const auto& [global, hint] : queries) {
+      const Point x = s.to_local(global);
+      const Located found = s.locate(x, hint);
+      EXPECT_FALSE(found.used_tree);
+      EXPECT_NEAR(std::sqrt(found.squared_distance), std::sqrt(s.nearest_face(x).squared_distance),
+                  1e-12 * s.size());
+      crossed += found.face != hint;
+    }
+  }
+  EXPECT_EQ(crossed, 900);
 }
 
 // The walk's bound: a hint on the far side of the sphere is ~60 faces away; with a bound of 8
