@@ -22,7 +22,7 @@ struct LineEdge {
   std::vector<Index> faces;
 };
 
-// The line edges incident to each vertex: edges_at(v) = edge ids [offsets[v], offsets[v + 1]).
+// The line edges and, for each vertex v, the ids of those at v: incident[offsets[v], offsets[v+1]).
 struct LineGraph {
   std::vector<LineEdge> edges;  // ascending by (a, b)
   std::vector<Index> offsets;   // N + 1
