@@ -18,18 +18,8 @@
 namespace afmesh {
 namespace {
 
-struct Model {
-  DiscreteSurface surface;
-  SurfaceFeatures features;
-};
-
-Model features_of(const Mesh& mesh, const FeatureParams& params = {}) {
-  absl::StatusOr<DiscreteSurface> surface = DiscreteSurface::build(mesh);
-  EXPECT_TRUE(surface.ok()) << surface.status();
-  absl::StatusOr<SurfaceFeatures> features = find_surface_features(*surface, params);
-  EXPECT_TRUE(features.ok()) << features.status();
-  return {*std::move(surface), *std::move(features)};
-}
+using testing::surface_model;
+using Model = testing::SurfaceModel;
 
 // What every result must satisfy: patches partition the faces; faces adjacent across an edge
 // that is not on a line share a patch; lines run corner to corner over input edges; corners
@@ -81,7 +71,7 @@ void expect_consistent(const Model& m) {
 }
 
 TEST(SurfaceFeatures, CubeHasTwelveLinesEightCornersSixPatches) {
-  const Model m = features_of(box_surface({0, 0, 0}, {1, 1, 1}, 0.25));
+  const Model m = surface_model(box_surface({0, 0, 0}, {1, 1, 1}, 0.25));
   expect_consistent(m);
   EXPECT_EQ(m.features.lines.size(), 12u);
   EXPECT_EQ(m.features.corners.size(), 8u);
@@ -105,7 +95,7 @@ TEST(SurfaceFeatures, CubeHasTwelveLinesEightCornersSixPatches) {
 
 TEST(SurfaceFeatures, SphereAndTorusHaveNoLinesAndOnePatch) {
   for (const Mesh& mesh : {sphere_surface({0, 0, 0}, 1.0, 0.1), torus_surface(1.0, 0.3, 0.05)}) {
-    const Model m = features_of(mesh);
+    const Model m = surface_model(mesh);
     expect_consistent(m);
     EXPECT_TRUE(m.features.lines.empty());
     EXPECT_TRUE(m.features.corners.empty());
@@ -118,7 +108,7 @@ TEST(SurfaceFeatures, SphereAndTorusHaveNoLinesAndOnePatch) {
 TEST(SurfaceFeatures, OpenTerrainHasOneClosedBoundaryLine) {
   const Mesh mesh = testing::terrain_disk(
       0, 0, 100.0, 12, 48, [](double x, double y) { return 3.0 * std::sin(0.05 * x) + 0.01 * y; });
-  const Model m = features_of(mesh);
+  const Model m = surface_model(mesh);
   expect_consistent(m);
   ASSERT_EQ(m.features.lines.size(), 1u);
   const DiscreteLine& rim = m.features.lines[0];
@@ -135,7 +125,7 @@ TEST(SurfaceFeatures, OpenTerrainHasOneClosedBoundaryLine) {
 // A rectangular terrain: the rim turns by 90° at the four corners and is split there.
 TEST(SurfaceFeatures, RectangularTerrainRimSplitsAtItsFourTurns) {
   const Mesh mesh = testing::terrain_grid(0, 0, 4, 3, 8, [](double x, double) { return 0.1 * x; });
-  const Model m = features_of(mesh);
+  const Model m = surface_model(mesh);
   expect_consistent(m);
   EXPECT_EQ(m.features.lines.size(), 4u);
   ASSERT_EQ(m.features.corners.size(), 4u);
@@ -144,13 +134,13 @@ TEST(SurfaceFeatures, RectangularTerrainRimSplitsAtItsFourTurns) {
   // Never split (corner_angle_deg 180): one loop.
   FeatureParams params;
   params.corner_angle_deg = 180.0;
-  const Model unsplit = features_of(mesh, params);
+  const Model unsplit = surface_model(mesh, params);
   ASSERT_EQ(unsplit.features.lines.size(), 1u);
   EXPECT_TRUE(unsplit.features.lines[0].closed);
 }
 
 TEST(SurfaceFeatures, CylinderHasTwoCircularRidgesAndThreePatches) {
-  const Model m = features_of(testing::closed_cylinder(1.0, 2.0, 32, 6));
+  const Model m = surface_model(testing::closed_cylinder(1.0, 2.0, 32, 6));
   expect_consistent(m);
   ASSERT_EQ(m.features.lines.size(), 2u);
   for (const DiscreteLine& line : m.features.lines) {
@@ -167,12 +157,12 @@ TEST(SurfaceFeatures, CylinderHasTwoCircularRidgesAndThreePatches) {
   // Above the rims' 90°, nothing is a ridge.
   FeatureParams params;
   params.ridge_angle_deg = 95.0;
-  EXPECT_EQ(features_of(testing::closed_cylinder(1.0, 2.0, 32, 6), params).features.patches.size(),
-            1u);
+  EXPECT_EQ(
+      surface_model(testing::closed_cylinder(1.0, 2.0, 32, 6), params).features.patches.size(), 1u);
 }
 
 TEST(SurfaceFeatures, TaggedHalvesOfASphereMeetOnOneLine) {
-  const Model m = features_of(testing::uv_sphere({0, 0, 0}, 1.0, 40, 19));
+  const Model m = surface_model(testing::uv_sphere({0, 0, 0}, 1.0, 40, 19));
   expect_consistent(m);
   ASSERT_EQ(m.features.lines.size(), 1u);
   EXPECT_EQ(m.features.lines[0].kinds, kTagEdge);
@@ -186,7 +176,7 @@ TEST(SurfaceFeatures, TaggedHalvesOfASphereMeetOnOneLine) {
 // Three sheets on one segment: that segment is a non-manifold line; each sheet's rim is three
 // boundary lines (split at its two free corners, where it turns by 90°, and at the junctions).
 TEST(SurfaceFeatures, NonManifoldTOfThreePlanes) {
-  const Model m = features_of(testing::three_sheet_t(4));
+  const Model m = surface_model(testing::three_sheet_t(4));
   expect_consistent(m);
   EXPECT_EQ(m.features.patches.size(), 3u);
   EXPECT_EQ(m.features.lines.size(), 10u);
@@ -230,7 +220,7 @@ TEST(SurfaceFeatures, CorpusCadPartsHaveRidgesAndPatchesPartitionTheFaces) {
         std::filesystem::path(AFMESH_SOURCE_DIR) / ".." / "shared" / "corpus" / name;
     absl::StatusOr<Mesh> mesh = read_mesh(path.string());
     ASSERT_TRUE(mesh.ok()) << mesh.status();
-    const Model m = features_of(*mesh);
+    const Model m = surface_model(*mesh);
     SCOPED_TRACE(name);
     expect_consistent(m);
     int ridges = 0;
@@ -246,7 +236,7 @@ TEST(SurfaceFeatures, CorpusCadPartsHaveRidgesAndPatchesPartitionTheFaces) {
 
 TEST(SurfaceFeatures, ResultDependsOnlyOnTheInput) {
   const Mesh mesh = testing::three_sheet_t(3);
-  const Model a = features_of(mesh), b = features_of(mesh);
+  const Model a = surface_model(mesh), b = surface_model(mesh);
   ASSERT_EQ(a.features.lines.size(), b.features.lines.size());
   for (std::size_t i = 0; i < a.features.lines.size(); ++i) {
     EXPECT_EQ(a.features.lines[i].vertices, b.features.lines[i].vertices);

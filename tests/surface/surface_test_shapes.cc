@@ -1,7 +1,10 @@
 #include "tests/surface/surface_test_shapes.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace afmesh::testing {
 namespace {
@@ -140,6 +143,14 @@ Mesh three_sheet_t(int n) {
     }
   }
   return mesh;
+}
+
+SurfaceModel surface_model(const Mesh& mesh, const FeatureParams& params) {
+  absl::StatusOr<DiscreteSurface> surface = DiscreteSurface::build(mesh);
+  EXPECT_TRUE(surface.ok()) << surface.status();
+  absl::StatusOr<SurfaceFeatures> features = find_surface_features(*surface, params);
+  EXPECT_TRUE(features.ok()) << features.status();
+  return {*std::move(surface), features.ok() ? *std::move(features) : SurfaceFeatures{}};
 }
 
 }  // namespace afmesh::testing

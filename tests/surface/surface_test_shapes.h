@@ -1,10 +1,13 @@
 // Open and tagged surfaces for the surface-model tests, beside the closed solids of
-// core/shapes/shapes.h (sphere_surface, torus_surface, box_surface), which these tests use too.
+// core/shapes/shapes.h (sphere_surface, torus_surface, box_surface), which these tests use too,
+// and the surface model with its features built in one call.
 #pragma once
 
 #include <functional>
 
 #include "core/mesh/mesh.h"
+#include "core/surface/discrete_surface.h"
+#include "core/surface/features.h"
 
 namespace afmesh::testing {
 
@@ -31,5 +34,13 @@ Mesh terrain_grid(double x0, double y0, double width, double depth, int n,
 // x < 0 and x > 0 of the plane z = 0 and the wall x = 0, z > 0), each an n×n grid of squares
 // split in two; the shared segment's edges have three faces.
 Mesh three_sheet_t(int n);
+
+// A discrete surface over `mesh` and its features; a failure of either is a test failure (and
+// leaves the features empty).
+struct SurfaceModel {
+  DiscreteSurface surface;
+  SurfaceFeatures features;
+};
+SurfaceModel surface_model(const Mesh& mesh, const FeatureParams& params = {});
 
 }  // namespace afmesh::testing
