@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "core/geometry/vec.h"
 #include "core/shapes/shapes.h"
 #include "core/surface/features.h"
+#include "tests/surface/surface_test_shapes.h"
 
 namespace afmesh {
 namespace {
@@ -123,6 +125,14 @@ TEST(SplitLine, RefusesBadInput) {
   EXPECT_EQ(split_line(std::vector<Point>{{0, 0, 0}, {1, 0, 0}}, UniformSize(0.0)).status().code(),
             absl::StatusCode::kInvalidArgument);
   SplitLineParams params;
+  params.growth = 0.9;
+  EXPECT_EQ(split_line(std::vector<Point>{{0, 0, 0}, {1, 0, 0}}, h, params).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  params.growth = 1.0;
+  params.start_size = 0.0;
+  EXPECT_EQ(split_line(std::vector<Point>{{0, 0, 0}, {1, 0, 0}}, h, params).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  params.start_size = std::numeric_limits<double>::infinity();
   params.max_sides = 100;
   EXPECT_EQ(split_line(std::vector<Point>{{0, 0, 0}, {1, 0, 0}}, UniformSize(1e-3), params)
                 .status()
@@ -130,19 +140,60 @@ TEST(SplitLine, RefusesBadInput) {
             absl::StatusCode::kResourceExhausted);
 }
 
+// §4.2 with eq. 15: a corner of size 0.02 on a line asking 0.5, sides growing by 1.2 from it.
+TEST(SplitLine, EndSizeGrowsAlongTheLine) {
+  const std::vector<Point> line = {{0, 0, 0}, {0.4, 0, 0}, {1, 0, 0}};
+  SplitLineParams params;
+  params.start_size = 0.02;
+  params.growth = 1.2;
+  const LineSplit split = split_or_die(line, UniformSize(0.5), params);
+  expect_ends_and_shape(split, line);
+  // h(s) = 0.02 + 0.2 s over the whole line: n = round(5 ln 11) = 12.
+  ASSERT_EQ(split.points.size(), 13u);
+  EXPECT_NEAR(distance(split.points[0], split.points[1]) / 0.02, 1.0, 0.15);
+  for (std::size_t j = 2; j < split.points.size(); ++j) {
+    const double ratio = distance(split.points[j - 1], split.points[j]) /
+                         distance(split.points[j - 2], split.points[j - 1]);
+    EXPECT_NEAR(ratio, 1.2, 0.05) << j;
+  }
+  // Growth 1 keeps the corner's size along the whole line (the paper's uniform case).
+  params.growth = 1.0;
+  params.start_size = 0.1;
+  params.end_size = 0.25;
+  EXPECT_EQ(split_or_die(line, UniformSize(0.5), params).points.size(), 11u);
+}
+
+// A thin plate: each corner has a line of length 0.1, the plate's thickness, so every line of
+// the plate gets that size at both ends; a cylinder's rims are loops: their own length.
+TEST(SplitLine, LineEndSizesAreTheShortestLineAtEachCorner) {
+  const testing::SurfaceModel plate =
+      testing::surface_model(box_surface({0, 0, 0}, {1, 1, 0.1}, 0.05));
+  ASSERT_EQ(plate.features.lines.size(), 12u);
+  for (const LineEndSizes& ends : line_end_sizes(plate.surface, plate.features)) {
+    EXPECT_NEAR(ends.start, 0.1, 1e-15);
+    EXPECT_NEAR(ends.end, 0.1, 1e-15);
+  }
+  const testing::SurfaceModel cylinder =
+      testing::surface_model(testing::closed_cylinder(1.0, 2.0, 32, 4));
+  ASSERT_EQ(cylinder.features.lines.size(), 2u);
+  const double rim = 32 * 2 * std::sin(std::numbers::pi / 32);
+  for (const LineEndSizes& ends : line_end_sizes(cylinder.surface, cylinder.features)) {
+    EXPECT_NEAR(ends.start, rim, 1e-14);
+    EXPECT_NEAR(ends.end, rim, 1e-14);
+  }
+}
+
 // The lines of a cube's features, in the surface's local frame, split for h = 0.3: three sides
 // each, ends at the corners.
 TEST(SplitLine, CubeLinesFromFeatures) {
-  absl::StatusOr<DiscreteSurface> s =
-      DiscreteSurface::build(box_surface({4, 4, 4}, {5, 5, 5}, 0.25));
-  ASSERT_TRUE(s.ok());
-  absl::StatusOr<SurfaceFeatures> f = find_surface_features(*s);
-  ASSERT_TRUE(f.ok());
+  const testing::SurfaceModel cube =
+      testing::surface_model(box_surface({4, 4, 4}, {5, 5, 5}, 0.25));
+  ASSERT_EQ(cube.features.lines.size(), 12u);
   SplitLineParams params;
-  params.field_origin = s->origin();
-  for (const DiscreteLine& line : f->lines) {
+  params.field_origin = cube.surface.origin();
+  for (const DiscreteLine& line : cube.features.lines) {
     std::vector<Point> polyline;
-    for (Index v : line.vertices) polyline.push_back(s->local_points()[v]);
+    for (Index v : line.vertices) polyline.push_back(cube.surface.local_points()[v]);
     const LineSplit split = split_or_die(polyline, UniformSize(0.3), params);
     expect_ends_and_shape(split, polyline);
     EXPECT_EQ(split.points.size(), 4u);
