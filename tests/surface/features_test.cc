@@ -234,6 +234,27 @@ TEST(SurfaceFeatures, CorpusCadPartsHaveRidgesAndPatchesPartitionTheFaces) {
   }
 }
 
+// Open terrains of the corpus (gmsh's terrain demo, openfoam's river bed): their rims are
+// boundary lines, and the patches still partition the faces.
+TEST(SurfaceFeatures, CorpusTerrainsHaveBoundaryLines) {
+  for (const std::string name : {"gmsh_terrain_stl_data.stl", "of_AcrossRiver.stl"}) {
+    const std::filesystem::path path =
+        std::filesystem::path(AFMESH_SOURCE_DIR) / ".." / "shared" / "corpus" / name;
+    absl::StatusOr<Mesh> mesh = read_mesh(path.string());
+    ASSERT_TRUE(mesh.ok()) << mesh.status();
+    const Model m = surface_model(*mesh);
+    SCOPED_TRACE(name);
+    expect_consistent(m);
+    int boundary = 0;
+    for (const DiscreteLine& line : m.features.lines) boundary += (line.kinds & kBoundaryEdge) != 0;
+    std::printf(
+        "%s: %d faces, %lld line edges, %zu lines (%d on the rim), %zu corners, %zu patches\n",
+        name.c_str(), m.surface.face_count(), static_cast<long long>(m.features.line_edge_count),
+        m.features.lines.size(), boundary, m.features.corners.size(), m.features.patches.size());
+    EXPECT_GT(boundary, 0);
+  }
+}
+
 TEST(SurfaceFeatures, ResultDependsOnlyOnTheInput) {
   const Mesh mesh = testing::three_sheet_t(3);
   const Model a = surface_model(mesh), b = surface_model(mesh);
