@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace afmesh {
 namespace {
@@ -32,6 +33,16 @@ int widest_axis(const std::vector<Index>& ids, Index begin, Index end,
 // Largest extent of a box over its three axes: the larger node is descended first.
 double box_size(const Box& box) {
   return std::max({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]});
+}
+
+// Squared distance from x to the closed box (0 inside it).
+double squared_distance_to_box(const Point& x, const Box& box) {
+  double sum = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double gap = std::max({box.lo[k] - x[k], 0.0, x[k] - box.hi[k]});
+    sum += gap * gap;
+  }
+  return sum;
 }
 
 }  // namespace
@@ -162,6 +173,40 @@ std::vector<std::pair<Index, Index>> AabbTree::overlapping_pairs() const {
   for_each_overlapping_pair([&](Index i, Index j) { pairs.emplace_back(i, j); });
   std::sort(pairs.begin(), pairs.end());
   return pairs;
+}
+
+AabbTree::Nearest AabbTree::nearest(const Point& x,
+                                    absl::FunctionRef<double(Index)> squared_distance) const {
+  Nearest best{kInvalidIndex, std::numeric_limits<double>::infinity()};
+  if (!nodes_.empty()) nearest_in(0, x, squared_distance, best);
+  return best;
+}
+
+// Branch and bound below `node`. Pruning is strict (a subtree exactly as far as the best is still
+// visited), so that ties go to the smaller id whatever the order of descent.
+void AabbTree::nearest_in(Index node, const Point& x,
+                          absl::FunctionRef<double(Index)> squared_distance,
+                          Nearest& best) const {
+  const Node& n = nodes_[node];
+  if (n.count > 0) {
+    for (Index i = n.first; i < n.first + n.count; ++i) {
+      const Index id = order_[i];
+      if (squared_distance_to_box(x, boxes_[id]) > best.squared_distance) continue;
+      const double d = squared_distance(id);
+      if (d < best.squared_distance || (d == best.squared_distance && id < best.id)) {
+        best = {id, d};
+      }
+    }
+    return;
+  }
+  const double left = squared_distance_to_box(x, nodes_[node + 1].box);
+  const double right = squared_distance_to_box(x, nodes_[n.right].box);
+  const Index first = left <= right ? node + 1 : n.right;
+  const Index second = left <= right ? n.right : node + 1;
+  if (std::min(left, right) <= best.squared_distance) nearest_in(first, x, squared_distance, best);
+  if (std::max(left, right) <= best.squared_distance) {
+    nearest_in(second, x, squared_distance, best);
+  }
 }
 
 }  // namespace afmesh

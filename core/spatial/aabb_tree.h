@@ -3,7 +3,8 @@
 // Built once from a fixed set of boxes, then queried for
 //  - all boxes overlapping a query box (`for_each_overlap`, `overlapping`), and
 //  - all overlapping pairs within the set (`for_each_overlapping_pair`, `overlapping_pairs`),
-//    the broad phase of a self-intersection test.
+//    the broad phase of a self-intersection test, and
+//  - the box holding the object nearest a point (`nearest`), by branch and bound.
 //
 // Layout: nodes live in one array in depth-first (pre-)order, the left child of an inner node
 // directly after it and the right child at a stored index; leaves hold a range of a permutation
@@ -64,6 +65,19 @@ class AabbTree {
   // All overlapping pairs (i, j), i < j, sorted lexicographically.
   std::vector<std::pair<Index, Index>> overlapping_pairs() const;
 
+  // The result of `nearest`: a box id (kInvalidIndex for an empty tree) and its distance.
+  struct Nearest {
+    Index id = kInvalidIndex;
+    double squared_distance = 0.0;
+  };
+
+  // The non-empty box id i with the smallest squared_distance(i), ties to the smaller id.
+  // `squared_distance(i)` is the caller's measure of the object inside box i (e.g. the squared
+  // distance from x to a triangle) and must be at least the squared distance from x to box(i):
+  // subtrees whose box is farther from x than the best value so far are skipped (branch and
+  // bound, nearer child first), so a query near the objects costs about O(log n) calls.
+  Nearest nearest(const Point& x, absl::FunctionRef<double(Index)> squared_distance) const;
+
  private:
   // A leaf has count > 0 and holds ids order_[first, first + count); an inner node has
   // count == 0, its left child at (own index + 1) and its right child at `right`.
@@ -80,6 +94,8 @@ class AabbTree {
                     CancelCheck* stop) const;
   void pairs_across(Index a, Index b, absl::FunctionRef<void(Index, Index)> visit,
                     CancelCheck* stop) const;
+  void nearest_in(Index node, const Point& x, absl::FunctionRef<double(Index)> squared_distance,
+                  Nearest& best) const;
 
   std::vector<Box> boxes_;   // n boxes, by id
   std::vector<Index> order_;  // ids of the non-empty boxes, grouped by leaf

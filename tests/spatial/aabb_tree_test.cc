@@ -149,5 +149,41 @@ TEST(AabbTree, TriangleBoxesEncloseTheirCorners) {
   EXPECT_EQ(mesh_boxes[1].hi, boxes[1].hi);
 }
 
+// The distance to a box's centre bounds the distance to the box from above, so it is a valid
+// measure for `nearest`; the query must find the same id as a scan over all boxes.
+TEST(AabbTree, NearestEqualsBruteForceOnRandomBoxes) {
+  const std::vector<Box> boxes = random_boxes(1000, 0.05, 21);
+  const auto centre_distance = [&](const Point& x, Index i) {
+    double sum = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double d = x[k] - 0.5 * (boxes[i].lo[k] + boxes[i].hi[k]);
+      sum += d * d;
+    }
+    return sum;
+  };
+  for (int leaf_size : {1, 4, 16}) {
+    const AabbTree tree(boxes, leaf_size);
+    const std::vector<Box> queries = random_boxes(200, 0.0, 22);
+    for (const Box& q : queries) {
+      Index expected = 0;
+      for (Index i = 1; i < static_cast<Index>(boxes.size()); ++i) {
+        if (centre_distance(q.lo, i) < centre_distance(q.lo, expected)) expected = i;
+      }
+      const AabbTree::Nearest found =
+          tree.nearest(q.lo, [&](Index i) { return centre_distance(q.lo, i); });
+      EXPECT_EQ(found.id, expected);
+      EXPECT_EQ(found.squared_distance, centre_distance(q.lo, expected));
+    }
+  }
+}
+
+TEST(AabbTree, NearestTiesGoToTheSmallerId) {
+  const std::vector<Box> boxes(9, Box{{0, 0, 0}, {1, 1, 1}});
+  const AabbTree tree(boxes, 2);
+  const AabbTree::Nearest found = tree.nearest({0.5, 0.5, 0.5}, [](Index) { return 1.0; });
+  EXPECT_EQ(found.id, 0);
+  EXPECT_EQ(AabbTree().nearest({0, 0, 0}, [](Index) { return 0.0; }).id, kInvalidIndex);
+}
+
 }  // namespace
 }  // namespace afmesh

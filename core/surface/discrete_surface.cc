@@ -1,0 +1,209 @@
+#include "core/surface/discrete_surface.h"
+
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <utility>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_format.h"
+#include "core/geometry/closest_points.h"
+#include "core/geometry/vec.h"
+#include "core/spatial/box.h"
+
+namespace afmesh {
+namespace {
+
+absl::Status check_input(const Mesh& mesh) {
+  if (mesh.triangles.empty()) {
+    return absl::InvalidArgumentError("discrete surface: the mesh has no triangles");
+  }
+  if (!mesh.triangle_tags.empty() && mesh.triangle_tags.size() != mesh.triangles.size()) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("discrete surface: %d triangle tags for %d triangles",
+                        mesh.triangle_tags.size(), mesh.triangles.size()));
+  }
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    for (double c : mesh.points[i]) {
+      if (!std::isfinite(c)) {
+        return absl::InvalidArgumentError(
+            absl::StrFormat("discrete surface: point %d has a non-finite coordinate", i));
+      }
+    }
+  }
+  const auto n = static_cast<Index>(mesh.points.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (Index v : mesh.triangles[t]) {
+      if (v < 0 || v >= n) {
+        return absl::InvalidArgumentError(absl::StrFormat(
+            "discrete surface: triangle %d uses point %d, outside [0, %d)", t, v, n));
+      }
+    }
+    if (!has_distinct_indices(mesh.triangles[t])) {
+      return absl::InvalidArgumentError(
+          absl::StrFormat("discrete surface: triangle %d repeats a point", t));
+    }
+  }
+  return absl::OkStatus();
+}
+
+// The face the walk moves to next: the best offered that is strictly nearer to x than where the
+// walk stands, ties between offers to the smaller id (so the walk does not depend on the order in
+// which faces are looked at).
+struct Move {
+  FaceId face = kNoFace;
+  Point closest{0.0, 0.0, 0.0};
+  double squared_distance = 0.0;  // start: the distance where the walk stands
+
+  void offer(FaceId g, const Point& g_closest, double d) {
+    if (d < squared_distance || (d == squared_distance && face != kNoFace && g < face)) {
+      face = g;
+      closest = g_closest;
+      squared_distance = d;
+    }
+  }
+  // Moves `at` to the face found; false when none was nearer.
+  bool apply(Located& at) const {
+    if (face == kNoFace) return false;
+    at.face = face;
+    at.closest = closest;
+    at.squared_distance = squared_distance;
+    return true;
+  }
+};
+
+}  // namespace
+
+absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
+                                                       const DiscreteSurfaceParams& params) {
+  if (absl::Status status = check_input(mesh); !status.ok()) return status;
+  DiscreteSurface s;
+  s.params_ = params;
+  Box bounds = empty_box();
+  for (const Point& p : mesh.points) enclose(bounds, p);
+  for (int k = 0; k < 3; ++k) s.origin_[k] = 0.5 * bounds.lo[k] + 0.5 * bounds.hi[k];
+  s.points_.reserve(mesh.points.size());
+  for (const Point& p : mesh.points) s.points_.push_back(s.to_local(p));
+  s.size_ = distance(bounds.lo, bounds.hi);
+  s.triangles_ = mesh.triangles;
+  s.tags_ = mesh.triangle_tags.empty() ? std::vector<Index>(mesh.triangles.size(), 0)
+                                       : mesh.triangle_tags;
+
+  s.normals_.reserve(s.triangles_.size());
+  for (const Triangle& t : s.triangles_) {
+    const Point& a = s.points_[t[0]];
+    const Point n = cross(sub(s.points_[t[1]], a), sub(s.points_[t[2]], a));
+    const double length = norm(n);
+    if (length > 0.0 && std::isfinite(length)) {
+      s.normals_.push_back(scale(n, 1.0 / length));
+    } else {
+      s.normals_.push_back({0.0, 0.0, 0.0});
+      ++s.degenerate_faces_;
+    }
+  }
+  s.neighbours_ = triangle_edge_neighbours(s.triangles_);
+
+  // Faces by vertex (a counting sort: ascending face ids in each bucket).
+  s.face_offsets_.assign(s.points_.size() + 1, 0);
+  for (const Triangle& t : s.triangles_) {
+    for (Index v : t) ++s.face_offsets_[v + 1];
+  }
+  std::partial_sum(s.face_offsets_.begin(), s.face_offsets_.end(), s.face_offsets_.begin());
+  s.vertex_faces_.resize(3 * s.triangles_.size());
+  std::vector<Index> next(s.face_offsets_.begin(), s.face_offsets_.end() - 1);
+  for (Index f = 0; f < s.face_count(); ++f) {
+    for (Index v : s.triangles_[f]) s.vertex_faces_[next[v]++] = f;
+  }
+
+  s.tree_ = AabbTree(triangle_boxes(s.points_, s.triangles_));
+  return s;
+}
+
+Point DiscreteSurface::to_local(const Point& global) const { return sub(global, origin_); }
+
+Point DiscreteSurface::to_global(const Point& local) const { return add(local, origin_); }
+
+std::span<const Index> DiscreteSurface::faces_at(Index vertex) const {
+  return std::span<const Index>(vertex_faces_)
+      .subspan(face_offsets_[vertex], face_offsets_[vertex + 1] - face_offsets_[vertex]);
+}
+
+double DiscreteSurface::squared_distance_to(const Point& x, FaceId f, Point& closest,
+                                            Located& at) const {
+  ++at.evaluations;
+  const Triangle& t = triangle(f);
+  closest = closest_point_on_triangle(x, points_[t[0]], points_[t[1]], points_[t[2]]);
+  return squared_distance(x, closest);
+}
+
+Located DiscreteSurface::nearest_face(const Point& x) const {
+  Located at;
+  const AabbTree::Nearest found = tree_.nearest(x, [&](Index f) {
+    Point closest;
+    return squared_distance_to(x, FaceId{f}, closest, at);
+  });
+  at.face = FaceId{found.id};
+  at.squared_distance = squared_distance_to(x, at.face, at.closest, at);
+  at.used_tree = true;
+  return at;
+}
+
+bool DiscreteSurface::step_around_vertices(const Point& x, Located& at) const {
+  // Which corners of the face to look around: the closest point itself when it is a corner
+  // (closest_point_on_triangle returns the corner bit for bit in its region), and both ends of
+  // an edge without a single neighbour. Elsewhere (closest point inside the face, or inside an
+  // edge whose neighbour was just found no nearer) the face is a local minimum already.
+  const Triangle& t = triangle(at.face);
+  const std::array<Index, 3>& across = neighbours_.across[index_of(at.face)];
+  std::array<bool, 3> look{};
+  for (int k = 0; k < 3; ++k) {
+    if (at.closest == points_[t[k]]) look[k] = true;
+    if (across[k] == kInvalidIndex) look[k] = look[(k + 1) % 3] = true;
+  }
+  Move move{kNoFace, {}, at.squared_distance};
+  for (int k = 0; k < 3; ++k) {
+    if (!look[k]) continue;
+    for (Index g : faces_at(t[k])) {
+      if (FaceId{g} == at.face) continue;
+      Point closest;
+      const double d = squared_distance_to(x, FaceId{g}, closest, at);
+      move.offer(FaceId{g}, closest, d);
+    }
+  }
+  return move.apply(at);
+}
+
+bool DiscreteSurface::walk(const Point& x, Located& at) const {
+  FaceId previous = kNoFace;  // strictly farther than at.face: not worth a look
+  while (true) {
+    // Across the edges: the strictly nearest neighbour.
+    Move move{kNoFace, {}, at.squared_distance};
+    for (Index g : neighbours_.across[index_of(at.face)]) {
+      if (g == kInvalidIndex || FaceId{g} == previous) continue;
+      Point closest;
+      const double d = squared_distance_to(x, FaceId{g}, closest, at);
+      move.offer(FaceId{g}, closest, d);
+    }
+    previous = at.face;
+    if (!move.apply(at) && !step_around_vertices(x, at)) {
+      return true;  // a local minimum of the distance to x
+    }
+    if (++at.walk_steps > params_.max_walk_steps) return false;
+  }
+}
+
+Located DiscreteSurface::locate(const Point& x, FaceId hint) const {
+  if (hint == kNoFace || index_of(hint) < 0 || index_of(hint) >= face_count()) {
+    return nearest_face(x);
+  }
+  Located at;
+  at.face = hint;
+  at.squared_distance = squared_distance_to(x, hint, at.closest, at);
+  if (walk(x, at)) return at;
+  Located found = nearest_face(x);
+  found.walk_steps = at.walk_steps;
+  found.evaluations += at.evaluations;
+  return found;
+}
+
+}  // namespace afmesh

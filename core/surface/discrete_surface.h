@@ -1,0 +1,143 @@
+// The discretely defined surface of paper §3: the input triangulation that the surface front
+// grids over, with what steps S2, S3 and S8 need.
+//
+//   S2  the input face ("host face", IFADS) that contains or is closest to a point:
+//       `locate(x, hint)` walks neighbour to neighbour from the host face stored for a nearby
+//       point, as the paper advises ("by storing this 'host face' for every point, an efficient
+//       neighbour-to-neighbour search procedure can be constructed"); `nearest_face(x)` asks the
+//       AABB tree (core/spatial/aabb_tree.h) when there is no hint, and is the walk's fallback.
+//   S3  the unit normal n_fds of a face: `normal(face)`.
+//   S8  repositioning a new point on the surface: `project(x, hint)`, the closest point of the
+//       located face.
+//
+// Local frame. Terrain and survey data come in coordinates like UTM (~5e6 m) where a double
+// resolves ~1e-9 m; differences of such numbers lose the digits that matter. The surface keeps
+// its points relative to a local origin, the centre of the input's bounding box (our choice; any
+// point inside the model serves), and every query below takes and returns points in that local
+// frame: convert with to_local / to_global where data enters and leaves. For points within a
+// factor 2 of the origin the subtraction is exact (Sterbenz), so the local copy is the input.
+//
+// The walk. From the hint face, move to the edge neighbour whose closest point is strictly
+// nearer to x (the nearest, ties to the smaller id). Where no edge neighbour is nearer, the face
+// is a local minimum of the distance to x unless its closest point is one of its corners (the
+// nearer face may then be two edges away round that vertex) or it has an open or non-manifold
+// edge (faces beyond it are no edge neighbours): then look at the faces round those corners and
+// go on from the nearest if it is strictly nearer. Distances strictly decrease, so the walk never
+// cycles, and it stops at a local minimum of the distance from x to the surface. On a surface
+// whose distance to x has one local minimum near x (x close to a smooth part of the surface,
+// nearer than the local feature size) that is the nearest face; where it has several (x between
+// two sheets, hint on the wrong one) the walk may return a locally nearest face; `nearest_face`
+// is exact there.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/mesh/mesh.h"
+#include "core/quality/mesh_topology.h"
+#include "core/spatial/aabb_tree.h"
+
+namespace afmesh {
+
+// A face (triangle) of the input triangulation, by its position in Mesh::triangles. A distinct
+// type so that a face cannot be passed where a point index is meant.
+enum class FaceId : Index {};
+inline constexpr FaceId kNoFace{kInvalidIndex};
+inline constexpr Index index_of(FaceId f) { return static_cast<Index>(f); }
+
+struct DiscreteSurfaceParams {
+  // The longest walk (faces moved to) before `locate` gives up and asks the tree. With a hint
+  // one to three input edges away, walks take ~5 steps (at most 24 on the bunny scan; figures in
+  // tests/surface/discrete_surface_test.cc), so 64 leaves room for hints ~10 edges away, i.e.
+  // input faces ~10× finer than the target size, while a bad hint costs at most ~2 distance
+  // evaluations per step (~130), a bounded multiple of a tree query (~5 evaluations near the
+  // surface plus O(log M) box tests).
+  int max_walk_steps = 64;
+};
+
+// The face found for a point and how it was found.
+struct Located {
+  FaceId face = kNoFace;
+  Point closest{0.0, 0.0, 0.0};   // closest point of `face` to x, local frame
+  double squared_distance = 0.0;  // |x - closest|^2
+  int walk_steps = 0;             // faces moved to by the walk (0 for nearest_face)
+  bool used_tree = false;         // the walk did not settle within max_walk_steps
+  int evaluations = 0;            // point-triangle distances computed (walk and tree)
+};
+
+class DiscreteSurface {
+ public:
+  // Builds the surface over mesh.points (N×3), mesh.triangles (M×3, M >= 1) and
+  // mesh.triangle_tags (M, or empty: all 0); tets are ignored. Edge adjacency comes from
+  // triangle_edge_neighbours (core/quality/mesh_topology.h), normals from the corners in the
+  // local frame. O(M log M). INVALID_ARGUMENT, naming the element, for: no triangles, a point
+  // with a non-finite coordinate, a triangle index out of range or repeated in a triangle, a
+  // tag array of another length. Degenerate (zero-area) triangles are accepted: their normal
+  // is the zero vector.
+  static absl::StatusOr<DiscreteSurface> build(const Mesh& mesh,
+                                               const DiscreteSurfaceParams& params = {});
+
+  Index point_count() const { return static_cast<Index>(points_.size()); }
+  Index face_count() const { return static_cast<Index>(triangles_.size()); }
+
+  // The local origin (centre of the input's bounding box), global coordinates.
+  const Point& origin() const { return origin_; }
+  Point to_local(const Point& global) const;
+  Point to_global(const Point& local) const;
+  // Length of the bounding box's diagonal: the model size that tolerances scale with.
+  double size() const { return size_; }
+
+  // The input points in the local frame (N×3) and the input triangles (M×3) and tags (M).
+  const std::vector<Point>& local_points() const { return points_; }
+  const std::vector<Triangle>& triangles() const { return triangles_; }
+  const std::vector<Index>& tags() const { return tags_; }
+  const Triangle& triangle(FaceId f) const { return triangles_[index_of(f)]; }
+  Index tag(FaceId f) const { return tags_[index_of(f)]; }
+
+  // Edge adjacency (M×3; edge k of a face runs from corner k to corner k+1).
+  const EdgeNeighbours& neighbours() const { return neighbours_; }
+  // The faces using point `vertex` (0 <= vertex < N), ascending.
+  std::span<const Index> faces_at(Index vertex) const;
+
+  // S3: the unit normal of face f, (b-a)x(c-a) normalised; zero for a degenerate face.
+  const Point& normal(FaceId f) const { return normals_[index_of(f)]; }
+  Index degenerate_face_count() const { return degenerate_faces_; }
+
+  // The face nearest to x (local frame) by the AABB tree, ties to the smaller face id.
+  // O(log M) for x near the surface.
+  Located nearest_face(const Point& x) const;
+
+  // S2: the face nearest to x (local frame) by the walk from `hint` (see the header comment);
+  // with hint == kNoFace, or when the walk has not settled after params.max_walk_steps moves,
+  // the tree's answer (used_tree = true).
+  Located locate(const Point& x, FaceId hint) const;
+
+  // S8: x (local frame) moved onto the surface: the closest point of locate(x, hint).face.
+  Located project(const Point& x, FaceId hint) const { return locate(x, hint); }
+
+ private:
+  DiscreteSurface() = default;
+  // Squared distance from x to face f and its closest point; counts into at.evaluations.
+  double squared_distance_to(const Point& x, FaceId f, Point& closest, Located& at) const;
+  // Walk as far as a local minimum; false when it took more than max_walk_steps moves.
+  bool walk(const Point& x, Located& at) const;
+  // Where no edge neighbour is nearer: moves `at` to the nearest face around the corners where
+  // a nearer face may hide, if one is strictly nearer; false at a local minimum.
+  bool step_around_vertices(const Point& x, Located& at) const;
+
+  DiscreteSurfaceParams params_;
+  Point origin_{0.0, 0.0, 0.0};
+  double size_ = 0.0;
+  std::vector<Point> points_;        // N×3, local frame
+  std::vector<Triangle> triangles_;  // M×3
+  std::vector<Index> tags_;          // M
+  std::vector<Point> normals_;       // M×3 unit (or zero)
+  Index degenerate_faces_ = 0;
+  EdgeNeighbours neighbours_;
+  std::vector<Index> face_offsets_;  // N + 1: faces_at(v) = vertex_faces_[offsets[v], [v + 1])
+  std::vector<Index> vertex_faces_;  // 3M
+  AabbTree tree_;                    // over the faces' boxes, local frame
+};
+
+}  // namespace afmesh

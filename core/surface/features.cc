@@ -1,0 +1,224 @@
+#include "core/surface/features.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <tuple>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_format.h"
+#include "core/geometry/vec.h"
+#include "core/quality/mesh_topology.h"
+
+namespace afmesh {
+namespace {
+
+// An input edge (a < b) on a line, the faces using it, and why it is on a line.
+struct LineEdge {
+  Index a = 0;
+  Index b = 0;
+  std::uint8_t kinds = 0;
+  std::vector<Index> faces;
+};
+
+// The line edges and, for each vertex v, the ids of those at v: incident[offsets[v], offsets[v+1]).
+struct LineGraph {
+  std::vector<LineEdge> edges;  // ascending by (a, b)
+  std::vector<Index> offsets;   // N + 1
+  std::vector<Index> incident;  // 2E edge ids, ascending per vertex
+  Index degree(Index v) const { return offsets[v + 1] - offsets[v]; }
+  Index other(Index edge, Index v) const {
+    return edges[edge].a == v ? edges[edge].b : edges[edge].a;
+  }
+};
+
+double cos_degrees(double deg) { return std::cos(deg * std::numbers::pi / 180.0); }
+
+// Step 1 for an edge with exactly two faces: edge k of face t (its neighbour across it is known).
+// Symmetric in the two faces, so either side gives the same answer.
+std::uint8_t two_face_edge_kinds(const DiscreteSurface& s, double cos_ridge, Index t, int k) {
+  const Index g = s.neighbours().across[t][k];
+  std::uint8_t kinds = 0;
+  if (s.tags()[t] != s.tags()[g]) kinds |= kTagEdge;
+  const Point& nt = s.normal(FaceId{t});
+  Point ng = s.normal(FaceId{g});
+  if (s.neighbours().same_way[t][k]) ng = scale(ng, -1.0);
+  const bool both_have_normals = squared_norm(nt) > 0.0 && squared_norm(ng) > 0.0;
+  if (both_have_normals && dot(nt, ng) < cos_ridge) kinds |= kRidgeEdge;
+  return kinds;
+}
+
+// Step 1: every line edge, ascending by (a, b), with its incidence by vertex.
+LineGraph collect_line_edges(const DiscreteSurface& s, double cos_ridge) {
+  LineGraph graph;
+  const TriangleTopology topology = analyze_triangle_topology(s.triangles());
+  for (const EdgeGroup& e : topology.open_edges) {
+    graph.edges.push_back({e.a, e.b, kBoundaryEdge, e.triangles});
+  }
+  for (const EdgeGroup& e : topology.nonmanifold_edges) {
+    graph.edges.push_back({e.a, e.b, kNonManifoldEdge, e.triangles});
+  }
+  for (Index t = 0; t < s.face_count(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const Index g = s.neighbours().across[t][k];
+      if (g == kInvalidIndex || g < t) continue;  // each two-face edge once
+      const std::uint8_t kinds = two_face_edge_kinds(s, cos_ridge, t, k);
+      if (kinds == 0) continue;
+      const Index u = s.triangles()[t][k], w = s.triangles()[t][(k + 1) % 3];
+      graph.edges.push_back({std::min(u, w), std::max(u, w), kinds, {t, g}});
+    }
+  }
+  std::sort(graph.edges.begin(), graph.edges.end(), [](const LineEdge& x, const LineEdge& y) {
+    return std::tie(x.a, x.b) < std::tie(y.a, y.b);
+  });
+  graph.offsets.assign(s.point_count() + 1, 0);
+  for (const LineEdge& e : graph.edges) {
+    ++graph.offsets[e.a + 1];
+    ++graph.offsets[e.b + 1];
+  }
+  std::partial_sum(graph.offsets.begin(), graph.offsets.end(), graph.offsets.begin());
+  graph.incident.resize(2 * graph.edges.size());
+  std::vector<Index> next(graph.offsets.begin(), graph.offsets.end() - 1);
+  for (Index e = 0; e < static_cast<Index>(graph.edges.size()); ++e) {
+    graph.incident[next[graph.edges[e].a]++] = e;
+    graph.incident[next[graph.edges[e].b]++] = e;
+  }
+  return graph;
+}
+
+// Step 2: the CornerKind bits of every vertex (0: not a corner).
+std::vector<std::uint8_t> corner_kinds(const DiscreteSurface& s, const LineGraph& graph,
+                                       double cos_turn) {
+  std::vector<std::uint8_t> kinds(s.point_count(), 0);
+  for (Index v = 0; v < s.point_count(); ++v) {
+    const Index degree = graph.degree(v);
+    if (degree == 1) kinds[v] = kLineEnd;
+    if (degree >= 3) kinds[v] = kJunction;
+    if (degree != 2) continue;
+    const Index u = graph.other(graph.incident[graph.offsets[v]], v);
+    const Index w = graph.other(graph.incident[graph.offsets[v] + 1], v);
+    const Point& pv = s.local_points()[v];
+    const Point in = sub(pv, s.local_points()[u]), out = sub(s.local_points()[w], pv);
+    // The turn is the angle between the incoming and outgoing directions; a NaN (coincident
+    // points) is no turn.
+    if (dot(in, out) < cos_turn * norm(in) * norm(out)) kinds[v] = kTurn;
+  }
+  return kinds;
+}
+
+// Step 3: follows line edges from corner `start` along `first_edge` to the next corner.
+DiscreteLine chain(const LineGraph& graph, const std::vector<std::uint8_t>& corner, Index start,
+                   Index first_edge, std::vector<bool>& used, std::vector<Index>& line_edges) {
+  DiscreteLine line;
+  line.vertices.push_back(start);
+  Index at = start, edge = first_edge;
+  while (true) {
+    used[edge] = true;
+    line_edges.push_back(edge);
+    line.kinds |= graph.edges[edge].kinds;
+    at = graph.other(edge, at);
+    line.vertices.push_back(at);
+    if (corner[at] != 0) break;
+    // A vertex that is not a corner has exactly two line edges: leave by the other one.
+    const Index e0 = graph.incident[graph.offsets[at]];
+    edge = e0 == edge ? graph.incident[graph.offsets[at] + 1] : e0;
+  }
+  line.closed = line.vertices.front() == line.vertices.back();
+  return line;
+}
+
+// Step 4: patches as connected components across edges that are not line edges.
+void find_patches(const DiscreteSurface& s, double cos_ridge, SurfaceFeatures& out) {
+  out.face_patch.assign(s.face_count(), PatchId{kInvalidIndex});
+  std::vector<Index> stack;
+  for (Index seed = 0; seed < s.face_count(); ++seed) {
+    if (out.face_patch[seed] != PatchId{kInvalidIndex}) continue;
+    const PatchId id{static_cast<Index>(out.patches.size())};
+    out.patches.push_back({s.tags()[seed], 0, FaceId{seed}, {}});
+    out.face_patch[seed] = id;
+    stack.assign(1, seed);
+    while (!stack.empty()) {
+      const Index t = stack.back();
+      stack.pop_back();
+      ++out.patches.back().face_count;
+      for (int k = 0; k < 3; ++k) {
+        const Index g = s.neighbours().across[t][k];
+        if (g == kInvalidIndex || out.face_patch[g] != PatchId{kInvalidIndex}) continue;
+        if (two_face_edge_kinds(s, cos_ridge, t, k) != 0) continue;
+        out.face_patch[g] = id;
+        stack.push_back(g);
+      }
+    }
+  }
+}
+
+absl::Status check_params(const FeatureParams& params) {
+  if (!(params.ridge_angle_deg > 0.0 && params.ridge_angle_deg < 180.0)) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "surface features: ridge_angle_deg %g is not in (0, 180)", params.ridge_angle_deg));
+  }
+  if (!(params.corner_angle_deg > 0.0 && params.corner_angle_deg <= 180.0)) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "surface features: corner_angle_deg %g is not in (0, 180]", params.corner_angle_deg));
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::StatusOr<SurfaceFeatures> find_surface_features(const DiscreteSurface& surface,
+                                                      const FeatureParams& params,
+                                                      Progress& progress) {
+  if (absl::Status status = check_params(params); !status.ok()) return status;
+  const double cos_ridge = cos_degrees(params.ridge_angle_deg);
+  const LineGraph graph = collect_line_edges(surface, cos_ridge);
+  if (progress.cancelled()) return absl::CancelledError("surface features: cancelled");
+  std::vector<std::uint8_t> corner =
+      corner_kinds(surface, graph, cos_degrees(params.corner_angle_deg));
+
+  SurfaceFeatures out;
+  out.line_edge_count = static_cast<std::int64_t>(graph.edges.size());
+  std::vector<bool> used(graph.edges.size(), false);
+  std::vector<std::vector<Index>> edges_of_line;
+  const auto chain_from = [&](Index v) {
+    for (Index i = graph.offsets[v]; i < graph.offsets[v + 1]; ++i) {
+      if (used[graph.incident[i]]) continue;
+      edges_of_line.emplace_back();
+      out.lines.push_back(chain(graph, corner, v, graph.incident[i], used, edges_of_line.back()));
+    }
+  };
+  for (Index v = 0; v < surface.point_count(); ++v) {
+    if (corner[v] != 0) chain_from(v);
+  }
+  // What is left are loops of two-edge vertices; ascending, the first vertex met of each loop is
+  // its smallest.
+  for (Index v = 0; v < surface.point_count(); ++v) {
+    if (graph.degree(v) != 2 || used[graph.incident[graph.offsets[v]]]) continue;
+    corner[v] = kLoopStart;
+    chain_from(v);
+  }
+  if (progress.cancelled()) return absl::CancelledError("surface features: cancelled");
+
+  std::vector<Index> corner_index(surface.point_count(), kInvalidIndex);
+  for (Index v = 0; v < surface.point_count(); ++v) {
+    if (corner[v] == 0) continue;
+    corner_index[v] = static_cast<Index>(out.corners.size());
+    out.corners.push_back({v, corner[v], {}});
+  }
+  find_patches(surface, cos_ridge, out);
+  for (Index l = 0; l < static_cast<Index>(out.lines.size()); ++l) {
+    DiscreteLine& line = out.lines[l];
+    out.corners[corner_index[line.vertices.front()]].lines.push_back(LineId{l});
+    out.corners[corner_index[line.vertices.back()]].lines.push_back(LineId{l});
+    for (Index e : edges_of_line[l]) {
+      for (Index f : graph.edges[e].faces) line.patches.push_back(out.face_patch[f]);
+    }
+    std::sort(line.patches.begin(), line.patches.end());
+    line.patches.erase(std::unique(line.patches.begin(), line.patches.end()), line.patches.end());
+    for (PatchId p : line.patches) out.patches[index_of(p)].lines.push_back(LineId{l});
+  }
+  return out;
+}
+
+}  // namespace afmesh

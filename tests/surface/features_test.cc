@@ -1,0 +1,269 @@
+// Tests of ridges, corners, discrete lines and patches (end of paper §3) on hand-built shapes
+// with known answers and on CAD parts of the corpus.
+#include "core/surface/features.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <utility>
+
+#include "core/io/mesh_io.h"
+#include "core/shapes/shapes.h"
+#include "tests/surface/surface_test_shapes.h"
+
+namespace afmesh {
+namespace {
+
+using testing::surface_model;
+using Model = testing::SurfaceModel;
+
+// What every result must satisfy: patches partition the faces; faces adjacent across an edge
+// that is not on a line share a patch; lines run corner to corner over input edges; corners
+// list the lines that end at them.
+void expect_consistent(const Model& m) {
+  const SurfaceFeatures& f = m.features;
+  const DiscreteSurface& s = m.surface;
+  ASSERT_EQ(f.face_patch.size(), static_cast<std::size_t>(s.face_count()));
+  Index faces = 0;
+  for (const Patch& p : f.patches) faces += p.face_count;
+  EXPECT_EQ(faces, s.face_count());
+  for (PatchId p : f.face_patch) {
+    ASSERT_GE(index_of(p), 0);
+    ASSERT_LT(index_of(p), static_cast<Index>(f.patches.size()));
+  }
+  std::set<std::pair<Index, Index>> line_edges;
+  std::set<Index> corner_vertices;
+  for (const Corner& c : f.corners) corner_vertices.insert(c.vertex);
+  for (const DiscreteLine& line : f.lines) {
+    ASSERT_GE(line.vertices.size(), 2u);
+    EXPECT_TRUE(corner_vertices.count(line.vertices.front()));
+    EXPECT_TRUE(corner_vertices.count(line.vertices.back()));
+    for (std::size_t i = 1; i + 1 < line.vertices.size(); ++i) {
+      EXPECT_FALSE(corner_vertices.count(line.vertices[i])) << "corner inside a line";
+    }
+    for (std::size_t i = 0; i + 1 < line.vertices.size(); ++i) {
+      const Index a = line.vertices[i], b = line.vertices[i + 1];
+      EXPECT_TRUE(line_edges.insert({std::min(a, b), std::max(a, b)}).second) << "edge twice";
+    }
+    EXPECT_FALSE(line.patches.empty());
+  }
+  EXPECT_EQ(static_cast<std::int64_t>(line_edges.size()), f.line_edge_count);
+  for (Index t = 0; t < s.face_count(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const Index g = s.neighbours().across[t][k];
+      if (g == kInvalidIndex || f.face_patch[t] == f.face_patch[g]) continue;
+      const Index a = s.triangles()[t][k], b = s.triangles()[t][(k + 1) % 3];
+      EXPECT_TRUE(line_edges.count({std::min(a, b), std::max(a, b)}))
+          << "faces " << t << " and " << g << " in different patches across a non-line edge";
+    }
+  }
+  for (Index c = 0; c < static_cast<Index>(f.corners.size()); ++c) {
+    for (LineId l : f.corners[c].lines) {
+      const DiscreteLine& line = f.lines[index_of(l)];
+      EXPECT_TRUE(line.vertices.front() == f.corners[c].vertex ||
+                  line.vertices.back() == f.corners[c].vertex);
+    }
+  }
+}
+
+TEST(SurfaceFeatures, CubeHasTwelveLinesEightCornersSixPatches) {
+  const Model m = surface_model(box_surface({0, 0, 0}, {1, 1, 1}, 0.25));
+  expect_consistent(m);
+  EXPECT_EQ(m.features.lines.size(), 12u);
+  EXPECT_EQ(m.features.corners.size(), 8u);
+  EXPECT_EQ(m.features.patches.size(), 6u);
+  EXPECT_EQ(m.features.line_edge_count, 12 * 4);
+  for (const DiscreteLine& line : m.features.lines) {
+    EXPECT_EQ(line.kinds, kRidgeEdge);
+    EXPECT_FALSE(line.closed);
+    EXPECT_EQ(line.vertices.size(), 5u);
+    EXPECT_EQ(line.patches.size(), 2u);
+  }
+  for (const Corner& c : m.features.corners) {
+    EXPECT_EQ(c.kinds, kJunction);
+    EXPECT_EQ(c.lines.size(), 3u);
+  }
+  for (const Patch& p : m.features.patches) {
+    EXPECT_EQ(p.face_count, 32);
+    EXPECT_EQ(p.lines.size(), 4u);
+  }
+}
+
+TEST(SurfaceFeatures, SphereAndTorusHaveNoLinesAndOnePatch) {
+  for (const Mesh& mesh : {sphere_surface({0, 0, 0}, 1.0, 0.1), torus_surface(1.0, 0.3, 0.05)}) {
+    const Model m = surface_model(mesh);
+    expect_consistent(m);
+    EXPECT_TRUE(m.features.lines.empty());
+    EXPECT_TRUE(m.features.corners.empty());
+    ASSERT_EQ(m.features.patches.size(), 1u);
+    EXPECT_EQ(m.features.patches[0].face_count, m.surface.face_count());
+  }
+}
+
+// A round terrain patch: its rim is one closed boundary line, started at its smallest vertex.
+TEST(SurfaceFeatures, OpenTerrainHasOneClosedBoundaryLine) {
+  const Mesh mesh = testing::terrain_disk(
+      0, 0, 100.0, 12, 48, [](double x, double y) { return 3.0 * std::sin(0.05 * x) + 0.01 * y; });
+  const Model m = surface_model(mesh);
+  expect_consistent(m);
+  ASSERT_EQ(m.features.lines.size(), 1u);
+  const DiscreteLine& rim = m.features.lines[0];
+  EXPECT_TRUE(rim.closed);
+  EXPECT_EQ(rim.kinds, kBoundaryEdge);
+  EXPECT_EQ(rim.vertices.size(), 49u);
+  ASSERT_EQ(m.features.corners.size(), 1u);
+  EXPECT_EQ(m.features.corners[0].kinds, kLoopStart);
+  EXPECT_EQ(m.features.corners[0].vertex, 1 + 11 * 48);  // the rim's first point
+  EXPECT_EQ(m.features.corners[0].lines.size(), 2u);     // the loop, at both ends
+  EXPECT_EQ(m.features.patches.size(), 1u);
+}
+
+// A rectangular terrain: the rim turns by 90° at the four corners and is split there.
+TEST(SurfaceFeatures, RectangularTerrainRimSplitsAtItsFourTurns) {
+  const Mesh mesh = testing::terrain_grid(0, 0, 4, 3, 8, [](double x, double) { return 0.1 * x; });
+  const Model m = surface_model(mesh);
+  expect_consistent(m);
+  EXPECT_EQ(m.features.lines.size(), 4u);
+  ASSERT_EQ(m.features.corners.size(), 4u);
+  for (const Corner& c : m.features.corners) EXPECT_EQ(c.kinds, kTurn);
+  EXPECT_EQ(m.features.line_edge_count, 4 * 8);
+  // Never split (corner_angle_deg 180): one loop.
+  FeatureParams params;
+  params.corner_angle_deg = 180.0;
+  const Model unsplit = surface_model(mesh, params);
+  ASSERT_EQ(unsplit.features.lines.size(), 1u);
+  EXPECT_TRUE(unsplit.features.lines[0].closed);
+}
+
+TEST(SurfaceFeatures, CylinderHasTwoCircularRidgesAndThreePatches) {
+  const Model m = surface_model(testing::closed_cylinder(1.0, 2.0, 32, 6));
+  expect_consistent(m);
+  ASSERT_EQ(m.features.lines.size(), 2u);
+  for (const DiscreteLine& line : m.features.lines) {
+    EXPECT_TRUE(line.closed);
+    EXPECT_EQ(line.kinds, kRidgeEdge);
+    EXPECT_EQ(line.vertices.size(), 33u);
+    EXPECT_EQ(line.patches.size(), 2u);
+  }
+  EXPECT_EQ(m.features.corners.size(), 2u);
+  ASSERT_EQ(m.features.patches.size(), 3u);
+  std::multiset<Index> sizes;
+  for (const Patch& p : m.features.patches) sizes.insert(p.face_count);
+  EXPECT_EQ(sizes, (std::multiset<Index>{32, 32, 32 * 6 * 2}));
+  // Above the rims' 90°, nothing is a ridge.
+  FeatureParams params;
+  params.ridge_angle_deg = 95.0;
+  EXPECT_EQ(
+      surface_model(testing::closed_cylinder(1.0, 2.0, 32, 6), params).features.patches.size(), 1u);
+}
+
+TEST(SurfaceFeatures, TaggedHalvesOfASphereMeetOnOneLine) {
+  const Model m = surface_model(testing::uv_sphere({0, 0, 0}, 1.0, 40, 19));
+  expect_consistent(m);
+  ASSERT_EQ(m.features.lines.size(), 1u);
+  EXPECT_EQ(m.features.lines[0].kinds, kTagEdge);
+  EXPECT_TRUE(m.features.lines[0].closed);
+  EXPECT_EQ(m.features.lines[0].vertices.size(), 41u);
+  ASSERT_EQ(m.features.patches.size(), 2u);
+  EXPECT_EQ(m.features.patches[0].tag + m.features.patches[1].tag, 3);
+  EXPECT_EQ(m.features.patches[0].face_count, m.features.patches[1].face_count);
+}
+
+// Three sheets on one segment: that segment is a non-manifold line; each sheet's rim is three
+// boundary lines (split at its two free corners, where it turns by 90°, and at the junctions).
+TEST(SurfaceFeatures, NonManifoldTOfThreePlanes) {
+  const Model m = surface_model(testing::three_sheet_t(4));
+  expect_consistent(m);
+  EXPECT_EQ(m.features.patches.size(), 3u);
+  EXPECT_EQ(m.features.lines.size(), 10u);
+  int non_manifold = 0;
+  for (const DiscreteLine& line : m.features.lines) {
+    if (line.kinds & kNonManifoldEdge) {
+      ++non_manifold;
+      EXPECT_EQ(line.vertices.size(), 5u);
+      EXPECT_EQ(line.patches.size(), 3u);
+    } else {
+      EXPECT_EQ(line.kinds, kBoundaryEdge);
+    }
+  }
+  EXPECT_EQ(non_manifold, 1);
+  int junctions = 0, turns = 0;
+  for (const Corner& c : m.features.corners) {
+    junctions += c.kinds == kJunction;
+    turns += c.kinds == kTurn;
+  }
+  EXPECT_EQ(junctions, 2);
+  EXPECT_EQ(turns, 6);
+}
+
+TEST(SurfaceFeatures, RefusesAnglesOutOfRange) {
+  absl::StatusOr<DiscreteSurface> s = DiscreteSurface::build(box_surface({0, 0, 0}, {1, 1, 1}, 1));
+  ASSERT_TRUE(s.ok());
+  FeatureParams params;
+  params.ridge_angle_deg = 0.0;
+  EXPECT_EQ(find_surface_features(*s, params).status().code(), absl::StatusCode::kInvalidArgument);
+  params.ridge_angle_deg = 30.0;
+  params.corner_angle_deg = 200.0;
+  EXPECT_EQ(find_surface_features(*s, params).status().code(), absl::StatusCode::kInvalidArgument);
+}
+
+// CAD parts of the corpus (netgen and gmsh examples): ridges are found and the patches
+// partition the faces. The counts are printed for the record; they pin the result too.
+TEST(SurfaceFeatures, CorpusCadPartsHaveRidgesAndPatchesPartitionTheFaces) {
+  for (const std::string name :
+       {"netgen_part1.stl", "netgen_hinge.stl", "gmsh_lever.stl", "cgal_pinion.stl"}) {
+    const std::filesystem::path path =
+        std::filesystem::path(AFMESH_SOURCE_DIR) / ".." / "shared" / "corpus" / name;
+    absl::StatusOr<Mesh> mesh = read_mesh(path.string());
+    ASSERT_TRUE(mesh.ok()) << mesh.status();
+    const Model m = surface_model(*mesh);
+    SCOPED_TRACE(name);
+    expect_consistent(m);
+    int ridges = 0;
+    for (const DiscreteLine& line : m.features.lines) ridges += (line.kinds & kRidgeEdge) != 0;
+    std::printf("%s: %d faces, %lld line edges, %zu lines (%d ridge), %zu corners, %zu patches\n",
+                name.c_str(), m.surface.face_count(),
+                static_cast<long long>(m.features.line_edge_count), m.features.lines.size(), ridges,
+                m.features.corners.size(), m.features.patches.size());
+    EXPECT_GT(ridges, 0);
+    EXPECT_GT(m.features.patches.size(), 1u);
+  }
+}
+
+// Open terrains of the corpus (gmsh's terrain demo, openfoam's river bed): their rims are
+// boundary lines, and the patches still partition the faces.
+TEST(SurfaceFeatures, CorpusTerrainsHaveBoundaryLines) {
+  for (const std::string name : {"gmsh_terrain_stl_data.stl", "of_AcrossRiver.stl"}) {
+    const std::filesystem::path path =
+        std::filesystem::path(AFMESH_SOURCE_DIR) / ".." / "shared" / "corpus" / name;
+    absl::StatusOr<Mesh> mesh = read_mesh(path.string());
+    ASSERT_TRUE(mesh.ok()) << mesh.status();
+    const Model m = surface_model(*mesh);
+    SCOPED_TRACE(name);
+    expect_consistent(m);
+    int boundary = 0;
+    for (const DiscreteLine& line : m.features.lines) boundary += (line.kinds & kBoundaryEdge) != 0;
+    std::printf(
+        "%s: %d faces, %lld line edges, %zu lines (%d on the rim), %zu corners, %zu patches\n",
+        name.c_str(), m.surface.face_count(), static_cast<long long>(m.features.line_edge_count),
+        m.features.lines.size(), boundary, m.features.corners.size(), m.features.patches.size());
+    EXPECT_GT(boundary, 0);
+  }
+}
+
+TEST(SurfaceFeatures, ResultDependsOnlyOnTheInput) {
+  const Mesh mesh = testing::three_sheet_t(3);
+  const Model a = surface_model(mesh), b = surface_model(mesh);
+  ASSERT_EQ(a.features.lines.size(), b.features.lines.size());
+  for (std::size_t i = 0; i < a.features.lines.size(); ++i) {
+    EXPECT_EQ(a.features.lines[i].vertices, b.features.lines[i].vertices);
+  }
+  EXPECT_EQ(a.features.face_patch, b.features.face_patch);
+}
+
+}  // namespace
+}  // namespace afmesh
