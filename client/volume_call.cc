@@ -25,9 +25,9 @@
 namespace afmesh::cli {
 namespace {
 
-// The server's retry hint (server/mesher_service.cc) and where it travels in an absl::Status.
+// The server's retry hint (server/streaming_call.cc) and where it travels in an absl::Status.
 using wire::kRetryAfterKey;
-constexpr char kRetryAfterPayload[] = "type.afmesh.dev/retry-after-ms";
+using wire::kRetryAfterPayload;
 constexpr char kCutOnTheWayPayload[] = "type.afmesh.dev/cut-on-the-way";
 
 using Request = v1::MeshVolumeRequest;

@@ -29,6 +29,9 @@ class VolumeOutputStream {
   // Fills `response` with the next message; false once the Summary has been produced.
   bool next(v1::MeshVolumeResponse& response);
 
+  // The mesh the stream carries.
+  const Mesh& mesh() const { return output_.volume.mesh; }
+
  private:
   enum class Part { kWarnings, kPoints, kTriangles, kTets, kSummary, kDone };
 
