@@ -50,6 +50,7 @@ constexpr std::size_t kMessageCap = 1 << 20;  // bytes of payload per message
 // Meshes and requests.
 
 using afmesh::testing::tetrahedron_front;
+using afmesh::testing::same_bits;
 
 // A mesh large enough to need several slices of each kind, with coordinates that only survive
 // a bit-exact transfer (thirds, -0.0, subnormals, extremes) and negative tags (the longest
@@ -116,11 +117,6 @@ std::vector<Request> requests_for(const Mesh& front, std::size_t slice = 32768) 
     }
   }
   return requests;
-}
-
-// True when both point arrays hold the same bits (so -0.0 differs from 0.0).
-bool same_bits(const std::vector<Point>& a, const std::vector<Point>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Point)) == 0;
 }
 
 // The mesh carried by the point, triangle and tet slices of `responses`; every slice must be

@@ -3,23 +3,20 @@
 // slices refused with the messages MeshVolume's clients read.
 #include "proto/slice_codec.h"
 
-#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
+#include "tests/server/request_support.h"
 
 namespace afmesh::wire {
 namespace {
 
-constexpr std::size_t kMessageCap = 1 << 20;  // bytes of payload per message
+using afmesh::testing::same_bits;
 
-// True when both point arrays hold the same bits (so -0.0 differs from 0.0).
-bool same_bits(const std::vector<Point>& a, const std::vector<Point>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Point)) == 0;
-}
+constexpr std::size_t kMessageCap = 1 << 20;  // bytes of payload per message
 
 // One more than a slice of each kind, with values that only survive a bit-exact transfer and
 // negative tags (the longest varints).
@@ -176,7 +173,8 @@ TEST(SliceCodec, MalformedSlicesAreRefusedNamingTheMessageOrTheElement) {
             "message 9: tets slice has 2 tags for 1 tets (send none or one per tet)");
 
   for (const absl::Status& status :
-       {append_points(four_coordinates, "m", points), append_triangles(negative, "m", triangles, tags),
+       {append_points(four_coordinates, "m", points),
+        append_triangles(negative, "m", triangles, tags),
         append_tets(three_indices, "m", tets, tet_tags)}) {
     EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
   }
