@@ -11,6 +11,7 @@
 #include "absl/strings/cord.h"
 #include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
@@ -19,21 +20,19 @@
 #include "grpcpp/grpcpp.h"
 #include "proto/call_metadata.h"
 #include "proto/size_spec_convert.h"
+#include "proto/slice_codec.h"
 
 namespace afmesh::cli {
 namespace {
 
-// The server's retry hint (server/mesher_service.cc) and where it travels in an absl::Status.
+// The server's retry hint (server/streaming_call.cc) and where it travels in an absl::Status.
 using wire::kRetryAfterKey;
-constexpr char kRetryAfterPayload[] = "type.afmesh.dev/retry-after-ms";
+using wire::kRetryAfterPayload;
 constexpr char kCutOnTheWayPayload[] = "type.afmesh.dev/cut-on-the-way";
 
 using Request = v1::MeshVolumeRequest;
 using Response = v1::MeshVolumeResponse;
 using Stream = grpc::ClientReaderWriter<Request, Response>;
-
-// Points or triangles per request slice: 32768 points are 768 KiB, well under gRPC's 4 MiB.
-constexpr std::size_t kSliceItems = 32768;
 
 Request header_request(const Mesh& front, const VolumeCallOptions& options) {
   Request request;
@@ -66,58 +65,26 @@ Request header_request(const Mesh& front, const VolumeCallOptions& options) {
   return request;
 }
 
-Request points_request(const Mesh& front, std::size_t begin, std::size_t end) {
-  Request request;
-  auto& xyz = *request.mutable_points()->mutable_xyz();
-  xyz.Reserve(static_cast<int>(3 * (end - begin)));
-  for (std::size_t p = begin; p < end; ++p) {
-    for (const double c : front.points[p]) xyz.Add(c);
-  }
-  return request;
-}
-
-Request triangles_request(const Mesh& front, std::size_t begin, std::size_t end) {
-  Request request;
-  v1::TriangleSlice& slice = *request.mutable_triangles();
-  slice.mutable_indices()->Reserve(static_cast<int>(3 * (end - begin)));
-  slice.mutable_tags()->Reserve(static_cast<int>(end - begin));
-  for (std::size_t t = begin; t < end; ++t) {
-    for (const Index i : front.triangles[t]) slice.add_indices(i);
-    slice.add_tags(t < front.triangle_tags.size() ? front.triangle_tags[t] : 0);
-  }
-  return request;
-}
-
 // Streams the background grid in slices, each of one kind (points, sizes or tets) and at most
-// kSliceItems of it: under 1 MiB each, built one at a time. False once a write fails.
+// wire::kMaxSliceItems of it: under 1 MiB each, built one at a time. False once a write fails.
 bool send_grid(Stream& stream, const BackgroundGridSpec& grid) {
   bool open = true;
-  for (std::size_t begin = 0; open && begin < grid.points.size(); begin += kSliceItems) {
-    const std::size_t end = std::min(grid.points.size(), begin + kSliceItems);
+  for (std::size_t begin = 0; open && begin < grid.points.size(); begin += wire::kMaxSliceItems) {
     Request request;
-    auto& xyz = *request.mutable_background_grid()->mutable_xyz();
-    xyz.Reserve(static_cast<int>(3 * (end - begin)));
-    for (std::size_t p = begin; p < end; ++p) {
-      for (const double c : grid.points[p]) xyz.Add(c);
-    }
+    wire::encode_grid_points(grid.points, begin, wire::slice_end(begin, grid.points.size()),
+                             *request.mutable_background_grid());
     open = stream.Write(request);
   }
-  for (std::size_t begin = 0; open && begin < grid.sizes.size(); begin += kSliceItems) {
-    const std::size_t end = std::min(grid.sizes.size(), begin + kSliceItems);
+  for (std::size_t begin = 0; open && begin < grid.sizes.size(); begin += wire::kMaxSliceItems) {
     Request request;
-    request.mutable_background_grid()->mutable_sizes()->Add(
-        grid.sizes.begin() + static_cast<std::ptrdiff_t>(begin),
-        grid.sizes.begin() + static_cast<std::ptrdiff_t>(end));
+    wire::encode_grid_sizes(grid.sizes, begin, wire::slice_end(begin, grid.sizes.size()),
+                            *request.mutable_background_grid());
     open = stream.Write(request);
   }
-  for (std::size_t begin = 0; open && begin < grid.tets.size(); begin += kSliceItems) {
-    const std::size_t end = std::min(grid.tets.size(), begin + kSliceItems);
+  for (std::size_t begin = 0; open && begin < grid.tets.size(); begin += wire::kMaxSliceItems) {
     Request request;
-    auto& tets = *request.mutable_background_grid()->mutable_tets();
-    tets.Reserve(static_cast<int>(4 * (end - begin)));
-    for (std::size_t t = begin; t < end; ++t) {
-      for (const Index i : grid.tets[t]) tets.Add(i);
-    }
+    wire::encode_grid_tets(grid.tets, begin, wire::slice_end(begin, grid.tets.size()),
+                           *request.mutable_background_grid());
     open = stream.Write(request);
   }
   return open;
@@ -132,41 +99,41 @@ void send_front(Stream& stream, const Mesh& front, const VolumeCallOptions& opti
   if (open && options.spec && options.spec->background) {
     open = send_grid(stream, *options.spec->background);
   }
-  for (std::size_t begin = 0; open && begin < front.points.size(); begin += kSliceItems) {
-    const std::size_t end = std::min(front.points.size(), begin + kSliceItems);
-    open = stream.Write(points_request(front, begin, end));
+  for (std::size_t begin = 0; open && begin < front.points.size();
+       begin += wire::kMaxSliceItems) {
+    const std::size_t end = wire::slice_end(begin, front.points.size());
+    Request request;
+    wire::encode_points(front.points, begin, end, *request.mutable_points());
+    open = stream.Write(request);
     on_progress("send", static_cast<double>(end) / total);
   }
-  for (std::size_t begin = 0; open && begin < front.triangles.size(); begin += kSliceItems) {
-    const std::size_t end = std::min(front.triangles.size(), begin + kSliceItems);
-    open = stream.Write(triangles_request(front, begin, end));
+  for (std::size_t begin = 0; open && begin < front.triangles.size();
+       begin += wire::kMaxSliceItems) {
+    const std::size_t end = wire::slice_end(begin, front.triangles.size());
+    Request request;
+    wire::encode_triangles(front.triangles, front.triangle_tags, begin, end,
+                           *request.mutable_triangles());
+    open = stream.Write(request);
     on_progress("send", static_cast<double>(front.points.size() + end) / total);
   }
   stream.WritesDone();
 }
 
-// Appends the mesh slice carried by `response` to `mesh`.
-void append_slice(const Response& response, Mesh& mesh) {
+// Appends the mesh slice carried by `response` (the server's message `number`) to `mesh`;
+// DATA_LOSS when the slice is malformed.
+absl::Status append_slice(const Response& response, std::int64_t number, Mesh& mesh) {
+  const std::string where = absl::StrCat("message ", number);
+  absl::Status status;
   if (response.has_points()) {
-    const auto& xyz = response.points().xyz();
-    for (int i = 0; i + 2 < xyz.size(); i += 3) {
-      mesh.points.push_back({xyz[i], xyz[i + 1], xyz[i + 2]});
-    }
+    status = wire::append_points(response.points(), where, mesh.points);
   } else if (response.has_triangles()) {
-    const auto& indices = response.triangles().indices();
-    for (int i = 0; i + 2 < indices.size(); i += 3) {
-      mesh.triangles.push_back({indices[i], indices[i + 1], indices[i + 2]});
-    }
-    mesh.triangle_tags.insert(mesh.triangle_tags.end(), response.triangles().tags().begin(),
-                              response.triangles().tags().end());
+    status = wire::append_triangles(response.triangles(), where, mesh.triangles,
+                                    mesh.triangle_tags);
   } else if (response.has_tets()) {
-    const auto& indices = response.tets().indices();
-    for (int i = 0; i + 3 < indices.size(); i += 4) {
-      mesh.tets.push_back({indices[i], indices[i + 1], indices[i + 2], indices[i + 3]});
-    }
-    mesh.tet_tags.insert(mesh.tet_tags.end(), response.tets().tags().begin(),
-                         response.tets().tags().end());
+    status = wire::append_tets(response.tets(), where, mesh.tets, mesh.tet_tags);
   }
+  if (status.ok()) return status;
+  return absl::DataLossError(absl::StrCat("the server's answer is malformed: ", status.message()));
 }
 
 // DATA_LOSS unless the slices received add up to the counts the Summary announces.
@@ -220,7 +187,10 @@ absl::StatusOr<VolumeCallResult> run_call(Stream& stream, const Mesh& front,
   VolumeCallResult result;
   std::optional<v1::Summary> summary;
   Response response;
+  std::int64_t received = 0;
+  absl::Status malformed;
   while (stream.Read(&response)) {
+    ++received;
     if (response.has_progress()) {
       on_progress(response.progress().stage(), response.progress().fraction());
     } else if (response.has_warning()) {
@@ -228,7 +198,7 @@ absl::StatusOr<VolumeCallResult> run_call(Stream& stream, const Mesh& front,
     } else if (response.has_summary()) {
       summary = response.summary();
     } else {
-      append_slice(response, result.mesh);
+      if (malformed.ok()) malformed = append_slice(response, received, result.mesh);
       on_progress("receive", -1.0);
     }
   }
@@ -236,6 +206,7 @@ absl::StatusOr<VolumeCallResult> run_call(Stream& stream, const Mesh& front,
   if (!status.ok()) {
     return absl::Status(static_cast<absl::StatusCode>(status.error_code()), status.error_message());
   }
+  if (!malformed.ok()) return malformed;
   if (!summary) return absl::DataLossError("the server's answer ended without a summary");
   if (absl::Status whole = check_whole(result.mesh, *summary); !whole.ok()) return whole;
   result.summary = plain_summary(*summary);

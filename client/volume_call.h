@@ -112,8 +112,9 @@ std::string channel_target(const std::string& address, std::uint64_t seed);
 
 // Runs MeshVolume against `address` with `front` (points N×3, triangles M×3 with tags).
 // Errors: the call's gRPC status as the absl::Status of the same code and message;
-// DATA_LOSS when the server's answer ends without a Summary or disagrees with it. A retry hint
-// travels as a payload of the status (retry_after).
+// DATA_LOSS when the server's answer holds a malformed slice (proto/slice_codec.h), ends
+// without a Summary or disagrees with it. A retry hint travels as a payload of the status
+// (retry_after).
 absl::StatusOr<VolumeCallResult> call_mesh_volume(const std::string& address, const Mesh& front,
                                                   const VolumeCallOptions& options,
                                                   const ProgressCallback& on_progress,

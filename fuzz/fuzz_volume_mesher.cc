@@ -1,8 +1,8 @@
 // The volume mesher on small fronts, through the same steps as a MeshVolume job on the server
-// (server/mesher_service.cc run_job): repair_front, assign_environments (none, tags or auto),
-// then run_volume_job (generate_volume_mesh, which validates the front first, the quality
-// figures and validate_volume_mesh). Any status is an answer; a crash, a sanitizer report or a
-// hang (libFuzzer's -timeout) is a finding.
+// (server/mesh_volume_rpc.cc, MeshVolumeRpc::run): repair_front, assign_environments (none, tags
+// or auto), then run_volume_job (generate_volume_mesh, which validates the front first, the
+// quality figures and validate_volume_mesh). Any status is an answer; a crash, a sanitizer
+// report or a hang (libFuzzer's -timeout) is a finding.
 //
 // Input bytes, read in order (missing bytes read as 0):
 //   shape   %3: 0 a cube, 1 an octahedron (both closed and outward, corners within [-1, 1]),

@@ -1,4 +1,4 @@
-// The input side of a MeshVolume call as the service runs it (server/mesher_service.cc): each
+// The input side of a MeshVolume call as the service runs it (server/streaming_call.h): each
 // client message goes through VolumeInput::add, then VolumeInput::finish at half-close, then
 // the job's first steps on the assembled front: repair_front and validate_front.
 //

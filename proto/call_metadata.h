@@ -8,6 +8,11 @@ namespace afmesh::wire {
 // milliseconds to wait first. Refusals that cannot succeed later carry none.
 inline constexpr char kRetryAfterKey[] = "retry-after-ms";
 
+// Where a kRetryAfterKey hint travels inside a program: an absl::Status payload of this type
+// holding the milliseconds as text (the server's refusal on its way to the trailer, the CLI's
+// failed call on its way to the retry loop).
+inline constexpr char kRetryAfterPayload[] = "type.afmesh.dev/retry-after-ms";
+
 // On every status the service itself finishes a MeshVolume call with ("1"). A failed status
 // without it did not come from a server that saw the call through: gRPC or a proxy on the way
 // made it (a replica killed mid-call behind nginx gives INTERNAL "Received RST_STREAM", behind

@@ -1,4 +1,6 @@
-// The afmesh.v1.Mesher gRPC service (callback API, one reactor per call).
+// The afmesh.v1.Mesher gRPC service (callback API, one reactor per call): each RPC runs as a
+// StreamingCall (streaming_call.h) of its own part, MeshVolume's being MeshVolumeRpc
+// (mesh_volume_rpc.h).
 #pragma once
 
 #include <chrono>

@@ -9,6 +9,7 @@
 #include "absl/strings/str_format.h"
 #include "core/sizing/size_spec.h"
 #include "proto/size_spec_convert.h"
+#include "proto/slice_codec.h"
 
 namespace afmesh::server {
 namespace {
@@ -161,34 +162,19 @@ absl::Status VolumeInput::add_points(const v1::PointSlice& slice) {
         absl::StrCat(message_name(message_count_),
                      " is a points slice before the header; send the header first"));
   }
-  const int size = slice.xyz_size();
-  if (size % 3 != 0) {
-    return absl::InvalidArgumentError(
-        absl::StrFormat("%s: points slice has %d coordinates, not a multiple of 3",
-                        message_name(message_count_), size));
-  }
-  const std::size_t first = front_.points.size();
-  const std::uint64_t total = first + static_cast<std::uint64_t>(size / 3);
+  const std::string where = message_name(message_count_);
+  const absl::StatusOr<std::size_t> count = wire::point_count(slice, where);
+  if (!count.ok()) return count.status();
+  const std::uint64_t total = front_.points.size() + *count;
   if (total > static_cast<std::uint64_t>(limits_.max_points)) {
     return over_limit("points", total, limits_.max_points, "--max-points");
   }
   if (declared_points_ && total > *declared_points_) {
     return absl::InvalidArgumentError(
-        absl::StrFormat("%s: %d points sent, more than the %d the header declared",
-                        message_name(message_count_), total, *declared_points_));
+        absl::StrFormat("%s: %d points sent, more than the %d the header declared", where, total,
+                        *declared_points_));
   }
-  for (int i = 0; i < size; i += 3) {
-    const Point p = {slice.xyz(i), slice.xyz(i + 1), slice.xyz(i + 2)};
-    for (int axis = 0; axis < 3; ++axis) {
-      if (!std::isfinite(p[axis])) {
-        return absl::InvalidArgumentError(
-            absl::StrFormat("point %d has a non-finite coordinate %c = %g", front_.points.size(),
-                            "xyz"[axis], p[axis]));
-      }
-    }
-    front_.points.push_back(p);
-  }
-  return absl::OkStatus();
+  return wire::append_points(slice, where, front_.points);
 }
 
 absl::Status VolumeInput::add_triangles(const v1::TriangleSlice& slice) {
@@ -197,42 +183,19 @@ absl::Status VolumeInput::add_triangles(const v1::TriangleSlice& slice) {
         absl::StrCat(message_name(message_count_),
                      " is a triangles slice before the header; send the header first"));
   }
-  const int size = slice.indices_size();
-  if (size % 3 != 0) {
-    return absl::InvalidArgumentError(
-        absl::StrFormat("%s: triangles slice has %d indices, not a multiple of 3",
-                        message_name(message_count_), size));
-  }
-  const int count = size / 3;
-  if (slice.tags_size() != 0 && slice.tags_size() != count) {
-    return absl::InvalidArgumentError(
-        absl::StrFormat("%s: triangles slice has %d tags for %d triangles (send none or one "
-                        "per triangle)",
-                        message_name(message_count_), slice.tags_size(), count));
-  }
-  const std::uint64_t total = front_.triangles.size() + static_cast<std::uint64_t>(count);
+  const std::string where = message_name(message_count_);
+  const absl::StatusOr<std::size_t> count = wire::triangle_count(slice, where);
+  if (!count.ok()) return count.status();
+  const std::uint64_t total = front_.triangles.size() + *count;
   if (total > static_cast<std::uint64_t>(limits_.max_triangles)) {
     return over_limit("triangles", total, limits_.max_triangles, "--max-triangles");
   }
   if (declared_triangles_ && total > *declared_triangles_) {
     return absl::InvalidArgumentError(
-        absl::StrFormat("%s: %d triangles sent, more than the %d the header declared",
-                        message_name(message_count_), total, *declared_triangles_));
+        absl::StrFormat("%s: %d triangles sent, more than the %d the header declared", where,
+                        total, *declared_triangles_));
   }
-  for (int t = 0; t < count; ++t) {
-    const Triangle triangle = {slice.indices(3 * t), slice.indices(3 * t + 1),
-                               slice.indices(3 * t + 2)};
-    for (int corner = 0; corner < 3; ++corner) {
-      if (triangle[corner] < 0) {
-        return absl::InvalidArgumentError(
-            absl::StrFormat("triangle %d has a negative point index %d (corner %d)",
-                            front_.triangles.size(), triangle[corner], corner));
-      }
-    }
-    front_.triangles.push_back(triangle);
-    front_.triangle_tags.push_back(slice.tags_size() == 0 ? 0 : slice.tags(t));
-  }
-  return absl::OkStatus();
+  return wire::append_triangles(slice, where, front_.triangles, front_.triangle_tags);
 }
 
 absl::Status VolumeInput::add_grid_slice(const v1::BackgroundGridSlice& slice) {
@@ -253,31 +216,17 @@ absl::Status VolumeInput::add_grid_slice(const v1::BackgroundGridSlice& slice) {
 }
 
 absl::Status VolumeInput::add_grid_points(const v1::BackgroundGridSlice& slice) {
-  const int size = slice.xyz_size();
-  if (size % 3 != 0) {
-    return absl::InvalidArgumentError(
-        absl::StrFormat("%s: background_grid slice has %d coordinates, not a multiple of 3",
-                        message_name(message_count_), size));
-  }
-  const std::uint64_t total = grid_.points.size() + static_cast<std::uint64_t>(size / 3);
+  const std::string where = message_name(message_count_);
+  const absl::StatusOr<std::size_t> count = wire::grid_point_count(slice, where);
+  if (!count.ok()) return count.status();
+  const std::uint64_t total = grid_.points.size() + *count;
   if (total > *declared_grid_points_) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "%s: %d background grid points sent, more than the %d the header declared "
         "(grid_point_count)",
-        message_name(message_count_), total, *declared_grid_points_));
+        where, total, *declared_grid_points_));
   }
-  for (int i = 0; i < size; i += 3) {
-    const Point p = {slice.xyz(i), slice.xyz(i + 1), slice.xyz(i + 2)};
-    for (int axis = 0; axis < 3; ++axis) {
-      if (!std::isfinite(p[axis])) {
-        return absl::InvalidArgumentError(
-            absl::StrFormat("background_grid.points[%d].%c must be finite, got %g",
-                            grid_.points.size(), "xyz"[axis], p[axis]));
-      }
-    }
-    grid_.points.push_back(p);
-  }
-  return absl::OkStatus();
+  return wire::append_grid_points(slice, where, grid_.points);
 }
 
 absl::Status VolumeInput::add_grid_sizes(const v1::BackgroundGridSlice& slice) {
@@ -288,42 +237,21 @@ absl::Status VolumeInput::add_grid_sizes(const v1::BackgroundGridSlice& slice) {
         "(grid_point_count; one size per point)",
         message_name(message_count_), total, *declared_grid_points_));
   }
-  for (const double size : slice.sizes()) {
-    if (!std::isfinite(size) || size <= 0.0) {
-      return absl::InvalidArgumentError(absl::StrFormat(
-          "background_grid.sizes[%d] must be finite and > 0, got %g", grid_.sizes.size(), size));
-    }
-    grid_.sizes.push_back(size);
-  }
-  return absl::OkStatus();
+  return wire::append_grid_sizes(slice, grid_.sizes);
 }
 
 absl::Status VolumeInput::add_grid_tets(const v1::BackgroundGridSlice& slice) {
-  const int size = slice.tets_size();
-  if (size % 4 != 0) {
-    return absl::InvalidArgumentError(
-        absl::StrFormat("%s: background_grid slice has %d tet indices, not a multiple of 4",
-                        message_name(message_count_), size));
-  }
-  const std::uint64_t total = grid_.tets.size() + static_cast<std::uint64_t>(size / 4);
+  const std::string where = message_name(message_count_);
+  const absl::StatusOr<std::size_t> count = wire::grid_tet_count(slice, where);
+  if (!count.ok()) return count.status();
+  const std::uint64_t total = grid_.tets.size() + *count;
   if (total > *declared_grid_tets_) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "%s: %d background grid tets sent, more than the %d the header declared "
         "(grid_tet_count)",
-        message_name(message_count_), total, *declared_grid_tets_));
+        where, total, *declared_grid_tets_));
   }
-  for (int i = 0; i < size; i += 4) {
-    const Tet tet = {slice.tets(i), slice.tets(i + 1), slice.tets(i + 2), slice.tets(i + 3)};
-    for (int corner = 0; corner < 4; ++corner) {
-      if (tet[corner] < 0) {
-        return absl::InvalidArgumentError(absl::StrFormat(
-            "background_grid.tets[%d][%d] = %d is a negative point index", grid_.tets.size(),
-            corner, tet[corner]));
-      }
-    }
-    grid_.tets.push_back(tet);
-  }
-  return absl::OkStatus();
+  return wire::append_grid_tets(slice, where, grid_.tets);
 }
 
 // The streamed grid is whole and valid (indices in range, positive tets: validate_background_grid,

@@ -1,10 +1,10 @@
 #include "server/volume_output.h"
 
-#include <algorithm>
 #include <string>
 #include <utility>
 
 #include "absl/strings/str_format.h"
+#include "proto/slice_codec.h"
 
 namespace afmesh::server {
 namespace {
@@ -99,38 +99,24 @@ void VolumeOutputStream::advance_if_done(std::size_t size) {
   offset_ = 0;
 }
 
-// Points [offset_, offset_ + n) flattened as x, y, z.
 void VolumeOutputStream::next_points(v1::PointSlice& slice) {
   const std::vector<Point>& points = output_.volume.mesh.points;
-  const std::size_t end = std::min(points.size(), offset_ + kMaxSliceItems);
-  slice.mutable_xyz()->Reserve(static_cast<int>(3 * (end - offset_)));
-  for (std::size_t p = offset_; p < end; ++p) {
-    for (const double coordinate : points[p]) slice.add_xyz(coordinate);
-  }
+  const std::size_t end = wire::slice_end(offset_, points.size());
+  wire::encode_points(points, offset_, end, slice);
   offset_ = end;
 }
 
 void VolumeOutputStream::next_triangles(v1::TriangleSlice& slice) {
   const Mesh& mesh = output_.volume.mesh;
-  const std::size_t end = std::min(mesh.triangles.size(), offset_ + kMaxSliceItems);
-  slice.mutable_indices()->Reserve(static_cast<int>(3 * (end - offset_)));
-  slice.mutable_tags()->Reserve(static_cast<int>(end - offset_));
-  for (std::size_t t = offset_; t < end; ++t) {
-    for (const Index index : mesh.triangles[t]) slice.add_indices(index);
-    slice.add_tags(mesh.triangle_tags[t]);
-  }
+  const std::size_t end = wire::slice_end(offset_, mesh.triangles.size());
+  wire::encode_triangles(mesh.triangles, mesh.triangle_tags, offset_, end, slice);
   offset_ = end;
 }
 
 void VolumeOutputStream::next_tets(v1::TetSlice& slice) {
   const Mesh& mesh = output_.volume.mesh;
-  const std::size_t end = std::min(mesh.tets.size(), offset_ + kMaxSliceItems);
-  slice.mutable_indices()->Reserve(static_cast<int>(4 * (end - offset_)));
-  slice.mutable_tags()->Reserve(static_cast<int>(end - offset_));
-  for (std::size_t t = offset_; t < end; ++t) {
-    for (const Index index : mesh.tets[t]) slice.add_indices(index);
-    slice.add_tags(mesh.tet_tags[t]);
-  }
+  const std::size_t end = wire::slice_end(offset_, mesh.tets.size());
+  wire::encode_tets(mesh.tets, mesh.tet_tags, offset_, end, slice);
   offset_ = end;
 }
 

@@ -1,6 +1,7 @@
 // Turns a finished job's output into the server stream of a MeshVolume call: warnings, then the
-// mesh as point, triangle and tet slices, then the Summary, one message at a time so that a
-// large mesh is never copied whole into messages.
+// mesh as point, triangle and tet slices of at most wire::kMaxSliceItems items
+// (proto/slice_codec.h), then the Summary, one message at a time so that a large mesh is never
+// copied whole into messages.
 #pragma once
 
 #include <chrono>
@@ -13,11 +14,6 @@
 #include "server/volume_job.h"
 
 namespace afmesh::server {
-
-// Most points, triangles or tets per slice: 32768 points are 768 KiB of doubles; 32768 tets are
-// at most 640 KiB of indices plus 320 KiB of tags (int32 varints take up to 5 bytes, 10 when
-// negative), so every message stays under 1 MiB of payload.
-inline constexpr std::size_t kMaxSliceItems = 32768;
 
 // Checks that a job's mesh can be sent as a whole: tag arrays as long as their elements and
 // every triangle and tet index in range. INTERNAL naming the element otherwise (a job bug: the
@@ -32,6 +28,9 @@ class VolumeOutputStream {
 
   // Fills `response` with the next message; false once the Summary has been produced.
   bool next(v1::MeshVolumeResponse& response);
+
+  // The mesh the stream carries.
+  const Mesh& mesh() const { return output_.volume.mesh; }
 
  private:
   enum class Part { kWarnings, kPoints, kTriangles, kTets, kSummary, kDone };

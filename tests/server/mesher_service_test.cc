@@ -31,6 +31,7 @@
 #include "core/io/mesh_io.h"
 #include "core/shapes/shapes.h"
 #include "proto/size_spec_convert.h"
+#include "proto/slice_codec.h"
 #include "server/server.h"
 #include "server/volume_output.h"
 #include "tests/server/request_support.h"
@@ -49,6 +50,7 @@ constexpr std::size_t kMessageCap = 1 << 20;  // bytes of payload per message
 // Meshes and requests.
 
 using afmesh::testing::tetrahedron_front;
+using afmesh::testing::same_bits;
 
 // A mesh large enough to need several slices of each kind, with coordinates that only survive
 // a bit-exact transfer (thirds, -0.0, subnormals, extremes) and negative tags (the longest
@@ -88,18 +90,14 @@ Request header_request(double size, std::optional<std::uint64_t> points,
 
 Request points_request(const std::vector<Point>& points, std::size_t begin, std::size_t end) {
   Request request;
-  for (std::size_t p = begin; p < end; ++p) {
-    for (const double c : points[p]) request.mutable_points()->add_xyz(c);
-  }
+  wire::encode_points(points, begin, end, *request.mutable_points());
   return request;
 }
 
 Request triangles_request(const Mesh& front, std::size_t begin, std::size_t end) {
   Request request;
-  for (std::size_t t = begin; t < end; ++t) {
-    for (const Index i : front.triangles[t]) request.mutable_triangles()->add_indices(i);
-    request.mutable_triangles()->add_tags(front.triangle_tags[t]);
-  }
+  wire::encode_triangles(front.triangles, front.triangle_tags, begin, end,
+                         *request.mutable_triangles());
   return request;
 }
 
@@ -121,33 +119,21 @@ std::vector<Request> requests_for(const Mesh& front, std::size_t slice = 32768) 
   return requests;
 }
 
-// True when both point arrays hold the same bits (so -0.0 differs from 0.0).
-bool same_bits(const std::vector<Point>& a, const std::vector<Point>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Point)) == 0;
-}
-
-// The mesh carried by the point, triangle and tet slices of `responses`.
+// The mesh carried by the point, triangle and tet slices of `responses`; every slice must be
+// well formed.
 Mesh mesh_from(const std::vector<Response>& responses) {
   Mesh mesh;
   for (const Response& response : responses) {
+    absl::Status status;
     if (response.has_points()) {
-      const auto& xyz = response.points().xyz();
-      for (int i = 0; i + 2 < xyz.size(); i += 3) {
-        mesh.points.push_back({xyz[i], xyz[i + 1], xyz[i + 2]});
-      }
+      status = wire::append_points(response.points(), "response", mesh.points);
     } else if (response.has_triangles()) {
-      const auto& indices = response.triangles().indices();
-      for (int i = 0; i + 2 < indices.size(); i += 3) {
-        mesh.triangles.push_back({indices[i], indices[i + 1], indices[i + 2]});
-      }
-      for (const Index tag : response.triangles().tags()) mesh.triangle_tags.push_back(tag);
+      status = wire::append_triangles(response.triangles(), "response", mesh.triangles,
+                                      mesh.triangle_tags);
     } else if (response.has_tets()) {
-      const auto& indices = response.tets().indices();
-      for (int i = 0; i + 3 < indices.size(); i += 4) {
-        mesh.tets.push_back({indices[i], indices[i + 1], indices[i + 2], indices[i + 3]});
-      }
-      for (const Index tag : response.tets().tags()) mesh.tet_tags.push_back(tag);
+      status = wire::append_tets(response.tets(), "response", mesh.tets, mesh.tet_tags);
     }
+    EXPECT_TRUE(status.ok()) << status;
   }
   return mesh;
 }
@@ -996,18 +982,18 @@ std::vector<Request> requests_with_grid(const BackgroundGridSpec& grid, std::siz
   const std::size_t longest = std::max(grid.points.size(), grid.tets.size());
   for (std::size_t begin = 0; begin < longest; begin += slice) {
     v1::BackgroundGridSlice& part = *requests.emplace_back().mutable_background_grid();
-    for (std::size_t p = begin; p < std::min(grid.points.size(), begin + slice); ++p) {
-      for (const double c : grid.points[p]) part.add_xyz(c);
+    if (begin < grid.points.size()) {
+      wire::encode_grid_points(grid.points, begin, wire::slice_end(begin, grid.points.size(), slice),
+                               part);
     }
-    for (std::size_t t = begin; t < std::min(grid.tets.size(), begin + slice); ++t) {
-      for (const Index i : grid.tets[t]) part.add_tets(i);
+    if (begin < grid.tets.size()) {
+      wire::encode_grid_tets(grid.tets, begin, wire::slice_end(begin, grid.tets.size(), slice),
+                             part);
     }
   }
   for (std::size_t begin = 0; begin < grid.sizes.size(); begin += slice) {
-    v1::BackgroundGridSlice& part = *requests.emplace_back().mutable_background_grid();
-    for (std::size_t p = begin; p < std::min(grid.sizes.size(), begin + slice); ++p) {
-      part.add_sizes(grid.sizes[p]);
-    }
+    wire::encode_grid_sizes(grid.sizes, begin, wire::slice_end(begin, grid.sizes.size(), slice),
+                            *requests.emplace_back().mutable_background_grid());
   }
   return requests;
 }

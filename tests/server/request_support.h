@@ -1,6 +1,8 @@
-// The fronts and MeshVolume requests the in-process server tests send.
+// The fronts and MeshVolume requests the in-process server tests send, and how they compare
+// what comes back.
 #pragma once
 
+#include <cstring>
 #include <vector>
 
 #include "afmesh/v1/mesher.pb.h"
@@ -36,6 +38,11 @@ inline std::vector<v1::MeshVolumeRequest> tetrahedron_requests(double size = 0.5
   }
   for (int t = 0; t < 4; ++t) triangles.mutable_triangles()->add_tags(0);
   return {header, points, triangles};
+}
+
+// True when both point arrays hold the same bits (so -0.0 differs from 0.0).
+inline bool same_bits(const std::vector<Point>& a, const std::vector<Point>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Point)) == 0;
 }
 
 }  // namespace afmesh::testing

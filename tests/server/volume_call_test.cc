@@ -6,8 +6,11 @@
 
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "absl/status/status.h"
+#include "afmesh/v1/mesher.grpc.pb.h"
 #include "client/volume_call.h"
 #include "grpc/grpc.h"
 #include "grpcpp/generic/async_generic_service.h"
@@ -111,6 +114,61 @@ TEST_F(VolumeCallRetryTest, AnInternalErrorTheServiceSentIsNotRetried) {
   EXPECT_FALSE(cut_on_the_way(status));
   EXPECT_FALSE(worth_retrying(status, true));
   (*server)->shutdown();
+}
+
+// Answers every MeshVolume call with `responses` and OK, whatever it is sent.
+class ScriptedMesher final : public v1::Mesher::CallbackService {
+ public:
+  explicit ScriptedMesher(std::vector<v1::MeshVolumeResponse> responses)
+      : responses_(std::move(responses)) {}
+  grpc::ServerBidiReactor<v1::MeshVolumeRequest, v1::MeshVolumeResponse>* MeshVolume(
+      grpc::CallbackServerContext*) override {
+    class Reactor final
+        : public grpc::ServerBidiReactor<v1::MeshVolumeRequest, v1::MeshVolumeResponse> {
+     public:
+      explicit Reactor(const std::vector<v1::MeshVolumeResponse>& responses)
+          : responses_(responses) {
+        OnWriteDone(true);
+      }
+      void OnWriteDone(bool ok) override {
+        if (ok && next_ < responses_.size()) {
+          StartWrite(&responses_[next_++]);
+        } else {
+          Finish(grpc::Status::OK);
+        }
+      }
+      void OnDone() override { delete this; }
+
+     private:
+      const std::vector<v1::MeshVolumeResponse>& responses_;
+      std::size_t next_ = 0;
+    };
+    return new Reactor(responses_);
+  }
+
+ private:
+  const std::vector<v1::MeshVolumeResponse> responses_;
+};
+
+// The CLI decodes the server's slices with the checks the server applies to its input: a slice
+// whose length is not a whole number of items is refused, not cut short.
+TEST(VolumeCall, AMalformedSliceFromTheServerIsDataLossNamingIt) {
+  std::vector<v1::MeshVolumeResponse> responses(2);
+  for (const double c : {0.0, 1.0, 2.0, 3.0}) responses[0].mutable_points()->add_xyz(c);
+  responses[1].mutable_summary()->set_point_count(1);
+  ScriptedMesher mesher(responses);
+  grpc::ServerBuilder builder;
+  int port = 0;
+  builder.AddListeningPort("127.0.0.1:0", grpc::InsecureServerCredentials(), &port);
+  builder.RegisterService(&mesher);
+  const std::unique_ptr<grpc::Server> server = builder.BuildAndStart();
+  ASSERT_NE(server, nullptr);
+  const absl::Status status = call("127.0.0.1:" + std::to_string(port));
+  EXPECT_EQ(status.code(), absl::StatusCode::kDataLoss) << status;
+  EXPECT_EQ(status.message(),
+            "the server's answer is malformed: message 1: points slice has 4 coordinates, not a "
+            "multiple of 3");
+  server->Shutdown();
 }
 
 TEST_F(VolumeCallRetryTest, AnUnreachableSharedServerIsRetried) {
