@@ -22,7 +22,8 @@
 // is a local minimum of the distance to x unless its closest point is one of its corners (the
 // nearer face may then be two edges away round that vertex) or it has an open or non-manifold
 // edge (faces beyond it are no edge neighbours): then look at the faces round those corners and
-// go on from the nearest if it is strictly nearer. Distances strictly decrease, so the walk never
+// go on from the nearest if it is strictly nearer. (The paper names the walk, not its rules:
+// these are ours.) Distances strictly decrease, so the walk never
 // cycles, and it stops at a local minimum of the distance from x to the surface. On a surface
 // whose distance to x has one local minimum near x (x close to a smooth part of the surface,
 // nearer than the local feature size) that is the nearest face; where it has several (x between

@@ -18,7 +18,8 @@
 //     An edge next to a degenerate face (zero normal) is a ridge only for the other reasons (our
 //     choice: such a face has no direction to compare).
 //  2. Corners: input vertices where a line ends (one line edge), where more than two line edges
-//     meet (the paper's definition), or where a line turns by more than corner_angle_deg.
+//     meet (the paper's definition), or where a line turns by more than corner_angle_deg (these
+//     two are ours: a line must keep its end, and a rim's sharp turn must not be cut by sides).
 //  3. Lines: line edges chained from corner to corner through vertices with two line edges, as
 //     polylines of input vertices. A closed loop without a corner (a cylinder's rim) starts and
 //     ends at its smallest vertex index, which becomes a corner (CornerKind::kLoopStart), and

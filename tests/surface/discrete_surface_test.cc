@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <filesystem>
 #include <limits>
 #include <random>
 #include <string>
@@ -18,7 +17,6 @@
 
 #include "core/geometry/closest_points.h"
 #include "core/geometry/vec.h"
-#include "core/io/mesh_io.h"
 #include "core/quality/measures.h"
 #include "core/shapes/shapes.h"
 #include "tests/surface/surface_test_shapes.h"
@@ -307,12 +305,10 @@ TEST(DiscreteSurface, ProjectionFarFromTheOriginLandsOnTheSurface) {
 // folds can be nearest to another sheet; a walk from there ends at a local minimum on that sheet
 // (measured: 4 of 2000, all with the hint's host ~0.03 from the query's own sheet).
 TEST(DiscreteSurface, WalkAgreesWithTheTreeOnTheCorpusBunny) {
-  const std::filesystem::path path =
-      std::filesystem::path(AFMESH_SOURCE_DIR) / ".." / "shared" / "corpus" / "cgal_bunny00.stl";
-  absl::StatusOr<Mesh> mesh = read_mesh(path.string());
-  ASSERT_TRUE(mesh.ok()) << mesh.status();
-  const DiscreteSurface s = build_or_die(*mesh);
-  const double h = mean_edge_length(*mesh);
+  const Mesh mesh = testing::corpus_mesh("cgal_bunny00.stl");
+  ASSERT_FALSE(mesh.triangles.empty());
+  const DiscreteSurface s = build_or_die(mesh);
+  const double h = mean_edge_length(mesh);
   const WalkFigures f = compare_walk_and_tree(s, 2000, 0.2 * h, 3.0 * h, 4);
   print("corpus bunny", s, f);
   EXPECT_GE(f.same_distance, f.queries * 99 / 100);

@@ -6,12 +6,10 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <filesystem>
 #include <set>
 #include <string>
 #include <utility>
 
-#include "core/io/mesh_io.h"
 #include "core/shapes/shapes.h"
 #include "tests/surface/surface_test_shapes.h"
 
@@ -211,24 +209,29 @@ TEST(SurfaceFeatures, RefusesAnglesOutOfRange) {
   EXPECT_EQ(find_surface_features(*s, params).status().code(), absl::StatusCode::kInvalidArgument);
 }
 
+// The features of a corpus file, checked as every result is, with its counts printed for the
+// record (lines with the given LineKind bit counted apart).
+Model corpus_features(const std::string& name, std::uint8_t kind, int& lines_of_kind) {
+  const Model m = surface_model(testing::corpus_mesh(name));
+  expect_consistent(m);
+  lines_of_kind = 0;
+  for (const DiscreteLine& line : m.features.lines) lines_of_kind += (line.kinds & kind) != 0;
+  std::printf(
+      "%s: %d faces, %lld line edges, %zu lines (%d of kind %d), %zu corners, %zu patches\n",
+      name.c_str(), m.surface.face_count(), static_cast<long long>(m.features.line_edge_count),
+      m.features.lines.size(), lines_of_kind, kind, m.features.corners.size(),
+      m.features.patches.size());
+  return m;
+}
+
 // CAD parts of the corpus (netgen and gmsh examples): ridges are found and the patches
-// partition the faces. The counts are printed for the record; they pin the result too.
+// partition the faces. The counts are printed for the record.
 TEST(SurfaceFeatures, CorpusCadPartsHaveRidgesAndPatchesPartitionTheFaces) {
   for (const std::string name :
        {"netgen_part1.stl", "netgen_hinge.stl", "gmsh_lever.stl", "cgal_pinion.stl"}) {
-    const std::filesystem::path path =
-        std::filesystem::path(AFMESH_SOURCE_DIR) / ".." / "shared" / "corpus" / name;
-    absl::StatusOr<Mesh> mesh = read_mesh(path.string());
-    ASSERT_TRUE(mesh.ok()) << mesh.status();
-    const Model m = surface_model(*mesh);
     SCOPED_TRACE(name);
-    expect_consistent(m);
     int ridges = 0;
-    for (const DiscreteLine& line : m.features.lines) ridges += (line.kinds & kRidgeEdge) != 0;
-    std::printf("%s: %d faces, %lld line edges, %zu lines (%d ridge), %zu corners, %zu patches\n",
-                name.c_str(), m.surface.face_count(),
-                static_cast<long long>(m.features.line_edge_count), m.features.lines.size(), ridges,
-                m.features.corners.size(), m.features.patches.size());
+    const Model m = corpus_features(name, kRidgeEdge, ridges);
     EXPECT_GT(ridges, 0);
     EXPECT_GT(m.features.patches.size(), 1u);
   }
@@ -238,20 +241,10 @@ TEST(SurfaceFeatures, CorpusCadPartsHaveRidgesAndPatchesPartitionTheFaces) {
 // boundary lines, and the patches still partition the faces.
 TEST(SurfaceFeatures, CorpusTerrainsHaveBoundaryLines) {
   for (const std::string name : {"gmsh_terrain_stl_data.stl", "of_AcrossRiver.stl"}) {
-    const std::filesystem::path path =
-        std::filesystem::path(AFMESH_SOURCE_DIR) / ".." / "shared" / "corpus" / name;
-    absl::StatusOr<Mesh> mesh = read_mesh(path.string());
-    ASSERT_TRUE(mesh.ok()) << mesh.status();
-    const Model m = surface_model(*mesh);
     SCOPED_TRACE(name);
-    expect_consistent(m);
-    int boundary = 0;
-    for (const DiscreteLine& line : m.features.lines) boundary += (line.kinds & kBoundaryEdge) != 0;
-    std::printf(
-        "%s: %d faces, %lld line edges, %zu lines (%d on the rim), %zu corners, %zu patches\n",
-        name.c_str(), m.surface.face_count(), static_cast<long long>(m.features.line_edge_count),
-        m.features.lines.size(), boundary, m.features.corners.size(), m.features.patches.size());
-    EXPECT_GT(boundary, 0);
+    int rim = 0;
+    corpus_features(name, kBoundaryEdge, rim);
+    EXPECT_GT(rim, 0);
   }
 }
 

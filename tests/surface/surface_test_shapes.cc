@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <utility>
+
+#include "core/io/mesh_io.h"
 
 namespace afmesh::testing {
 namespace {
@@ -143,6 +146,14 @@ Mesh three_sheet_t(int n) {
     }
   }
   return mesh;
+}
+
+Mesh corpus_mesh(const std::string& name) {
+  const std::filesystem::path path =
+      std::filesystem::path(AFMESH_SOURCE_DIR) / ".." / "shared" / "corpus" / name;
+  absl::StatusOr<Mesh> mesh = read_mesh(path.string());
+  EXPECT_TRUE(mesh.ok()) << mesh.status();
+  return mesh.ok() ? *std::move(mesh) : Mesh{};
 }
 
 SurfaceModel surface_model(const Mesh& mesh, const FeatureParams& params) {

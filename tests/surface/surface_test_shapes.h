@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <string>
 
 #include "core/mesh/mesh.h"
 #include "core/surface/discrete_surface.h"
@@ -34,6 +35,10 @@ Mesh terrain_grid(double x0, double y0, double width, double depth, int n,
 // x < 0 and x > 0 of the plane z = 0 and the wall x = 0, z > 0), each an n×n grid of squares
 // split in two; the shared segment's edges have three faces.
 Mesh three_sheet_t(int n);
+
+// The mesh of `name` in ../shared/corpus (real files from Debian packages; CI has ../shared
+// beside the checkout); a read failure is a test failure (and gives an empty mesh).
+Mesh corpus_mesh(const std::string& name);
 
 // A discrete surface over `mesh` and its features; a failure of either is a test failure (and
 // leaves the features empty).
