@@ -40,7 +40,7 @@
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "core/common/progress.h"
-#include "core/volume/generate_volume_mesh.h"
+#include "core/common/stage_timing.h"
 #include "grpcpp/grpcpp.h"
 #include "server/call_auth.h"
 #include "server/call_gate.h"

@@ -12,6 +12,7 @@
 
 #include "absl/status/statusor.h"
 #include "core/common/progress.h"
+#include "core/common/stage_timing.h"
 #include "core/mesh/mesh.h"
 #include "core/sizing/size_field.h"
 #include "core/sizing/size_spec.h"
@@ -50,11 +51,6 @@ struct VolumeParams {
   // rule, so that a front whose faces cross can be given to the loop without environments, to
   // show how the advancing front fails on it (paper §2, Figure 1). The other rules still apply.
   bool check_self_intersections = true;
-};
-
-struct StageTiming {
-  std::string stage;   // e.g. "validate", "front", "optimise"
-  double seconds = 0;  // wall time
 };
 
 struct VolumeResult {
