@@ -1,0 +1,82 @@
+// MeshSurface: re-triangulates a surface given only as triangles (paper §3, steps S1–S11, with
+// the discrete lines and patches of its end and the sizes of §4).
+//
+// Steps:
+//  1. Input as it comes (clean_surface_input): duplicate and zero-area triangles and unused
+//     points are dropped, closed components are oriented consistently and outward; each change
+//     is counted in the report.
+//  2. The discrete surface (discrete_surface.h): host faces, normals, projection (S2, S3, S8).
+//  3. Features (features.h): ridges, boundary, non-manifold and tag edges as discrete lines,
+//     corners, patches.
+//  4. Sides along every line (split_lines.h, F3), shared by the patches on both sides.
+//  5. Each patch meshed in turn from its sides by the surface front, S1–S11.
+//  6. The result assembled (corners and line points shared), checked, and its distance to the
+//     input measured (two-sided Hausdorff, sampled at vertices, edge midpoints and centroids).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/common/progress.h"
+#include "core/common/stage_timing.h"
+#include "core/mesh/mesh.h"
+#include "core/sizing/size_spec.h"
+
+namespace afmesh {
+
+struct SurfaceParams {
+  // Target edge length h of the uniform size field (> 0, in the units of the points).
+  double size = 0.0;
+  // Growth factor c_i of eq. 15 (>= 1) for the sizes attached to the lines' corners and to
+  // new points.
+  double growth = 1.0;
+  // The full size specification (sources, background grid; paper §4). When set, its max_size
+  // and growth replace `size` and `growth`.
+  std::optional<SizeSpec> spec;
+  // Adjacent input faces whose normals differ by more than this make a ridge (degrees, (0, 180)).
+  double ridge_angle_deg = 30.0;
+  // A discrete line turning by more than this at a vertex is split there (degrees, (0, 180]).
+  double corner_angle_deg = 60.0;
+  // Stop with RESOURCE_EXHAUSTED past this many output triangles (the server's --max-elements).
+  std::int64_t max_triangles = std::numeric_limits<std::int64_t>::max();
+};
+
+// What was done to the input before meshing, and what came out (every count is exact).
+struct SurfaceReport {
+  std::int64_t input_points = 0;
+  std::int64_t input_triangles = 0;
+  std::int64_t duplicate_triangles_dropped = 0;  // same three points as an earlier triangle
+  std::int64_t degenerate_triangles_dropped = 0;  // a repeated point or zero area
+  std::int64_t unused_points_dropped = 0;          // on no triangle
+  std::int64_t triangles_reoriented = 0;           // turned to agree with their component
+  std::int64_t components = 0;                     // edge-connected components
+  std::int64_t closed_components = 0;
+  std::int64_t patches = 0;
+  std::int64_t lines = 0;
+  std::int64_t corners = 0;
+  // Two-sided Hausdorff distance between output and input (sampled: vertices, edge midpoints
+  // and centroids of each), and the largest distance of an output vertex from the input.
+  double hausdorff = 0.0;
+  double max_vertex_distance = 0.0;
+  double model_size = 0.0;  // the input's bounding-box diagonal
+};
+
+struct SurfaceResult {
+  // points and triangles of the new surface; triangle_tags: the input tag of each triangle's
+  // patch. Oriented as the (cleaned) input.
+  Mesh mesh;
+  SurfaceReport report;
+  std::vector<StageTiming> timings;
+};
+
+// Re-triangulates `input` (points N×3, triangles M×3, triangle_tags M or empty) at the size of
+// `params`. Errors: INVALID_ARGUMENT (bad input or params, naming the element), CANCELLED
+// (progress.cancelled()), RESOURCE_EXHAUSTED (over params.max_triangles), FAILED_PRECONDITION
+// (a patch could not be closed; the message says where).
+absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const SurfaceParams& params,
+                                                    Progress& progress = no_progress());
+
+}  // namespace afmesh
