@@ -1,14 +1,319 @@
 // MeshSurface (paper §3): see generate_surface_mesh.h for the steps.
 #include "core/surface/generate_surface_mesh.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "absl/container/flat_hash_map.h"
+#include "absl/container/flat_hash_set.h"
+#include "absl/strings/str_format.h"
+#include "core/geometry/predicates.h"
+#include "core/geometry/vec.h"
+#include "core/quality/measures.h"
+#include "core/quality/mesh_topology.h"
+#include "core/sizing/size_field.h"
+#include "core/sizing/spec_size_field.h"
+#include "core/surface/discrete_surface.h"
+#include "core/surface/features.h"
+#include "core/surface/split_lines.h"
+#include "core/surface/surface_front.h"
+#include "core/volume/generate_volume_mesh.h"  // kMinAttachedGrowth
+#include "core/volume/repair_front.h"
+
 namespace afmesh {
+namespace {
+
+class StageClock {
+ public:
+  explicit StageClock(std::vector<StageTiming>& out) : out_(out) {}
+  void lap(const char* stage) {
+    const auto now = std::chrono::steady_clock::now();
+    out_.push_back({stage, std::chrono::duration<double>(now - start_).count()});
+    start_ = now;
+  }
+
+ private:
+  std::vector<StageTiming>& out_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+absl::Status check_params(const SurfaceParams& params) {
+  if (!params.spec && (!(params.size > 0) || !std::isfinite(params.size)))
+    return absl::InvalidArgumentError(absl::StrFormat("size must be > 0, got %g", params.size));
+  if (!params.spec && (!(params.growth >= 1.0) || !std::isfinite(params.growth)))
+    return absl::InvalidArgumentError(
+        absl::StrFormat("growth must be >= 1, got %g", params.growth));
+  return absl::OkStatus();
+}
+
+// Step 1 (not in the paper, which assumes a clean triangulation): drops what carries no
+// surface (triangles repeating a point or of zero area, repeats of a triangle, points on no
+// triangle) and orients closed components consistently and outward (repair_front). Every
+// change is counted in `report`.
+absl::StatusOr<Mesh> clean_surface_input(const Mesh& input, SurfaceReport& report) {
+  const Index n = static_cast<Index>(input.points.size());
+  report.input_points = n;
+  report.input_triangles = static_cast<std::int64_t>(input.triangles.size());
+  if (input.triangles.empty()) return absl::InvalidArgumentError("the surface has no triangles");
+  if (!input.triangle_tags.empty() && input.triangle_tags.size() != input.triangles.size())
+    return absl::InvalidArgumentError(
+        absl::StrFormat("triangle_tags has %d entries for %d triangles",
+                        input.triangle_tags.size(), input.triangles.size()));
+  for (Index p = 0; p < n; ++p)
+    for (const double c : input.points[p])
+      if (!std::isfinite(c))
+        return absl::InvalidArgumentError(
+            absl::StrFormat("point %d has a coordinate that is not a finite number", p));
+  Mesh out;
+  absl::flat_hash_set<Triangle> seen;
+  std::vector<Index> new_index(static_cast<std::size_t>(n), kInvalidIndex);
+  for (std::size_t t = 0; t < input.triangles.size(); ++t) {
+    const Triangle& v = input.triangles[t];
+    for (int k = 0; k < 3; ++k)
+      if (v[k] < 0 || v[k] >= n)
+        return absl::InvalidArgumentError(absl::StrFormat(
+            "triangle %d refers to point %d, out of range [0, %d)", t, v[k], n));
+    if (!has_distinct_indices(v) ||
+        collinear(input.points[v[0]], input.points[v[1]], input.points[v[2]])) {
+      ++report.degenerate_triangles_dropped;
+      continue;
+    }
+    if (!seen.insert(sorted_triangle(v)).second) {
+      ++report.duplicate_triangles_dropped;
+      continue;
+    }
+    Triangle w;
+    for (int k = 0; k < 3; ++k) {
+      if (new_index[v[k]] == kInvalidIndex) {
+        new_index[v[k]] = static_cast<Index>(out.points.size());
+        out.points.push_back(input.points[v[k]]);
+      }
+      w[k] = new_index[v[k]];
+    }
+    out.triangles.push_back(w);
+    out.triangle_tags.push_back(input.triangle_tags.empty() ? 0 : input.triangle_tags[t]);
+  }
+  if (out.triangles.empty())
+    return absl::InvalidArgumentError(
+        "the surface has no triangle with an area: every triangle repeats a point or has its "
+        "corners on a line");
+  report.unused_points_dropped = n - static_cast<Index>(out.points.size());
+  const FrontRepairReport repair = repair_front(out);
+  report.triangles_reoriented = repair.triangles_reoriented;
+  return out;
+}
+
+absl::StatusOr<std::unique_ptr<SizeField>> surface_size_field(const SurfaceParams& params,
+                                                              const Mesh& input) {
+  if (!params.spec) return std::make_unique<UniformSize>(params.size);
+  Box domain = empty_box();
+  for (const Point& p : input.points) enclose(domain, p);
+  absl::StatusOr<SpecSizeField> field = SpecSizeField::create(*params.spec, domain);
+  if (!field.ok()) return field.status();
+  return std::make_unique<SpecSizeField>(*std::move(field));
+}
+
+// The patch of `surface` left of the directed input edge a→b (the face traversing it so), if
+// any, and right of it: out[0] the faces traversing a→b, out[1] those traversing b→a.
+void faces_at_edge(const DiscreteSurface& surface, Index a, Index b,
+                   std::vector<Index>& forward, std::vector<Index>& backward) {
+  forward.clear();
+  backward.clear();
+  for (const Index f : surface.faces_at(a)) {
+    const Triangle& t = surface.triangles()[f];
+    for (int k = 0; k < 3; ++k) {
+      if (t[k] == a && t[(k + 1) % 3] == b) forward.push_back(f);
+      if (t[k] == b && t[(k + 1) % 3] == a) backward.push_back(f);
+    }
+  }
+}
+
+// Step 4 (F3): the sides along every line, shared by the patches on both sides; fills
+// patch_sides with each patch's initial front, oriented with the patch on the left.
+absl::Status sides_along_lines(SurfaceMeshState& s, std::vector<std::vector<Side>>& patch_sides) {
+  const DiscreteSurface& surface = s.surface;
+  const SurfaceFeatures& features = s.features;
+  const std::vector<LineEndSizes> ends = line_end_sizes(surface, features);
+  absl::flat_hash_map<Index, Index> corner_point;  // input vertex -> output point
+  auto corner = [&](Index vertex) {
+    auto [it, fresh] = corner_point.try_emplace(vertex, kInvalidIndex);
+    if (fresh) {
+      const Point& x = surface.local_points()[vertex];
+      it->second = s.add_point(x, s.field_size(x), FaceId{surface.faces_at(vertex)[0]}, vertex);
+    }
+    return it->second;
+  };
+  std::vector<Index> forward, backward;
+  std::vector<Point> polyline;
+  for (std::size_t l = 0; l < features.lines.size(); ++l) {
+    const DiscreteLine& line = features.lines[l];
+    polyline.clear();
+    for (const Index v : line.vertices) polyline.push_back(surface.local_points()[v]);
+    SplitLineParams split_params;
+    split_params.field_origin = surface.origin();
+    split_params.start_size = ends[l].start;
+    split_params.end_size = ends[l].end;
+    split_params.growth = s.growth;
+    absl::StatusOr<LineSplit> split = split_line(polyline, s.field, split_params);
+    if (!split.ok()) return split.status();
+    std::vector<Index> ids(split->points.size());
+    const std::size_t last = ids.size() - 1;
+    ids[0] = corner(line.vertices.front());
+    ids[last] = line.closed ? ids[0] : corner(line.vertices.back());
+    for (std::size_t i = 1; i < last; ++i) {
+      const Index seg = split->segment[i];
+      const Index a = line.vertices[seg], b = line.vertices[seg + 1];
+      faces_at_edge(surface, a, b, forward, backward);
+      const Index host = !forward.empty() ? forward[0] : backward[0];
+      ids[i] = s.add_point(split->points[i], s.field_size(split->points[i]), FaceId{host}, a);
+    }
+    // Attached sizes (eq. 15's delta_A): a line point carries the length of its sides.
+    for (std::size_t i = 0; i < last; ++i) {
+      const double length = norm(sub(s.points[ids[i + 1]], s.points[ids[i]]));
+      for (const Index p : {ids[i], ids[i + 1]}) s.point_size[p] = std::min(s.point_size[p], length);
+    }
+    // Each patch along the line gets its sides with the patch on their left: forward where a
+    // face of the patch traverses the line's first segment the line's way.
+    faces_at_edge(surface, line.vertices[0], line.vertices[1], forward, backward);
+    for (const PatchId patch : line.patches) {
+      const auto in = [&](const std::vector<Index>& faces) {
+        return std::any_of(faces.begin(), faces.end(),
+                           [&](Index f) { return features.face_patch[f] == patch; });
+      };
+      std::vector<Side>& out = patch_sides[index_of(patch)];
+      if (in(forward))
+        for (std::size_t i = 0; i < last; ++i) out.push_back({ids[i], ids[i + 1]});
+      if (in(backward))
+        for (std::size_t i = 0; i < last; ++i) out.push_back({ids[i + 1], ids[i]});
+    }
+  }
+  return absl::OkStatus();
+}
+
+// A patch without lines (a closed smooth surface: a sphere, a torus) has no front to start
+// from: a seed triangle of the wanted size is laid on its first face, and its sides, turned
+// outward, are the front (not in the paper, which meshes patches bounded by lines).
+void seed_patch(SurfaceMeshState& s, PatchId patch, std::vector<Side>& sides) {
+  const FaceId face = s.features.patches[index_of(patch)].first_face;
+  const Triangle& t = s.surface.triangle(face);
+  const std::vector<Point>& p = s.surface.local_points();
+  const Point c = scale(add(p[t[0]], add(p[t[1]], p[t[2]])), 1.0 / 3.0);
+  const double h = s.field_size(c);
+  const Point& n = s.surface.normal(face);
+  Point e = sub(p[t[1]], p[t[0]]);
+  e = scale(e, 1.0 / norm(e));
+  const Point f = cross(n, e);
+  Index ids[3];
+  for (int k = 0; k < 3; ++k) {
+    const double angle = 2.0 * std::numbers::pi * k / 3.0;
+    const Point x = add(c, scale(add(scale(e, std::cos(angle)), scale(f, std::sin(angle))),
+                                 h / std::sqrt(3.0)));
+    const Located on = locate_in_patch(s.surface, s.features, patch, x, face);
+    ids[k] = s.add_point(on.closest, h, on.face, kInvalidIndex);
+  }
+  s.triangles.push_back({ids[0], ids[1], ids[2]});
+  s.triangle_tags.push_back(s.features.patches[index_of(patch)].tag);
+  sides = {{ids[1], ids[0]}, {ids[2], ids[1]}, {ids[0], ids[2]}};
+}
+
+// The boxes of the patches (their input faces), padded by 1% of their extent.
+std::vector<Box> patch_boxes(const DiscreteSurface& surface, const SurfaceFeatures& features) {
+  std::vector<Box> boxes(features.patches.size(), empty_box());
+  for (Index f = 0; f < surface.face_count(); ++f)
+    for (const Index q : surface.triangles()[f])
+      enclose(boxes[index_of(features.face_patch[f])], surface.local_points()[q]);
+  for (Box& box : boxes) {
+    double extent = 0;
+    for (int a = 0; a < 3; ++a) extent = std::max(extent, box.hi[a] - box.lo[a]);
+    for (int a = 0; a < 3; ++a) box.lo[a] -= 0.01 * extent, box.hi[a] += 0.01 * extent;
+  }
+  return boxes;
+}
+
+// Step 6: the largest distance from samples of `from` (vertices, edge midpoints, centroids) to
+// `to`. Both in the same frame.
+double sampled_distance(const Mesh& from, const DiscreteSurface& to, double* vertex_max) {
+  double worst = 0, worst_vertex = 0;
+  auto at = [&](const Point& x) { return std::sqrt(to.nearest_face(x).squared_distance); };
+  for (const Point& x : from.points) worst_vertex = std::max(worst_vertex, at(x));
+  worst = worst_vertex;
+  for (const Triangle& t : from.triangles) {
+    const Point& a = from.points[t[0]];
+    const Point& b = from.points[t[1]];
+    const Point& c = from.points[t[2]];
+    worst = std::max({worst, at(scale(add(a, add(b, c)), 1.0 / 3.0)), at(scale(add(a, b), 0.5)),
+                      at(scale(add(b, c), 0.5)), at(scale(add(c, a), 0.5))});
+  }
+  if (vertex_max != nullptr) *vertex_max = worst_vertex;
+  return worst;
+}
+
+}  // namespace
 
 absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const SurfaceParams& params,
                                                     Progress& progress) {
-  (void)input;
-  (void)params;
-  (void)progress;
-  return absl::UnimplementedError("MeshSurface: the surface front is not in this build yet");
+  SurfaceResult result;
+  StageClock clock(result.timings);
+  if (absl::Status st = check_params(params); !st.ok()) return st;
+  absl::StatusOr<Mesh> clean = clean_surface_input(input, result.report);
+  if (!clean.ok()) return clean.status();
+  absl::StatusOr<std::unique_ptr<SizeField>> field = surface_size_field(params, *clean);
+  if (!field.ok()) return field.status();
+  absl::StatusOr<DiscreteSurface> surface = DiscreteSurface::build(*clean);     // S2, S3
+  if (!surface.ok()) return surface.status();
+  FeatureParams feature_params;
+  feature_params.ridge_angle_deg = params.ridge_angle_deg;
+  feature_params.corner_angle_deg = params.corner_angle_deg;
+  absl::StatusOr<SurfaceFeatures> features =
+      find_surface_features(*surface, feature_params, progress);
+  if (!features.ok()) return features.status();
+  result.report.model_size = surface->size();
+  result.report.patches = static_cast<std::int64_t>(features->patches.size());
+  result.report.lines = static_cast<std::int64_t>(features->lines.size());
+  result.report.corners = static_cast<std::int64_t>(features->corners.size());
+  clock.lap("features");
+
+  const double growth = std::max(params.spec ? params.spec->growth : params.growth,
+                                 kMinAttachedGrowth);
+  SurfaceMeshState s(*surface, *features, **field, growth);
+  std::vector<std::vector<Side>> patch_sides(features->patches.size());
+  if (absl::Status st = sides_along_lines(s, patch_sides); !st.ok()) return st;
+  clock.lap("lines");
+
+  const std::vector<Box> boxes = patch_boxes(*surface, *features);
+  for (std::size_t p = 0; p < features->patches.size(); ++p) {
+    const PatchId patch{static_cast<Index>(p)};
+    if (patch_sides[p].empty()) seed_patch(s, patch, patch_sides[p]);
+    if (absl::Status st = mesh_patch(s, patch, patch_sides[p], boxes[p], {}, progress); !st.ok())
+      return st;
+    if (static_cast<std::int64_t>(s.triangles.size()) > params.max_triangles)
+      return absl::ResourceExhaustedError(absl::StrFormat(
+          "the surface has %d triangles after %d of its %d patches, over the limit of %d",
+          s.triangles.size(), p + 1, features->patches.size(), params.max_triangles));
+  }
+  clock.lap("front");
+
+  Mesh local;
+  local.points = s.points;
+  local.triangles = std::move(s.triangles);
+  local.triangle_tags = std::move(s.triangle_tags);
+  absl::StatusOr<DiscreteSurface> output = DiscreteSurface::build(local);
+  if (!output.ok()) return output.status();
+  Mesh input_local;
+  input_local.points = surface->local_points();
+  input_local.triangles = surface->triangles();
+  const double out_to_in =
+      sampled_distance(local, *surface, &result.report.max_vertex_distance);
+  const double in_to_out = sampled_distance(input_local, *output, nullptr);
+  result.report.hausdorff = std::max(out_to_in, in_to_out);
+  clock.lap("distance");
+
+  result.mesh = std::move(local);
+  for (Point& x : result.mesh.points) x = surface->to_global(x);
+  return result;
 }
 
 }  // namespace afmesh

@@ -1,0 +1,373 @@
+// The surface front, S1–S11 (paper §3); see surface_front.h.
+#include "core/surface/surface_front.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "absl/strings/str_format.h"
+#include "core/front/advancing_front.h"
+#include "core/front/front_sizes.h"
+#include "core/geometry/closest_points.h"
+#include "core/geometry/predicates.h"
+#include "core/geometry/vec.h"
+#include "core/quality/measures.h"
+#include "core/sizing/attached_sizes.h"
+
+namespace afmesh {
+
+Index SurfaceMeshState::add_point(const Point& x, double size, FaceId host_face,
+                                  Index anchor_vertex) {
+  points.push_back(x);
+  point_size.push_back(size);
+  host.push_back(host_face);
+  anchor.push_back(anchor_vertex);
+  return static_cast<Index>(points.size() - 1);
+}
+
+namespace {
+
+bool in_patch(const SurfaceFeatures& features, PatchId patch, Index face) {
+  return features.face_patch[face] == patch;
+}
+
+double squared_distance_to_face(const DiscreteSurface& surface, const Point& x, Index face,
+                                Point& closest) {
+  const Triangle& t = surface.triangles()[face];
+  const std::vector<Point>& p = surface.local_points();
+  closest = closest_point_on_triangle(x, p[t[0]], p[t[1]], p[t[2]]);
+  return squared_norm(sub(x, closest));
+}
+
+}  // namespace
+
+Located locate_in_patch(const DiscreteSurface& surface, const SurfaceFeatures& features,
+                        PatchId patch, const Point& x, FaceId hint, int max_steps) {
+  Located at;
+  Index face = index_of(hint);
+  at.squared_distance = squared_distance_to_face(surface, x, face, at.closest);
+  ++at.evaluations;
+  for (int step = 0; step < max_steps; ++step) {
+    Index best = kInvalidIndex;
+    double best_distance = at.squared_distance;
+    Point best_closest{};
+    // The faces of the patch around the face's corners: its edge neighbours and those that share
+    // only a corner (where the nearest point is a corner, the nearer face may be one of them).
+    for (const Index v : surface.triangles()[face]) {
+      for (const Index g : surface.faces_at(v)) {
+        if (g == face || !in_patch(features, patch, g)) continue;
+        Point closest;
+        const double d = squared_distance_to_face(surface, x, g, closest);
+        ++at.evaluations;
+        if (d < best_distance || (d == best_distance && best != kInvalidIndex && g < best)) {
+          if (d < best_distance) {
+            best = g;
+            best_distance = d;
+            best_closest = closest;
+          }
+        }
+      }
+    }
+    if (best == kInvalidIndex) break;
+    face = best;
+    at.squared_distance = best_distance;
+    at.closest = best_closest;
+    ++at.walk_steps;
+  }
+  at.face = FaceId{face};
+  return at;
+}
+
+FaceId patch_hint(const SurfaceMeshState& s, PatchId patch, Index p) {
+  const FaceId host = s.host[p];
+  if (host != kNoFace && in_patch(s.features, patch, index_of(host))) return host;
+  if (const Index v = s.anchor[p]; v != kInvalidIndex) {
+    for (const Index g : s.surface.faces_at(v))
+      if (in_patch(s.features, patch, g)) return FaceId{g};
+  }
+  return s.features.patches[index_of(patch)].first_face;
+}
+
+namespace {
+
+constexpr double kSqrt3Over2 = 0.8660254037844386;
+
+// Relaxation of the acceptance rules for a side that has failed `attempts` times (not in the
+// paper; as the volume front's strictness_for): later attempts accept worse faces and new points
+// closer to the front.
+struct SideRules {
+  double min_angle_deg;   // smallest accepted angle of the new face
+  double point_spacing;   // a new point keeps this fraction of d from front points
+  double side_clearance;  // ... and this fraction of d from front sides
+  double reach;           // front points within reach·d of the best point are candidates
+};
+constexpr SideRules kRules[] = {
+    {30.0, 0.55, 0.35, 1.1}, {20.0, 0.45, 0.28, 1.4}, {12.0, 0.35, 0.2, 1.6},
+    {6.0, 0.25, 0.12, 2.0},  {2.0, 0.15, 0.06, 2.5},  {0.0, 0.08, 0.03, 3.0},
+};
+constexpr int kRuleClasses = static_cast<int>(sizeof(kRules) / sizeof(kRules[0]));
+
+// The plane of paper Figure 6: the side's midpoint and the host normal, with t along the side
+// and u = n × t to its left (towards the unmeshed part of the patch).
+struct SidePlane {
+  Point origin, t, u;
+  std::array<double, 2> at(const Point& x) const {
+    const Point r = sub(x, origin);
+    return {dot(r, t), dot(r, u)};
+  }
+};
+
+struct Candidate {
+  Index point;  // kInvalidIndex: the new point
+  double rank;
+};
+
+class PatchFront {
+ public:
+  PatchFront(SurfaceMeshState& s, PatchId patch, const Box& domain, double cell)
+      : s_(s), patch_(patch), front_(s.points, domain, cell) {}
+
+  void add_side(const Side& v) { front_.add(v, queue_key(v)); }
+  void defer(Index f) { front_.defer(f, queue_key(front_.item(f).v)); }
+  AdvancingFront<2>& front() { return front_; }
+
+  // S2–S10 for side f; false when no face could be built on it now.
+  bool delete_side(Index f);
+  // FAILED_PRECONDITION for side f: where it is and its sizes.
+  absl::Status stuck(Index f, std::int64_t triangles_before) const;
+
+ private:
+  // Eq. 15 at the side's midpoint: min(delta(x), c_i · min(delta_A, delta_B)).
+  double target_size(const Side& v) const {
+    const Point mid = midpoint(v);
+    return new_point_size(s_.field_size(mid), s_.growth, s_.point_size, v);
+  }
+  double element_size(const Side& v, double target) const {
+    return element_size_for_target(target, norm(sub(s_.points[v[1]], s_.points[v[0]])));
+  }
+  double queue_key(const Side& v) const {
+    const double target = target_size(v);
+    return queue_key_for_element(target, element_size(v, target));
+  }
+  Point midpoint(const Side& v) const {
+    return scale(add(s_.points[v[0]], s_.points[v[1]]), 0.5);
+  }
+  bool plane_of(const Side& v, FaceId& host, SidePlane& plane) const;
+  void gather(const Side& v, const SidePlane& plane, const Point& best, double d,
+              const SideRules& rules);
+  bool new_point_is_clear(const Point& x, double d, const SideRules& rules, Index f) const;
+  bool face_crosses_front(Index f, const Side& v, Index p, const SidePlane& plane) const;
+  void add_face(Index f, const Side& v, Index p);
+
+  SurfaceMeshState& s_;
+  PatchId patch_;
+  AdvancingFront<2> front_;
+  std::vector<Candidate> candidates_;
+  mutable std::vector<Index> near_;
+};
+
+bool PatchFront::plane_of(const Side& v, FaceId& host, SidePlane& plane) const {
+  const Point mid = midpoint(v);
+  const Located at =
+      locate_in_patch(s_.surface, s_.features, patch_, mid, patch_hint(s_, patch_, v[0]));
+  host = at.face;
+  const Point& n = s_.surface.normal(host);                          // S3
+  const Point along = sub(s_.points[v[1]], s_.points[v[0]]);
+  const Point tangent = sub(along, scale(n, dot(along, n)));
+  const double length = norm(tangent);
+  if (!(length > 0) || !(squared_norm(n) > 0)) return false;
+  plane.origin = mid;
+  plane.t = scale(tangent, 1.0 / length);
+  plane.u = cross(n, plane.t);
+  return true;
+}
+
+void PatchFront::gather(const Side& v, const SidePlane& plane, const Point& best, double d,
+                        const SideRules& rules) {
+  candidates_.clear();
+  const double reach = rules.reach * d;
+  Box box{best, best};
+  for (int a = 0; a < 3; ++a) box.lo[a] -= reach, box.hi[a] += reach;
+  const std::array<double, 2> a2 = plane.at(s_.points[v[0]]), b2 = plane.at(s_.points[v[1]]);
+  front_.bins().for_each_point_near(box, [&](Index q) {
+    if (q == v[0] || q == v[1]) return;
+    const double r = norm(sub(s_.points[q], best));
+    if (r > reach) return;
+    const std::array<double, 2> q2 = plane.at(s_.points[q]);
+    if (orient2d(a2.data(), b2.data(), q2.data()) <= 0) return;  // not left of the side
+    if (triangle_quality(s_.points[v[0]], s_.points[v[1]], s_.points[q]).min_angle_deg <
+        rules.min_angle_deg)
+      return;
+    candidates_.push_back({q, r / d});
+  });
+  // S5: a front point nearer to the best point than the spacing a new point must keep is used
+  // in lieu of it; farther ones come after it.
+  candidates_.push_back({kInvalidIndex, rules.point_spacing});
+  std::stable_sort(candidates_.begin(), candidates_.end(),
+                   [](const Candidate& x, const Candidate& y) {
+                     if (x.rank != y.rank) return x.rank < y.rank;
+                     return x.point < y.point;
+                   });
+}
+
+bool PatchFront::new_point_is_clear(const Point& x, double d, const SideRules& rules,
+                                    Index f) const {
+  const double spacing = rules.point_spacing * d, clearance = rules.side_clearance * d;
+  const double r = std::max(spacing, clearance);
+  const Box box{{x[0] - r, x[1] - r, x[2] - r}, {x[0] + r, x[1] + r, x[2] + r}};
+  bool clear = true;
+  front_.bins().for_each_point_near(box, [&](Index q) {
+    if (clear && squared_norm(sub(s_.points[q], x)) < spacing * spacing) clear = false;
+  });
+  if (!clear) return false;
+  return !front_.bins().find_item_near(box, [&](Index g) {
+    if (g == f) return false;
+    const Side& w = front_.item(g).v;
+    const Point c = closest_point_on_segment(x, s_.points[w[0]], s_.points[w[1]]);
+    return squared_norm(sub(c, x)) < clearance * clearance;
+  });
+}
+
+// Exact 2-D segment tests on the projected points (the projection rounds, the tests on its
+// results do not: every decision is consistent).
+bool segments_cross(const std::array<double, 2>& p, const std::array<double, 2>& q,
+                    const std::array<double, 2>& r, const std::array<double, 2>& s) {
+  const int o1 = orient2d(p.data(), q.data(), r.data());
+  const int o2 = orient2d(p.data(), q.data(), s.data());
+  const int o3 = orient2d(r.data(), s.data(), p.data());
+  const int o4 = orient2d(r.data(), s.data(), q.data());
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;  // proper crossing
+  auto on = [](const std::array<double, 2>& a, const std::array<double, 2>& b,
+               const std::array<double, 2>& c) {  // c on segment ab, given collinear
+    return std::min(a[0], b[0]) <= c[0] && c[0] <= std::max(a[0], b[0]) &&
+           std::min(a[1], b[1]) <= c[1] && c[1] <= std::max(a[1], b[1]);
+  };
+  return (o1 == 0 && on(p, q, r)) || (o2 == 0 && on(p, q, s)) || (o3 == 0 && on(r, s, p)) ||
+         (o4 == 0 && on(r, s, q));
+}
+
+bool PatchFront::face_crosses_front(Index f, const Side& v, Index p,
+                                    const SidePlane& plane) const {
+  const std::array<double, 2> a = plane.at(s_.points[v[0]]), b = plane.at(s_.points[v[1]]),
+                              c = plane.at(s_.points[p]);
+  if (orient2d(a.data(), b.data(), c.data()) <= 0) return true;
+  Box box{s_.points[v[0]], s_.points[v[0]]};
+  enclose(box, s_.points[v[1]]);
+  enclose(box, s_.points[p]);
+  // A point strictly inside the new face, or on its two new sides, covers front space.
+  bool covered = false;
+  front_.bins().for_each_point_near(box, [&](Index q) {
+    if (covered || q == v[0] || q == v[1] || q == p) return;
+    const std::array<double, 2> x = plane.at(s_.points[q]);
+    covered = orient2d(a.data(), b.data(), x.data()) >= 0 &&
+              orient2d(b.data(), c.data(), x.data()) >= 0 &&
+              orient2d(c.data(), a.data(), x.data()) >= 0;
+  });
+  if (covered) return true;
+  // S6: the new sides (a, p) and (p, b) against every front side near them.
+  return front_.bins().find_item_near(box, [&](Index g) {
+    if (g == f) return false;
+    const Side& w = front_.item(g).v;
+    const std::array<double, 2> x = plane.at(s_.points[w[0]]), y = plane.at(s_.points[w[1]]);
+    const auto shares = [&](Index e0, Index e1) {
+      return w[0] == e0 || w[0] == e1 || w[1] == e0 || w[1] == e1;
+    };
+    if (!shares(v[0], p) && segments_cross(a, c, x, y)) return true;
+    if (!shares(p, v[1]) && segments_cross(c, b, x, y)) return true;
+    return false;
+  });
+}
+
+void PatchFront::add_face(Index f, const Side& v, Index p) {
+  s_.triangles.push_back({v[0], v[1], p});                                    // S7
+  s_.triangle_tags.push_back(s_.features.patches[index_of(patch_)].tag);
+  front_.remove(f);                                                           // S10
+  for (const Side& side : {Side{v[0], p}, Side{p, v[1]}}) {
+    if (auto g = front_.find({side[1], side[0]})) {
+      front_.remove(*g);
+    } else {
+      front_.add(side, queue_key(side));                                      // S9
+    }
+  }
+}
+
+bool PatchFront::delete_side(Index f) {
+  const Side v = front_.item(f).v;
+  const SideRules& rules = kRules[std::min<int>(front_.item(f).attempts, kRuleClasses - 1)];
+  FaceId host;
+  SidePlane plane;
+  if (!plane_of(v, host, plane)) return false;
+  const double target = target_size(v);
+  const double d = element_size(v, target);
+  const double length = norm(sub(s_.points[v[1]], s_.points[v[0]]));
+  // S4: the best point, at the height that makes both new sides d long, moved onto the patch.
+  const double height = std::sqrt(std::max(d * d - 0.25 * length * length, 0.0));
+  const Point above = add(plane.origin, scale(plane.u, std::max(height, 0.5 * kSqrt3Over2 * d)));
+  const Located on = locate_in_patch(s_.surface, s_.features, patch_, above, host);  // S8
+  const Point best = on.closest;
+  gather(v, plane, best, d, rules);                                          // S5
+  for (const Candidate& c : candidates_) {
+    Index p = c.point;
+    if (p == kInvalidIndex) {
+      if (!new_point_is_clear(best, d, rules, f)) continue;
+      p = s_.add_point(best, new_point_size(s_.field_size(best), s_.growth, s_.point_size, v),
+                       on.face, kInvalidIndex);
+      if (triangle_quality(s_.points[v[0]], s_.points[v[1]], best).min_angle_deg <
+          rules.min_angle_deg) {
+        s_.points.pop_back(), s_.point_size.pop_back(), s_.host.pop_back(), s_.anchor.pop_back();
+        continue;
+      }
+    }
+    if (!face_crosses_front(f, v, p, plane)) {                               // S6
+      add_face(f, v, p);
+      return true;
+    }
+    if (c.point == kInvalidIndex) {
+      s_.points.pop_back(), s_.point_size.pop_back(), s_.host.pop_back(), s_.anchor.pop_back();
+    }
+  }
+  return false;
+}
+
+absl::Status PatchFront::stuck(Index f, std::int64_t triangles_before) const {
+  const Side v = front_.item(f).v;
+  const Point x = s_.surface.to_global(s_.points[v[0]]);
+  return absl::FailedPreconditionError(absl::StrFormat(
+      "the surface front of patch %d (input tag %d) got stuck at side (%d, %d) near (%g, %g, "
+      "%g), %g long, size wanted %g; %d triangles built in the patch, %d sides left",
+      index_of(patch_), s_.features.patches[index_of(patch_)].tag, v[0], v[1], x[0], x[1], x[2],
+      norm(sub(s_.points[v[1]], s_.points[v[0]])), target_size(v),
+      static_cast<std::int64_t>(s_.triangles.size()) - triangles_before, front_.size()));
+}
+
+}  // namespace
+
+absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Side>& sides,
+                        const Box& domain, const PatchFrontParams& params, Progress& progress) {
+  if (sides.empty()) return absl::OkStatus();
+  double cell = std::numeric_limits<double>::infinity();
+  for (const Side& v : sides)
+    cell = std::min(cell, std::max(s.point_size[v[0]], norm(sub(s.points[v[1]], s.points[v[0]]))));
+  PatchFront pf(s, patch, domain, cell);
+  for (const Side& v : sides) pf.add_side(v);
+  const std::int64_t triangles_before = static_cast<std::int64_t>(s.triangles.size());
+  std::int64_t steps = 0;
+  while (std::optional<Index> f = pf.front().pop()) {                         // S1, S11
+    const std::int64_t built = static_cast<std::int64_t>(s.triangles.size()) - triangles_before;
+    if (++steps > params.steps_per_item * (built + static_cast<std::int64_t>(sides.size())) +
+                      params.step_slack)
+      return pf.stuck(*f, triangles_before);
+    if (steps % 256 == 0 && progress.cancelled())
+      return absl::CancelledError("surface meshing cancelled");
+    if (pf.delete_side(*f)) continue;
+    const auto& item = pf.front().item(*f);
+    if (item.attempts + 1 < kRuleClasses) {
+      pf.defer(*f);
+      continue;
+    }
+    return pf.stuck(*f, triangles_before);
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace afmesh

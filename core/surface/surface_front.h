@@ -1,0 +1,92 @@
+// The surface front of paper §3, steps S1–S11: one patch of a discrete surface triangulated
+// from the sides along its lines, with the dimension-generic front of core/front/ (items of
+// Arity 2: sides).
+//
+// A side (a, b) of the front has the unmeshed part of its patch on its left, seen from the
+// surface normal; the triangle built on it is (a, b, p), oriented as the input.
+//
+//  S1  pop the side forming the smallest new face (AdvancingFront<2>, FrontQueue).
+//  S2  the host face of the side's midpoint, by a walk restricted to the patch
+//      (locate_in_patch), so that no point is ever placed across a ridge.
+//  S3  the host's unit normal n.
+//  S4  the best point: above the midpoint in the patch's tangent plane, left of the side, at the
+//      height that makes its two new sides the wanted size (eq. 15, front_sizes.h), moved onto
+//      the surface (S8 done before the checks, so they see where the point will be).
+//  S5  front points near the best point are tried in lieu of it, nearest first.
+//  S6  the new face must not cross a front side nor cover a front point, checked in the plane
+//      of the side's midpoint and n with exact orientation tests (paper Figure 6).
+//  S7  the face is added; S10 the sides it closes leave the front, its other sides join it
+//      with their sizes (S9).
+//  S11 until the patch's front is empty.
+// A side that fails is tried again later with relaxed rules (as the volume front does); one
+// that fails in every class stops the patch with FAILED_PRECONDITION naming where.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "core/common/progress.h"
+#include "core/mesh/mesh.h"
+#include "core/sizing/size_field.h"
+#include "core/spatial/box.h"
+#include "core/surface/discrete_surface.h"
+#include "core/surface/features.h"
+
+namespace afmesh {
+
+using Side = std::array<Index, 2>;
+
+// What the patches of one surface share while they are meshed in turn.
+struct SurfaceMeshState {
+  SurfaceMeshState(const DiscreteSurface& surface_in, const SurfaceFeatures& features_in,
+                   const SizeField& field_in, double growth_in)
+      : surface(surface_in), features(features_in), field(field_in), growth(growth_in) {}
+
+  const DiscreteSurface& surface;
+  const SurfaceFeatures& features;
+  const SizeField& field;  // in global coordinates: local points are shifted by the origin
+  double growth;           // c_i of eq. 15 (at least kMinAttachedGrowth)
+
+  // The output's points, local frame: the corners and line points first, then each patch's.
+  std::vector<Point> points;
+  std::vector<double> point_size;  // delta of each point (eq. 15)
+  std::vector<FaceId> host;        // a host face of each point (S2)
+  // For a line point: an input vertex of the line segment it lies on (the walk into a patch
+  // starts from a face around it); kInvalidIndex for a patch's interior points.
+  std::vector<Index> anchor;
+  std::vector<Triangle> triangles;
+  std::vector<Index> triangle_tags;
+
+  // The wanted size at x (local frame): the size field there.
+  double field_size(const Point& x) const { return field.size_at(surface.to_global(x)); }
+  Index add_point(const Point& x, double size, FaceId host_face, Index anchor_vertex);
+};
+
+// S2 within one patch: the face of `patch` nearest to x (local frame), walking from `hint` (a
+// face of the patch) to the edge or vertex neighbour of the patch that is strictly nearer, until
+// none is (our rule, as DiscreteSurface::locate's, but never leaving the patch: a point near a
+// ridge stays on its own side). At most `max_steps` moves.
+Located locate_in_patch(const DiscreteSurface& surface, const SurfaceFeatures& features,
+                        PatchId patch, const Point& x, FaceId hint, int max_steps = 256);
+
+// A face of `patch` to start a walk for point p from: its host when that is in the patch, else
+// a face of the patch around its anchor vertex, else the patch's first face.
+FaceId patch_hint(const SurfaceMeshState& s, PatchId patch, Index p);
+
+struct PatchFrontParams {
+  // The front stops with FAILED_PRECONDITION after this many steps per side it started with
+  // plus per triangle built (a bound proportional to the patch's size; not in the paper).
+  std::int64_t steps_per_item = 8;
+  std::int64_t step_slack = 100000;
+};
+
+// S1–S11 for `patch` from its initial sides (each oriented with the patch on its left; corners
+// and line points already in s.points). `domain` bounds the patch (its bins' box). Appends the
+// patch's triangles (tag: the patch's input tag) and its new points to s. CANCELLED once
+// progress is cancelled; FAILED_PRECONDITION when a side cannot be closed, naming where.
+absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Side>& sides,
+                        const Box& domain, const PatchFrontParams& params, Progress& progress);
+
+}  // namespace afmesh
