@@ -78,6 +78,19 @@ class AdvancingFront {
   std::optional<Index> pop();
 
   const Item& item(Index f) const { return items_[f]; }
+  // Calls fn(f) for each live item with point p as a corner (none when p is not on the front).
+  template <typename Fn>
+  void for_each_item_at(Index p, Fn&& fn) const {
+    if (!on_front(p)) return;
+    for (Index g = first_item_[p]; g != kInvalidIndex;) {
+      const Item& item = items_[g];
+      std::size_t k = 0;
+      while (k + 1 < Arity && item.v[k] != p) ++k;
+      const Index next = item.next[k];
+      fn(g);
+      g = next;
+    }
+  }
   std::int64_t size() const { return live_; }
   bool on_front(Index p) const {
     return p < static_cast<Index>(first_item_.size()) && first_item_[p] != kInvalidIndex;

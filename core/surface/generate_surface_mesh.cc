@@ -16,6 +16,7 @@
 #include "core/quality/mesh_topology.h"
 #include "core/sizing/size_field.h"
 #include "core/sizing/spec_size_field.h"
+#include "core/surface/curvature_sizes.h"
 #include "core/surface/discrete_surface.h"
 #include "core/surface/features.h"
 #include "core/surface/split_lines.h"
@@ -46,6 +47,11 @@ absl::Status check_params(const SurfaceParams& params) {
   if (!params.spec && (!(params.growth >= 1.0) || !std::isfinite(params.growth)))
     return absl::InvalidArgumentError(
         absl::StrFormat("growth must be >= 1, got %g", params.growth));
+  if (!(params.curvature_angle_deg == 0.0 ||
+        (params.curvature_angle_deg > 0.0 && params.curvature_angle_deg < 180.0)))
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "curvature angle must be in (0, 180) degrees, or 0 for none; got %g",
+        params.curvature_angle_deg));
   return absl::OkStatus();
 }
 
@@ -233,6 +239,23 @@ std::vector<Box> patch_boxes(const DiscreteSurface& surface, const SurfaceFeatur
   return boxes;
 }
 
+// Not in the paper: the triangles each patch should get, its input faces' areas over the area
+// of an equilateral triangle of the size wanted at their centroids (a bound for the front: a
+// patch meshed far finer than asked stops, kMaxTrianglesOverExpected).
+constexpr double kMaxTrianglesOverExpected = 10.0;
+std::vector<double> expected_patch_triangles(const SurfaceMeshState& s) {
+  std::vector<double> expected(s.features.patches.size(), 0.0);
+  const std::vector<Point>& p = s.surface.local_points();
+  for (Index f = 0; f < s.surface.face_count(); ++f) {
+    const Triangle& t = s.surface.triangles()[f];
+    const Point c = scale(add(p[t[0]], add(p[t[1]], p[t[2]])), 1.0 / 3.0);
+    const double h = s.field_size(c);
+    const double area = 0.5 * norm(cross(sub(p[t[1]], p[t[0]]), sub(p[t[2]], p[t[0]])));
+    expected[index_of(s.features.face_patch[f])] += area / (0.25 * std::sqrt(3.0) * h * h);
+  }
+  return expected;
+}
+
 // Step 6: the largest distance from samples of `from` (vertices, edge midpoints, centroids) to
 // `to`. Both in the same frame.
 double sampled_distance(const Mesh& from, const DiscreteSurface& to, double* vertex_max) {
@@ -278,16 +301,30 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
 
   const double growth = std::max(params.spec ? params.spec->growth : params.growth,
                                  kMinAttachedGrowth);
-  SurfaceMeshState s(*surface, *features, **field, growth);
+  // Eq. 20–22: the size bounded where the input curves.
+  const SizeField* sizes = field->get();
+  std::unique_ptr<CurvatureLimitedSize> limited;
+  if (params.curvature_angle_deg > 0) {
+    limited = std::make_unique<CurvatureLimitedSize>(
+        **field, *surface,
+        curvature_point_sizes(*surface, *features, params.curvature_angle_deg, growth));
+    sizes = limited.get();
+  }
+  SurfaceMeshState s(*surface, *features, *sizes, growth);
   std::vector<std::vector<Side>> patch_sides(features->patches.size());
   if (absl::Status st = sides_along_lines(s, patch_sides); !st.ok()) return st;
   clock.lap("lines");
 
   const std::vector<Box> boxes = patch_boxes(*surface, *features);
+  const std::vector<double> expected = expected_patch_triangles(s);
   for (std::size_t p = 0; p < features->patches.size(); ++p) {
     const PatchId patch{static_cast<Index>(p)};
     if (patch_sides[p].empty()) seed_patch(s, patch, patch_sides[p]);
-    if (absl::Status st = mesh_patch(s, patch, patch_sides[p], boxes[p], {}, progress); !st.ok())
+    PatchFrontParams front_params;
+    front_params.max_triangles = static_cast<std::int64_t>(
+        kMaxTrianglesOverExpected * expected[p] + 4.0 * patch_sides[p].size() + 1000.0);
+    if (absl::Status st = mesh_patch(s, patch, patch_sides[p], boxes[p], front_params, progress);
+        !st.ok())
       return st;
     if (static_cast<std::int64_t>(s.triangles.size()) > params.max_triangles)
       return absl::ResourceExhaustedError(absl::StrFormat(

@@ -7,7 +7,7 @@
 //     is counted in the report.
 //  2. The discrete surface (discrete_surface.h): host faces, normals, projection (S2, S3, S8).
 //  3. Features (features.h): ridges, boundary, non-manifold and tag edges as discrete lines,
-//     corners, patches.
+//     corners, patches; the size bounded by the input's curvature (curvature_sizes.h, eq. 20–22).
 //  4. Sides along every line (split_lines.h, F3), shared by the patches on both sides.
 //  5. Each patch meshed in turn from its sides by the surface front, S1–S11.
 //  6. The result assembled (corners and line points shared), checked, and its distance to the
@@ -40,6 +40,11 @@ struct SurfaceParams {
   double ridge_angle_deg = 30.0;
   // A discrete line turning by more than this at a vertex is split there (degrees, (0, 180]).
   double corner_angle_deg = 60.0;
+  // Elements turn by at most this angle where the input is curved (paper §4.4, eq. 20–22;
+  // degrees in (0, 180), or 0: no curvature bound): the size is reduced where the input curves
+  // faster, so that small holes and fillets are not meshed over. 30° gives about 12 elements
+  // round a circle.
+  double curvature_angle_deg = 30.0;
   // Stop with RESOURCE_EXHAUSTED past this many output triangles (the server's --max-elements).
   std::int64_t max_triangles = std::numeric_limits<std::int64_t>::max();
 };

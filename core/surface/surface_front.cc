@@ -91,6 +91,12 @@ FaceId patch_hint(const SurfaceMeshState& s, PatchId patch, Index p) {
 namespace {
 
 constexpr double kSqrt3Over2 = 0.8660254037844386;
+constexpr double kFacingCosine = 0.0;  // 90°: points and sides behind the side's plane
+// A new face must lie within this angle's cosine of the host's tangent plane (60°; not in the
+// paper): a point that projects onto another sheet of the surface (the next strand of a knotted
+// tube, the far wall of a thin slot) makes a face standing across the gap, which the 2-D checks
+// in the side's plane cannot see.
+constexpr double kMinFaceCosine = 0.5;
 
 // Relaxation of the acceptance rules for a side that has failed `attempts` times (not in the
 // paper; as the volume front's strictness_for): later attempts accept worse faces and new points
@@ -110,7 +116,7 @@ constexpr int kRuleClasses = static_cast<int>(sizeof(kRules) / sizeof(kRules[0])
 // The plane of paper Figure 6: the side's midpoint and the host normal, with t along the side
 // and u = n × t to its left (towards the unmeshed part of the patch).
 struct SidePlane {
-  Point origin, t, u;
+  Point origin, t, u, n;
   std::array<double, 2> at(const Point& x) const {
     const Point r = sub(x, origin);
     return {dot(r, t), dot(r, u)};
@@ -133,6 +139,9 @@ class PatchFront {
 
   // S2–S10 for side f; false when no face could be built on it now.
   bool delete_side(Index f);
+  // S11, the end game: closes the small hole that side f bounds by ear clipping; false when
+  // the hole is not a simple loop of at most kMaxHoleSides sides or cannot be cut into ears.
+  bool fill_hole(Index f);
   // FAILED_PRECONDITION for side f: where it is and its sizes.
   absl::Status stuck(Index f, std::int64_t triangles_before) const;
 
@@ -153,6 +162,18 @@ class PatchFront {
     return scale(add(s_.points[v[0]], s_.points[v[1]]), 0.5);
   }
   bool plane_of(const Side& v, FaceId& host, SidePlane& plane) const;
+  // Whether point q's side of the patch faces the plane's way (its normal within 90° of the
+  // plane's): the 2-D checks of S6 see only such points and sides. Where the patch curves
+  // round by more (a small cylinder meshed with few sides), the points behind would project
+  // onto the plane over the points in front (not in the paper; Figure 6's problem carried on).
+  // Whether face (v, x) lies within kMinFaceCosine of the plane (its normal near n).
+  bool lies_along(const Side& v, const Point& x, const SidePlane& plane) const {
+    const Point normal = cross(sub(s_.points[v[1]], s_.points[v[0]]), sub(x, s_.points[v[0]]));
+    return dot(normal, plane.n) >= kMinFaceCosine * norm(normal);
+  }
+  bool faces_plane(Index q, const SidePlane& plane) const {
+    return dot(s_.surface.normal(patch_hint(s_, patch_, q)), plane.n) > kFacingCosine;
+  }
   void gather(const Side& v, const SidePlane& plane, const Point& best, double d,
               const SideRules& rules);
   bool new_point_is_clear(const Point& x, double d, const SideRules& rules, Index f) const;
@@ -179,6 +200,7 @@ bool PatchFront::plane_of(const Side& v, FaceId& host, SidePlane& plane) const {
   plane.origin = mid;
   plane.t = scale(tangent, 1.0 / length);
   plane.u = cross(n, plane.t);
+  plane.n = n;
   return true;
 }
 
@@ -192,11 +214,12 @@ void PatchFront::gather(const Side& v, const SidePlane& plane, const Point& best
   front_.bins().for_each_point_near(box, [&](Index q) {
     if (q == v[0] || q == v[1]) return;
     const double r = norm(sub(s_.points[q], best));
-    if (r > reach) return;
+    if (r > reach || !faces_plane(q, plane)) return;
     const std::array<double, 2> q2 = plane.at(s_.points[q]);
     if (orient2d(a2.data(), b2.data(), q2.data()) <= 0) return;  // not left of the side
     if (triangle_quality(s_.points[v[0]], s_.points[v[1]], s_.points[q]).min_angle_deg <
-        rules.min_angle_deg)
+            rules.min_angle_deg ||
+        !lies_along(v, s_.points[q], plane))
       return;
     candidates_.push_back({q, r / d});
   });
@@ -257,7 +280,7 @@ bool PatchFront::face_crosses_front(Index f, const Side& v, Index p,
   // A point strictly inside the new face, or on its two new sides, covers front space.
   bool covered = false;
   front_.bins().for_each_point_near(box, [&](Index q) {
-    if (covered || q == v[0] || q == v[1] || q == p) return;
+    if (covered || q == v[0] || q == v[1] || q == p || !faces_plane(q, plane)) return;
     const std::array<double, 2> x = plane.at(s_.points[q]);
     covered = orient2d(a.data(), b.data(), x.data()) >= 0 &&
               orient2d(b.data(), c.data(), x.data()) >= 0 &&
@@ -268,6 +291,7 @@ bool PatchFront::face_crosses_front(Index f, const Side& v, Index p,
   return front_.bins().find_item_near(box, [&](Index g) {
     if (g == f) return false;
     const Side& w = front_.item(g).v;
+    if (!faces_plane(w[0], plane) && !faces_plane(w[1], plane)) return false;
     const std::array<double, 2> x = plane.at(s_.points[w[0]]), y = plane.at(s_.points[w[1]]);
     const auto shares = [&](Index e0, Index e1) {
       return w[0] == e0 || w[0] == e1 || w[1] == e0 || w[1] == e1;
@@ -289,6 +313,103 @@ void PatchFront::add_face(Index f, const Side& v, Index p) {
       front_.add(side, queue_key(side));                                      // S9
     }
   }
+}
+
+// Not in the paper (as the volume front's pocket fill, F11): where the last sides of a region
+// cannot take a new point, the hole they bound is cut into ears: the best-shaped ear (largest
+// smallest angle) first, each checked in the hole's mean plane with exact tests.
+constexpr std::size_t kMaxHoleSides = 32;
+
+bool PatchFront::fill_hole(Index f) {
+  // The loop: from each side's end, the one live side leaving it.
+  std::vector<Index> loop = {f};
+  std::vector<Index> corners = {front_.item(f).v[0]};
+  Index at = front_.item(f).v[1];
+  while (at != corners[0]) {
+    Index leaving = kInvalidIndex;
+    int count = 0;
+    front_.for_each_item_at(at, [&](Index g) {
+      if (front_.item(g).v[0] == at) leaving = g, ++count;
+    });
+    if (count != 1 || loop.size() >= kMaxHoleSides) return false;
+    loop.push_back(leaving);
+    corners.push_back(at);
+    at = front_.item(leaving).v[1];
+  }
+  if (corners.size() < 3) return false;
+  // The hole's plane: the mean of its corners' normals on the patch.
+  Point n{0, 0, 0}, centre{0, 0, 0};
+  for (const Index q : corners) {
+    n = add(n, s_.surface.normal(patch_hint(s_, patch_, q)));
+    centre = add(centre, s_.points[q]);
+  }
+  if (!(norm(n) > 0)) return false;
+  n = scale(n, 1.0 / norm(n));
+  centre = scale(centre, 1.0 / static_cast<double>(corners.size()));
+  Point t = sub(s_.points[corners[1]], s_.points[corners[0]]);
+  t = sub(t, scale(n, dot(t, n)));
+  if (!(norm(t) > 0)) return false;
+  const SidePlane plane{centre, scale(t, 1.0 / norm(t)), cross(n, scale(t, 1.0 / norm(t))), n};
+  std::vector<std::array<double, 2>> xy;
+  for (const Index q : corners) xy.push_back(plane.at(s_.points[q]));
+  // No other front point may lie in the hole (an island of front inside it).
+  Box box = empty_box();
+  for (const Index q : corners) enclose(box, s_.points[q]);
+  bool island = false;
+  front_.bins().for_each_point_near(box, [&](Index q) {
+    if (island || std::find(corners.begin(), corners.end(), q) != corners.end()) return;
+    const std::array<double, 2> x = plane.at(s_.points[q]);
+    int winding = 0;  // crossings of a ray along +x from q with the loop
+    for (std::size_t i = 0; i < xy.size(); ++i) {
+      const auto& a = xy[i];
+      const auto& b = xy[(i + 1) % xy.size()];
+      if ((a[1] > x[1]) != (b[1] > x[1])) {
+        const int o = orient2d(a.data(), b.data(), x.data());
+        if ((b[1] > a[1]) == (o > 0)) ++winding;
+      }
+    }
+    island = winding % 2 == 1;
+  });
+  if (island) return false;
+  // Ear clipping.
+  std::vector<std::size_t> ring(corners.size());
+  for (std::size_t i = 0; i < ring.size(); ++i) ring[i] = i;
+  std::vector<Triangle> ears;
+  while (ring.size() > 3) {
+    double best_angle = -1;
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const std::size_t a = ring[(i + ring.size() - 1) % ring.size()], b = ring[i],
+                        c = ring[(i + 1) % ring.size()];
+      if (orient2d(xy[a].data(), xy[b].data(), xy[c].data()) <= 0) continue;
+      bool empty = true;
+      for (const std::size_t j : ring) {
+        if (j == a || j == b || j == c) continue;
+        if (orient2d(xy[a].data(), xy[b].data(), xy[j].data()) >= 0 &&
+            orient2d(xy[b].data(), xy[c].data(), xy[j].data()) >= 0 &&
+            orient2d(xy[c].data(), xy[a].data(), xy[j].data()) >= 0)
+          empty = false;
+      }
+      if (!empty) continue;
+      const double angle =
+          triangle_quality(s_.points[corners[a]], s_.points[corners[b]], s_.points[corners[c]])
+              .min_angle_deg;
+      if (angle > best_angle) best_angle = angle, best = i;
+    }
+    if (best_angle < 0) return false;
+    const std::size_t a = ring[(best + ring.size() - 1) % ring.size()], b = ring[best],
+                      c = ring[(best + 1) % ring.size()];
+    ears.push_back({corners[a], corners[b], corners[c]});
+    ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(best));
+  }
+  if (orient2d(xy[ring[0]].data(), xy[ring[1]].data(), xy[ring[2]].data()) <= 0) return false;
+  ears.push_back({corners[ring[0]], corners[ring[1]], corners[ring[2]]});
+  for (const Index g : loop) front_.remove(g);
+  for (const Triangle& ear : ears) {
+    s_.triangles.push_back(ear);
+    s_.triangle_tags.push_back(s_.features.patches[index_of(patch_)].tag);
+  }
+  return true;
 }
 
 bool PatchFront::delete_side(Index f) {
@@ -313,7 +434,8 @@ bool PatchFront::delete_side(Index f) {
       p = s_.add_point(best, new_point_size(s_.field_size(best), s_.growth, s_.point_size, v),
                        on.face, kInvalidIndex);
       if (triangle_quality(s_.points[v[0]], s_.points[v[1]], best).min_angle_deg <
-          rules.min_angle_deg) {
+              rules.min_angle_deg ||
+          !lies_along(v, best, plane)) {
         s_.points.pop_back(), s_.point_size.pop_back(), s_.host.pop_back(), s_.anchor.pop_back();
         continue;
       }
@@ -355,7 +477,8 @@ absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Si
   while (std::optional<Index> f = pf.front().pop()) {                         // S1, S11
     const std::int64_t built = static_cast<std::int64_t>(s.triangles.size()) - triangles_before;
     if (++steps > params.steps_per_item * (built + static_cast<std::int64_t>(sides.size())) +
-                      params.step_slack)
+                      params.step_slack ||
+        built > params.max_triangles)
       return pf.stuck(*f, triangles_before);
     if (steps % 256 == 0 && progress.cancelled())
       return absl::CancelledError("surface meshing cancelled");
@@ -365,6 +488,7 @@ absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Si
       pf.defer(*f);
       continue;
     }
+    if (pf.fill_hole(*f)) continue;
     return pf.stuck(*f, triangles_before);
   }
   return absl::OkStatus();

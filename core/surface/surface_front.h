@@ -24,6 +24,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "absl/status/status.h"
@@ -80,6 +81,10 @@ struct PatchFrontParams {
   // plus per triangle built (a bound proportional to the patch's size; not in the paper).
   std::int64_t steps_per_item = 8;
   std::int64_t step_slack = 100000;
+  // ... and once it has built more triangles than this (> 0): a patch meshed far finer than
+  // its size field asks (about its area over the area of a triangle of the local size) is
+  // going wrong, wherever it is, and would otherwise never stop.
+  std::int64_t max_triangles = std::numeric_limits<std::int64_t>::max();
 };
 
 // S1–S11 for `patch` from its initial sides (each oriented with the patch on its left; corners

@@ -1,0 +1,87 @@
+#include "core/surface/curvature_sizes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <queue>
+#include <utility>
+
+#include "absl/container/flat_hash_set.h"
+#include "core/geometry/vec.h"
+
+namespace afmesh {
+namespace {
+
+std::pair<Index, Index> edge_key(Index a, Index b) { return {std::min(a, b), std::max(a, b)}; }
+
+}  // namespace
+
+std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
+                                          const SurfaceFeatures& features, double alpha_p_deg,
+                                          double growth) {
+  const std::vector<Point>& p = surface.local_points();
+  const std::vector<Triangle>& t = surface.triangles();
+  std::vector<double> size(p.size(), std::numeric_limits<double>::infinity());
+  absl::flat_hash_set<std::pair<Index, Index>> line_edges;
+  for (const DiscreteLine& line : features.lines)
+    for (std::size_t i = 0; i + 1 < line.vertices.size(); ++i)
+      line_edges.insert(edge_key(line.vertices[i], line.vertices[i + 1]));
+  const double tan_p = std::tan(0.5 * alpha_p_deg * std::numbers::pi / 180.0);
+  const EdgeNeighbours& neighbours = surface.neighbours();
+  auto centroid = [&](Index f) {
+    return scale(add(p[t[f][0]], add(p[t[f][1]], p[t[f][2]])), 1.0 / 3.0);
+  };
+  // Eq. 20–22 over each edge between two faces, once (from its lower face).
+  for (Index f = 0; f < surface.face_count(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const Index g = neighbours.across[f][k];
+      if (g == kInvalidIndex || g < f) continue;
+      const Index a = t[f][k], b = t[f][(k + 1) % 3];
+      if (line_edges.contains(edge_key(a, b))) continue;
+      // Normals of faces that traverse the edge the same way disagree in orientation.
+      const double sign = neighbours.same_way[f][k] ? -1.0 : 1.0;
+      const double cosine = std::clamp(
+          sign * dot(surface.normal(FaceId{f}), surface.normal(FaceId{g})), -1.0, 1.0);
+      const double alpha_g = std::acos(cosine);
+      if (!(alpha_g > 1e-9)) continue;
+      const double tan_g = std::tan(0.5 * std::min(alpha_g, 0.99 * std::numbers::pi));
+      const double l_g = norm(sub(centroid(f), centroid(g)));
+      const double l_p = l_g * tan_p / tan_g;  // eq. 21
+      size[a] = std::min(size[a], l_p);        // eq. 22
+      size[b] = std::min(size[b], l_p);
+    }
+  }
+  // Grading: the smallest delta_i + (c_i - 1) |x_j - x_i| over the surface's edges (Dijkstra).
+  const double rate = std::max(growth, 1.0) - 1.0;
+  using Item = std::pair<double, Index>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+  for (Index v = 0; v < static_cast<Index>(size.size()); ++v)
+    if (std::isfinite(size[v])) queue.push({size[v], v});
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > size[v]) continue;
+    for (const Index f : surface.faces_at(v)) {
+      for (const Index w : t[f]) {
+        if (w == v) continue;
+        const double through = d + rate * norm(sub(p[w], p[v]));
+        if (through < size[w]) {
+          size[w] = through;
+          queue.push({through, w});
+        }
+      }
+    }
+  }
+  return size;
+}
+
+double CurvatureLimitedSize::size_at(const Point& x) const {
+  const Located at = surface_.nearest_face(surface_.to_local(x));
+  double curvature = std::numeric_limits<double>::infinity();
+  for (const Index v : surface_.triangle(at.face)) curvature = std::min(curvature, point_sizes_[v]);
+  return std::min(base_.size_at(x), curvature);
+}
+
+}  // namespace afmesh

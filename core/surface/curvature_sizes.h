@@ -1,0 +1,47 @@
+// Element sizes from the curvature of a discrete surface (paper §4.4, eq. 20–22).
+//
+// For two adjacent faces whose normals differ by alpha_g and whose centroids are l_g apart, a
+// circle through them has l_g / 2r = tan(alpha_g / 2) (eq. 20), so elements that turn by no more
+// than a prescribed alpha_p are (eq. 21)
+//   l_p = l_g tan(alpha_p / 2) / tan(alpha_g / 2)
+// long, and the points of the edge take delta_i = min(delta_i, l_p) (eq. 22). Edges on discrete
+// lines (ridges, boundaries, tag changes) are features, not curvature, and are left out. The
+// sizes are then graded by the growth factor c_i: delta_j <= delta_i + (c_i - 1) |x_j - x_i|
+// along the surface's edges (the continuous form of eq. 15; not in the paper's §4.4, which
+// grades through the background grid), so a small hole does not put a size jump into its
+// surroundings. The paper iterates this with remeshing through an adapted background grid
+// (AdaptBackground); MeshSurface applies it once, on the input.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "core/mesh/mesh.h"
+#include "core/sizing/size_field.h"
+#include "core/surface/discrete_surface.h"
+#include "core/surface/features.h"
+
+namespace afmesh {
+
+// delta_i for every input point of `surface` (N values; +infinity where the surface is flat or
+// only meets lines). `alpha_p_deg` in (0, 180); growth >= 1.
+std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
+                                          const SurfaceFeatures& features, double alpha_p_deg,
+                                          double growth);
+
+// min(base(x), the curvature size at x): the smallest delta_i of the corners of the input face
+// nearest to x (x in global coordinates, as every SizeField).
+class CurvatureLimitedSize final : public SizeField {
+ public:
+  CurvatureLimitedSize(const SizeField& base, const DiscreteSurface& surface,
+                       std::vector<double> point_sizes)
+      : base_(base), surface_(surface), point_sizes_(std::move(point_sizes)) {}
+  double size_at(const Point& x) const override;
+
+ private:
+  const SizeField& base_;
+  const DiscreteSurface& surface_;
+  std::vector<double> point_sizes_;
+};
+
+}  // namespace afmesh
