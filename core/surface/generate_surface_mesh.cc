@@ -19,6 +19,7 @@
 #include "core/surface/curvature_sizes.h"
 #include "core/surface/discrete_surface.h"
 #include "core/surface/features.h"
+#include "core/surface/flip_edges.h"
 #include "core/surface/split_lines.h"
 #include "core/surface/surface_front.h"
 #include "core/volume/generate_volume_mesh.h"  // kMinAttachedGrowth
@@ -178,6 +179,7 @@ absl::Status sides_along_lines(SurfaceMeshState& s, std::vector<std::vector<Side
     }
     // Attached sizes (eq. 15's delta_A): a line point carries the length of its sides.
     for (std::size_t i = 0; i < last; ++i) {
+      s.line_sides.insert({std::min(ids[i], ids[i + 1]), std::max(ids[i], ids[i + 1])});
       const double length = norm(sub(s.points[ids[i + 1]], s.points[ids[i]]));
       for (const Index p : {ids[i], ids[i + 1]}) s.point_size[p] = std::min(s.point_size[p], length);
     }
@@ -220,8 +222,7 @@ void seed_patch(SurfaceMeshState& s, PatchId patch, std::vector<Side>& sides) {
     const Located on = locate_in_patch(s.surface, s.features, patch, x, face);
     ids[k] = s.add_point(on.closest, h, on.face, kInvalidIndex);
   }
-  s.triangles.push_back({ids[0], ids[1], ids[2]});
-  s.triangle_tags.push_back(s.features.patches[index_of(patch)].tag);
+  s.add_triangle({ids[0], ids[1], ids[2]}, patch);
   sides = {{ids[1], ids[0]}, {ids[2], ids[1]}, {ids[0], ids[2]}};
 }
 
@@ -332,6 +333,8 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
           s.triangles.size(), p + 1, features->patches.size(), params.max_triangles));
   }
   clock.lap("front");
+  flip_edges(s.points, s.triangles, s.triangle_patch, s.line_sides);
+  clock.lap("flips");
 
   Mesh local;
   local.points = s.points;

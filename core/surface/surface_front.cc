@@ -25,6 +25,12 @@ Index SurfaceMeshState::add_point(const Point& x, double size, FaceId host_face,
   return static_cast<Index>(points.size() - 1);
 }
 
+void SurfaceMeshState::add_triangle(const Triangle& t, PatchId patch) {
+  triangles.push_back(t);
+  triangle_tags.push_back(features.patches[index_of(patch)].tag);
+  triangle_patch.push_back(index_of(patch));
+}
+
 namespace {
 
 bool in_patch(const SurfaceFeatures& features, PatchId patch, Index face) {
@@ -303,8 +309,7 @@ bool PatchFront::face_crosses_front(Index f, const Side& v, Index p,
 }
 
 void PatchFront::add_face(Index f, const Side& v, Index p) {
-  s_.triangles.push_back({v[0], v[1], p});                                    // S7
-  s_.triangle_tags.push_back(s_.features.patches[index_of(patch_)].tag);
+  s_.add_triangle({v[0], v[1], p}, patch_);                                   // S7
   front_.remove(f);                                                           // S10
   for (const Side& side : {Side{v[0], p}, Side{p, v[1]}}) {
     if (auto g = front_.find({side[1], side[0]})) {
@@ -405,10 +410,7 @@ bool PatchFront::fill_hole(Index f) {
   if (orient2d(xy[ring[0]].data(), xy[ring[1]].data(), xy[ring[2]].data()) <= 0) return false;
   ears.push_back({corners[ring[0]], corners[ring[1]], corners[ring[2]]});
   for (const Index g : loop) front_.remove(g);
-  for (const Triangle& ear : ears) {
-    s_.triangles.push_back(ear);
-    s_.triangle_tags.push_back(s_.features.patches[index_of(patch_)].tag);
-  }
+  for (const Triangle& ear : ears) s_.add_triangle(ear, patch_);
   return true;
 }
 

@@ -25,8 +25,10 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
+#include "absl/container/flat_hash_set.h"
 #include "absl/status/status.h"
 #include "core/common/progress.h"
 #include "core/mesh/mesh.h"
@@ -58,11 +60,15 @@ struct SurfaceMeshState {
   // starts from a face around it); kInvalidIndex for a patch's interior points.
   std::vector<Index> anchor;
   std::vector<Triangle> triangles;
-  std::vector<Index> triangle_tags;
+  std::vector<Index> triangle_tags;   // the input tag of each triangle's patch
+  std::vector<Index> triangle_patch;  // the patch each triangle was meshed in
+  // The sides along the discrete lines, as (min, max) point pairs: kept by every clean-up.
+  absl::flat_hash_set<std::pair<Index, Index>> line_sides;
 
   // The wanted size at x (local frame): the size field there.
   double field_size(const Point& x) const { return field.size_at(surface.to_global(x)); }
   Index add_point(const Point& x, double size, FaceId host_face, Index anchor_vertex);
+  void add_triangle(const Triangle& t, PatchId patch);
 };
 
 // S2 within one patch: the face of `patch` nearest to x (local frame), walking from `hint` (a

@@ -40,6 +40,14 @@ void expect_closed_valid(const Mesh& m) {
   EXPECT_TRUE(report.valid()) << report.to_string();
 }
 
+// The quality bar on smooth inputs and CAD-like ones with right angles: no triangle
+// under 15°, and (nearly) all of them 30° and more.
+void expect_quality(const Mesh& m) {
+  const Figures f = figures_of(m);
+  EXPECT_GE(f.min_angle, 15.0);
+  EXPECT_GE(f.share_30, 0.985);
+}
+
 TEST(GenerateSurfaceMesh, SphereIsClosedOnTheInputAndOfTheSizeAsked) {
   const Mesh input = sphere_surface({0, 0, 0}, 1.0, 0.05);
   SurfaceParams params;
@@ -51,6 +59,7 @@ TEST(GenerateSurfaceMesh, SphereIsClosedOnTheInputAndOfTheSizeAsked) {
   std::printf("sphere: %zu triangles, min angle %.2f, >=30: %.4f, mean edge %.4f, hausdorff %.2e\n",
               r->mesh.triangles.size(), f.min_angle, f.share_30, f.mean_edge, r->report.hausdorff);
   EXPECT_NEAR(f.mean_edge, 0.1, 0.015);
+  expect_quality(r->mesh);
   EXPECT_LE(r->report.max_vertex_distance, 1e-9 * r->report.model_size);
   EXPECT_EQ(r->report.patches, 1);
 }
@@ -79,6 +88,7 @@ TEST(GenerateSurfaceMesh, TorusIsClosed) {
   print("torus", r);
   expect_closed_valid(r.mesh);
   EXPECT_NEAR(figures_of(r.mesh).mean_edge, 0.08, 0.012);
+  expect_quality(r.mesh);
 }
 
 // A cube: 12 ridges, 8 corners, 6 patches; the output keeps every corner exactly and has no
@@ -88,6 +98,7 @@ TEST(GenerateSurfaceMesh, CubeKeepsItsRidgesAndCorners) {
   const SurfaceResult r = mesh_at(input, 0.1);
   print("cube", r);
   expect_closed_valid(r.mesh);
+  expect_quality(r.mesh);
   EXPECT_EQ(r.report.patches, 6);
   EXPECT_EQ(r.report.corners, 8);
   int corners = 0;
@@ -117,6 +128,7 @@ TEST(GenerateSurfaceMesh, OpenTerrainFarFromTheOrigin) {
   const SurfaceResult r = mesh_at(input, 4.0);
   print("terrain", r);
   EXPECT_GT(r.mesh.triangles.size(), 500u);
+  expect_quality(r.mesh);
   EXPECT_LE(r.report.max_vertex_distance, 1e-9 * r.report.model_size);
 }
 

@@ -1,0 +1,32 @@
+// Edge flips inside the patches of a re-triangulated surface (not in the paper, whose front
+// places every point where it stays; the classic clean-up after a surface front, as netgen's
+// and gmsh's surface meshers do): the diagonal of two triangles of one patch is swapped where
+// that raises their smaller minimum angle, the quadrilateral is convex in its mean plane and
+// both new triangles stay within 30° of it. Points never move, and no edge on a discrete line
+// is flipped, so every vertex stays on the input and every ridge and corner stays as meshed.
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "absl/container/flat_hash_set.h"
+#include "core/mesh/mesh.h"
+
+namespace afmesh {
+
+struct FlipParams {
+  int max_passes = 8;           // passes over all edges (each pass flips independent edges)
+  double min_gain_deg = 0.5;    // a flip must raise the smaller minimum angle by this much
+  double max_normal_turn_deg = 30.0;
+};
+
+// Flips edges of `triangles` (M×3 over `points`, oriented consistently) between triangles of the
+// same `patch` (M values) that are not in `fixed` (edges as (min, max) point pairs). Returns the
+// number of flips. O(passes · M log M).
+std::int64_t flip_edges(const std::vector<Point>& points, std::vector<Triangle>& triangles,
+                        const std::vector<Index>& patch,
+                        const absl::flat_hash_set<std::pair<Index, Index>>& fixed,
+                        const FlipParams& params = {});
+
+}  // namespace afmesh
