@@ -180,4 +180,15 @@ void SpecSizeField::minima_by_cell(std::span<const Point> xs, std::span<double> 
   }
 }
 
+absl::StatusOr<std::unique_ptr<SizeField>> make_size_field(const std::optional<SizeSpec>& spec,
+                                                           double size,
+                                                           const std::vector<Point>& points) {
+  if (!spec) return std::make_unique<UniformSize>(size);
+  Box domain = empty_box();
+  for (const Point& p : points) enclose(domain, p);
+  absl::StatusOr<SpecSizeField> field = SpecSizeField::create(*spec, domain);
+  if (!field.ok()) return field.status();
+  return std::make_unique<SpecSizeField>(*std::move(field));
+}
+
 }  // namespace afmesh

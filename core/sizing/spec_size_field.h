@@ -18,6 +18,8 @@
 #pragma once
 
 #include <atomic>
+#include <memory>
+#include <optional>
 #include <span>
 
 #include "absl/status/statusor.h"
@@ -87,5 +89,11 @@ class SpecSizeField final : public SizeField {
   bool dense_cells_ = false;   // some cell keeps enough sources for gathered blocks (sizes_at)
   mutable std::atomic<Index> last_tet_{kInvalidIndex};
 };
+
+// F2: the size in space for a job over the points `points`: `spec`'s sources and background
+// grid (eq. 1–14) over their bounding box, or the uniform `size` when there is no spec.
+absl::StatusOr<std::unique_ptr<SizeField>> make_size_field(const std::optional<SizeSpec>& spec,
+                                                           double size,
+                                                           const std::vector<Point>& points);
 
 }  // namespace afmesh

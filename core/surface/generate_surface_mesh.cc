@@ -28,20 +28,6 @@
 namespace afmesh {
 namespace {
 
-class StageClock {
- public:
-  explicit StageClock(std::vector<StageTiming>& out) : out_(out) {}
-  void lap(const char* stage) {
-    const auto now = std::chrono::steady_clock::now();
-    out_.push_back({stage, std::chrono::duration<double>(now - start_).count()});
-    start_ = now;
-  }
-
- private:
-  std::vector<StageTiming>& out_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
-
 absl::Status check_params(const SurfaceParams& params) {
   if (!params.spec && (!(params.size > 0) || !std::isfinite(params.size)))
     return absl::InvalidArgumentError(absl::StrFormat("size must be > 0, got %g", params.size));
@@ -113,15 +99,6 @@ absl::StatusOr<Mesh> clean_surface_input(const Mesh& input, SurfaceReport& repor
   return out;
 }
 
-absl::StatusOr<std::unique_ptr<SizeField>> surface_size_field(const SurfaceParams& params,
-                                                              const Mesh& input) {
-  if (!params.spec) return std::make_unique<UniformSize>(params.size);
-  Box domain = empty_box();
-  for (const Point& p : input.points) enclose(domain, p);
-  absl::StatusOr<SpecSizeField> field = SpecSizeField::create(*params.spec, domain);
-  if (!field.ok()) return field.status();
-  return std::make_unique<SpecSizeField>(*std::move(field));
-}
 
 // The patch of `surface` left of the directed input edge a→b (the face traversing it so), if
 // any, and right of it: out[0] the faces traversing a→b, out[1] those traversing b→a.
@@ -284,7 +261,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   if (absl::Status st = check_params(params); !st.ok()) return st;
   absl::StatusOr<Mesh> clean = clean_surface_input(input, result.report);
   if (!clean.ok()) return clean.status();
-  absl::StatusOr<std::unique_ptr<SizeField>> field = surface_size_field(params, *clean);
+  absl::StatusOr<std::unique_ptr<SizeField>> field = make_size_field(params.spec, params.size, clean->points);
   if (!field.ok()) return field.status();
   absl::StatusOr<DiscreteSurface> surface = DiscreteSurface::build(*clean);     // S2, S3
   if (!surface.ok()) return surface.status();

@@ -35,20 +35,6 @@ constexpr int kCancelCheckInterval = 256;  // faces between cancellation checks
 // Input triangles with an angle below this are called slivers in failure messages.
 constexpr double kSliverAngleDeg = 5.0;
 
-class StageClock {
- public:
-  explicit StageClock(std::vector<StageTiming>& out) : out_(out) {}
-  void lap(const char* stage) {
-    const auto now = std::chrono::steady_clock::now();
-    out_.push_back({stage, std::chrono::duration<double>(now - start_).count()});
-    start_ = now;
-  }
-
- private:
-  std::vector<StageTiming>& out_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
-
 Box padded_bounds(const std::vector<Point>& points) {
   Box b = empty_box();
   for (const Point& p : points) enclose(b, p);
@@ -411,12 +397,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
 // uniform size.
 absl::StatusOr<std::unique_ptr<SizeField>> make_size_field(const VolumeParams& params,
                                                            const Mesh& front) {
-  if (!params.spec) return std::make_unique<UniformSize>(params.size);
-  Box domain = empty_box();
-  for (const Point& p : front.points) enclose(domain, p);
-  absl::StatusOr<SpecSizeField> field = SpecSizeField::create(*params.spec, domain);
-  if (!field.ok()) return field.status();
-  return std::make_unique<SpecSizeField>(*std::move(field));
+  return make_size_field(params.spec, params.size, front.points);
 }
 
 absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const VolumeParams& params,
