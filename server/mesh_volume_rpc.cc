@@ -39,15 +39,8 @@ absl::Status admit_by_estimate(const Mesh& front, VolumeParams& params, std::int
         estimate->coarse_front_triangles, front.triangles.size(), kCoarseFrontRatio,
         estimate->coarsest_front_ratio));
   }
-  if (estimate->tets > static_cast<double>(max_elements)) {
-    return absl::ResourceExhaustedError(absl::StrFormat(
-        "the size field asks for about %.3g tetrahedra (estimated before meshing from the "
-        "enclosed volume and the sizes), over this server's limit of %d (--max-elements); ask "
-        "for larger elements, or split the domain",
-        estimate->tets, max_elements));
-  }
-  return context.reserve_memory(estimate->bytes,
-                                absl::StrFormat("%.3g tetrahedra", estimate->tets));
+  return context.admit_estimate(estimate->tets, "tetrahedra", "the enclosed volume and the sizes",
+                                "domain", estimate->bytes, max_elements);
 }
 
 }  // namespace

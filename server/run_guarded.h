@@ -20,7 +20,8 @@ std::invoke_result_t<Step> run_guarded(std::string_view doing, Step&& step) {
   try {
     return step();
   } catch (const std::bad_alloc&) {
-    return absl::ResourceExhaustedError(absl::StrCat("the server ran out of memory ", std::string(doing)));
+    return absl::ResourceExhaustedError(
+        absl::StrCat("the server ran out of memory ", std::string(doing)));
   } catch (const std::exception& e) {
     return absl::InternalError(absl::StrCat(std::string(doing), " failed: ", e.what()));
   }

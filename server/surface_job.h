@@ -26,8 +26,8 @@ using SurfaceJob = std::function<absl::StatusOr<SurfaceResult>(
 struct SurfaceQualityFigures {
   double min_angle_deg = 0.0;
   double max_angle_deg = 0.0;
-  double share_below_30_deg = 0.0;        // share of triangles whose smallest angle is < 30°
-  std::int64_t count_below_15_deg = 0;    // triangles whose smallest angle is < 15°
+  double share_below_30_deg = 0.0;      // share of triangles whose smallest angle is < 30°
+  std::int64_t count_below_15_deg = 0;  // triangles whose smallest angle is < 15°
 };
 
 // What the service made of a successful surface step.

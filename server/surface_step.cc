@@ -119,15 +119,9 @@ absl::StatusOr<SurfaceOutcome> run_surface_step(const SurfaceJob& job, const Mes
       run_guarded("estimating the surface", [&] { return estimate_surface_mesh(input, params); });
   timings.push_back({"estimate", seconds_since(estimate_start)});
   if (!estimate.ok()) return estimate.status();
-  if (estimate->triangles > static_cast<double>(max_elements)) {
-    return absl::ResourceExhaustedError(absl::StrFormat(
-        "the size field asks for about %.3g surface triangles (estimated before meshing from the "
-        "input's area and the sizes), over this server's limit of %d (--max-elements); ask for "
-        "larger elements, or split the surface",
-        estimate->triangles, max_elements));
-  }
-  if (absl::Status status = context.reserve_memory(
-          estimate->bytes, absl::StrFormat("%.3g surface triangles", estimate->triangles));
+  if (absl::Status status = context.admit_estimate(
+          estimate->triangles, "surface triangles", "the input's area and the sizes", "surface",
+          estimate->bytes, max_elements);
       !status.ok()) {
     return status;
   }
@@ -159,7 +153,9 @@ void fill_surface_summary(const SurfaceOutcome& outcome, v1::SurfaceSummary& sum
   quality.set_count_below_15_deg(static_cast<std::uint64_t>(outcome.quality.count_below_15_deg));
 
   const SurfaceReport& report = outcome.result.report;
-  const auto count = [](std::int64_t n) { return static_cast<std::uint64_t>(std::max<std::int64_t>(n, 0)); };
+  const auto count = [](std::int64_t n) {
+    return static_cast<std::uint64_t>(std::max<std::int64_t>(n, 0));
+  };
   v1::SurfaceRepair& repair = *summary.mutable_repair();
   repair.set_duplicate_triangles_dropped(count(report.duplicate_triangles_dropped));
   repair.set_degenerate_triangles_dropped(count(report.degenerate_triangles_dropped));
