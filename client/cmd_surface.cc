@@ -37,25 +37,15 @@ void print_summary(const std::string& output, const SurfaceSummary& summary) {
               static_cast<unsigned long long>(summary.corners));
   std::printf("  distance   Hausdorff %.4g, vertices at most %.4g (model size %.4g)\n",
               summary.hausdorff, summary.max_vertex_distance, summary.model_size);
-  std::printf("  time");
-  for (const auto& [stage, seconds] : summary.timings) {
-    std::printf("  %s %.3f s", stage.c_str(), seconds);
-  }
-  std::printf("\n");
+  print_timings(summary.timings);
 }
 
 absl::StatusOr<MeshAnswer> call_surface(const std::string& address, const Mesh& input,
                                         const VolumeCallOptions& options,
                                         const ProgressCallback& on_progress,
                                         const WarningCallback& on_warning) {
-  absl::StatusOr<SurfaceCallResult> result =
-      call_mesh_surface(address, input, options, on_progress, on_warning);
-  if (!result.ok()) return result.status();
-  return MeshAnswer{.mesh = std::move(result->mesh),
-                    .summary_json = result->summary.json,
-                    .print = [summary = result->summary](const std::string& output) {
-                      print_summary(output, summary);
-                    }};
+  return mesh_answer(call_mesh_surface(address, input, options, on_progress, on_warning),
+                     print_summary);
 }
 
 }  // namespace

@@ -74,11 +74,7 @@ void print_summary(const std::string& output, const VolumeSummary& summary) {
   for (const std::string& message : summary.validation_messages) {
     std::printf("    %s\n", message.c_str());
   }
-  std::printf("  time");
-  for (const auto& [stage, seconds] : summary.timings) {
-    std::printf("  %s %.3f s", stage.c_str(), seconds);
-  }
-  std::printf("\n");
+  print_timings(summary.timings);
 }
 
 int run_volume(const VolumeCommandOptions& options) {
@@ -97,14 +93,8 @@ int run_volume(const VolumeCommandOptions& options) {
   command.call = [](const std::string& address, const Mesh& front,
                     const VolumeCallOptions& call_options, const ProgressCallback& on_progress,
                     const WarningCallback& on_warning) -> absl::StatusOr<MeshAnswer> {
-    absl::StatusOr<VolumeCallResult> result =
-        call_mesh_volume(address, front, call_options, on_progress, on_warning);
-    if (!result.ok()) return result.status();
-    return MeshAnswer{.mesh = std::move(result->mesh),
-                      .summary_json = result->summary.json,
-                      .print = [summary = result->summary](const std::string& output) {
-                        print_summary(output, summary);
-                      }};
+    return mesh_answer(call_mesh_volume(address, front, call_options, on_progress, on_warning),
+                       print_summary);
   };
   return run_mesh_command(options.mesh, std::move(command));
 }

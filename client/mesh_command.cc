@@ -307,6 +307,12 @@ int run_mesh_command(const MeshCommandOptions& options, MeshCommand command) {
   return kExitOk;
 }
 
+void print_timings(const std::vector<std::pair<std::string, double>>& timings) {
+  std::printf("  time");
+  for (const auto& [stage, seconds] : timings) std::printf("  %s %.3f s", stage.c_str(), seconds);
+  std::printf("\n");
+}
+
 void add_mesh_command_flags(CLI::App& command, MeshCommandOptions& options,
                             const std::string& input_help, const std::string& output_help) {
   command.add_option("IN", options.input, input_help)->required();

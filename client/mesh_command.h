@@ -8,6 +8,8 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "CLI/CLI.hpp"
 #include "absl/status/statusor.h"
@@ -50,6 +52,18 @@ struct MeshAnswer {
   std::function<void(const std::string& output)> print;   // the summary for a person
 };
 
+// The MeshAnswer of a call_mesh_volume or call_mesh_surface result, its summary printed by
+// `print(output, summary)`.
+template <class Result, class Print>
+absl::StatusOr<MeshAnswer> mesh_answer(absl::StatusOr<Result> result, Print print) {
+  if (!result.ok()) return result.status();
+  return MeshAnswer{.mesh = std::move(result->mesh),
+                    .summary_json = result->summary.json,
+                    .print = [summary = result->summary, print](const std::string& output) {
+                      print(output, summary);
+                    }};
+}
+
 using MeshCall = std::function<absl::StatusOr<MeshAnswer>(
     const std::string& address, const Mesh& input, const VolumeCallOptions& options,
     const ProgressCallback& on_progress, const WarningCallback& on_warning)>;
@@ -65,6 +79,9 @@ struct MeshCommand {
   VolumeCallOptions call_options;
   MeshCall call;
 };
+
+// Prints a summary's timings on one line: "  time  receive 0.001 s  queue 0.000 s ...".
+void print_timings(const std::vector<std::pair<std::string, double>>& timings);
 
 // Runs `command` with `options`; returns the exit code (commands.h).
 int run_mesh_command(const MeshCommandOptions& options, MeshCommand command);
