@@ -32,6 +32,8 @@ using Clock = std::chrono::steady_clock;
 using ::testing::HasSubstr;
 using Request = v1::MeshSurfaceRequest;
 using Response = v1::MeshSurfaceResponse;
+using afmesh::testing::carries_mesh;
+using afmesh::testing::mesh_from;
 using afmesh::testing::same_bits;
 using afmesh::testing::tetrahedron_front;
 
@@ -166,25 +168,6 @@ struct Outcome {
   std::vector<Response> responses;
 };
 
-Mesh mesh_from(const std::vector<Response>& responses) {
-  Mesh mesh;
-  for (const Response& response : responses) {
-    absl::Status status;
-    if (response.has_points()) {
-      status = wire::append_points(response.points(), "response", mesh.points);
-    } else if (response.has_triangles()) {
-      status = wire::append_triangles(response.triangles(), "response", mesh.triangles,
-                                      mesh.triangle_tags);
-    }
-    EXPECT_TRUE(status.ok()) << status;
-  }
-  return mesh;
-}
-
-bool carries_mesh(const Response& response) {
-  return response.has_points() || response.has_triangles();
-}
-
 class MeshSurfaceServiceTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -225,6 +208,14 @@ class MeshSurfaceServiceTest : public ::testing::Test {
     Resp response;
     while (stream.Read(&response)) responses.push_back(response);
     return {stream.Finish(), {}};
+  }
+
+  // A MeshVolume call; its responses in `responses`.
+  Outcome call_volume(const std::vector<v1::MeshVolumeRequest>& requests,
+                      std::vector<v1::MeshVolumeResponse>& responses) {
+    grpc::ClientContext context;
+    auto stream = stub_->MeshVolume(&context);
+    return finish(*stream, requests, responses);
   }
 
   Outcome call(const std::vector<Request>& requests) {
@@ -504,15 +495,17 @@ TEST_F(MeshSurfaceServiceTest, AJobNeedingMoreThanTheWholeMemoryBudgetIsRefused)
 }
 
 TEST_F(MeshSurfaceServiceTest, EstimateFollowsTheSizeFieldOfASpec) {
-  SurfaceParams uniform{.size = 0.5};
+  SurfaceParams uniform;
+  uniform.size = 0.5;
   SurfaceParams graded = uniform;
   graded.spec = SizeSpec{};
   graded.spec->max_size = 0.5;
   graded.spec->sources.push_back(
       SizeSource{.points = {{0, 0, 0}}, .delta0 = 0.05, .r0 = 0.5, .r1 = 1.0,
                  .law = PowerLaw{.gamma = 1.0}});
-  const absl::StatusOr<SurfaceEstimate> coarse = estimate_surface_mesh(tetrahedron_front(), uniform);
-  const absl::StatusOr<SurfaceEstimate> fine = estimate_surface_mesh(tetrahedron_front(), graded);
+  const Mesh input = tetrahedron_front();
+  const absl::StatusOr<SurfaceEstimate> coarse = estimate_surface_mesh(input, uniform);
+  const absl::StatusOr<SurfaceEstimate> fine = estimate_surface_mesh(input, graded);
   ASSERT_TRUE(coarse.ok() && fine.ok());
   EXPECT_GT(fine->triangles, 10 * coarse->triangles);
   EXPECT_GT(fine->bytes, coarse->bytes);
@@ -555,10 +548,8 @@ TEST_F(MeshSurfaceServiceTest, RemeshSurfaceMeshesTheNewSurfaceInTheSameCall) {
   Mesh surface = tetrahedron_front();
   surface.points[3] = {0, 0, 2};  // tells the new surface from the input
   start(fixed_job(probe_, surface));
-  grpc::ClientContext context;
-  auto stream = stub_->MeshVolume(&context);
   std::vector<v1::MeshVolumeResponse> responses;
-  const Outcome outcome = finish(*stream, remesh_requests(35.0, 0.0, true), responses);
+  const Outcome outcome = call_volume(remesh_requests(35.0, 0.0, true), responses);
   ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
   EXPECT_EQ(probe_->surface_runs.load(), 1);
   EXPECT_EQ(probe_->volume_runs.load(), 1);
@@ -583,10 +574,8 @@ TEST_F(MeshSurfaceServiceTest, RemeshSurfaceMeshesTheNewSurfaceInTheSameCall) {
 
 TEST_F(MeshSurfaceServiceTest, WithoutRemeshSurfaceTheSummarySaysTheBoundaryIsTheInput) {
   start(fixed_job(probe_, tetrahedron_front()));
-  grpc::ClientContext context;
-  auto stream = stub_->MeshVolume(&context);
   std::vector<v1::MeshVolumeResponse> responses;
-  ASSERT_TRUE(finish(*stream, remesh_requests(0.0, 0.0, false), responses).status.ok());
+  ASSERT_TRUE(call_volume(remesh_requests(0.0, 0.0, false), responses).status.ok());
   EXPECT_FALSE(responses.back().summary().surface_remeshed());
   EXPECT_FALSE(responses.back().summary().has_surface());
   EXPECT_EQ(probe_->surface_runs.load(), 0);
@@ -594,10 +583,8 @@ TEST_F(MeshSurfaceServiceTest, WithoutRemeshSurfaceTheSummarySaysTheBoundaryIsTh
 
 TEST_F(MeshSurfaceServiceTest, VolumeRejectsSurfaceAnglesWithoutRemeshSurface) {
   start(fixed_job(probe_, tetrahedron_front()));
-  grpc::ClientContext context;
-  auto stream = stub_->MeshVolume(&context);
   std::vector<v1::MeshVolumeResponse> responses;
-  const Outcome outcome = finish(*stream, remesh_requests(40.0, 0.0, false), responses);
+  const Outcome outcome = call_volume(remesh_requests(40.0, 0.0, false), responses);
   EXPECT_EQ(outcome.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_THAT(outcome.status.error_message(),
               HasSubstr("options.ridge_angle_deg is set, but options.remesh_surface is not"));
@@ -605,10 +592,8 @@ TEST_F(MeshSurfaceServiceTest, VolumeRejectsSurfaceAnglesWithoutRemeshSurface) {
 
 TEST_F(MeshSurfaceServiceTest, VolumeRejectsABadRidgeAngleWithRemeshSurface) {
   start(fixed_job(probe_, tetrahedron_front()));
-  grpc::ClientContext context;
-  auto stream = stub_->MeshVolume(&context);
   std::vector<v1::MeshVolumeResponse> responses;
-  const Outcome outcome = finish(*stream, remesh_requests(200.0, 0.0, true), responses);
+  const Outcome outcome = call_volume(remesh_requests(200.0, 0.0, true), responses);
   EXPECT_EQ(outcome.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_THAT(outcome.status.error_message(), HasSubstr("options.ridge_angle_deg"));
   EXPECT_EQ(probe_->volume_runs.load(), 0);
@@ -616,10 +601,8 @@ TEST_F(MeshSurfaceServiceTest, VolumeRejectsABadRidgeAngleWithRemeshSurface) {
 
 TEST_F(MeshSurfaceServiceTest, RemeshSurfaceOnAServerWithoutASurfaceJobIsUnimplemented) {
   start(SurfaceJob{});
-  grpc::ClientContext context;
-  auto stream = stub_->MeshVolume(&context);
   std::vector<v1::MeshVolumeResponse> responses;
-  const Outcome outcome = finish(*stream, remesh_requests(0.0, 0.0, true), responses);
+  const Outcome outcome = call_volume(remesh_requests(0.0, 0.0, true), responses);
   EXPECT_EQ(outcome.status.error_code(), grpc::StatusCode::UNIMPLEMENTED);
   EXPECT_EQ(probe_->volume_runs.load(), 0);
 }
