@@ -28,6 +28,7 @@ using Action = std::function<int()>;
 void add_stats_command(CLI::App& app, Action& action);
 void add_convert_command(CLI::App& app, Action& action);
 void add_volume_command(CLI::App& app, Action& action);
+void add_surface_command(CLI::App& app, Action& action);
 void add_sizes_command(CLI::App& app, Action& action);
 
 }  // namespace afmesh::cli

@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   add_stats_command(app, action);
   add_convert_command(app, action);
   add_volume_command(app, action);
+  add_surface_command(app, action);
   add_sizes_command(app, action);
   try {
     app.parse(argc, argv);

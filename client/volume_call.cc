@@ -6,6 +6,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "absl/strings/cord.h"
@@ -30,16 +31,15 @@ using wire::kRetryAfterKey;
 using wire::kRetryAfterPayload;
 constexpr char kCutOnTheWayPayload[] = "type.afmesh.dev/cut-on-the-way";
 
-using Request = v1::MeshVolumeRequest;
-using Response = v1::MeshVolumeResponse;
+template <class Request, class Response>
 using Stream = grpc::ClientReaderWriter<Request, Response>;
 
-Request header_request(const Mesh& front, const VolumeCallOptions& options) {
-  Request request;
-  v1::MeshVolumeHeader& header = *request.mutable_header();
+// The size and the counts of a MeshVolumeHeader or MeshSurfaceHeader (the same fields).
+template <class Header>
+void set_size_and_counts(const Mesh& front, const VolumeCallOptions& options, Header& header) {
   if (options.spec) {
     *header.mutable_options()->mutable_size() = size_spec_to_proto(*options.spec);
-    // The background grid, whatever its size, follows in slices (grid_requests).
+    // The background grid, whatever its size, follows in slices (send_grid).
     header.mutable_options()->mutable_size()->clear_background();
     if (options.spec->background) {
       header.set_grid_point_count(options.spec->background->points.size());
@@ -48,6 +48,30 @@ Request header_request(const Mesh& front, const VolumeCallOptions& options) {
   } else {
     header.mutable_options()->mutable_size()->set_max_size(options.size);
     header.mutable_options()->mutable_size()->set_growth(options.growth);
+  }
+  header.set_point_count(front.points.size());
+  header.set_triangle_count(front.triangles.size());
+}
+
+v1::MeshSurfaceRequest header_request(const Mesh& front, const VolumeCallOptions& options,
+                                      const v1::MeshSurfaceRequest* /*type*/) {
+  v1::MeshSurfaceRequest request;
+  v1::MeshSurfaceHeader& header = *request.mutable_header();
+  set_size_and_counts(front, options, header);
+  header.mutable_options()->set_ridge_angle_deg(options.ridge_angle_deg);
+  header.mutable_options()->set_corner_angle_deg(options.corner_angle_deg);
+  return request;
+}
+
+v1::MeshVolumeRequest header_request(const Mesh& front, const VolumeCallOptions& options,
+                                     const v1::MeshVolumeRequest* /*type*/) {
+  v1::MeshVolumeRequest request;
+  v1::MeshVolumeHeader& header = *request.mutable_header();
+  set_size_and_counts(front, options, header);
+  if (options.remesh_surface) {
+    header.mutable_options()->set_remesh_surface(true);
+    header.mutable_options()->set_ridge_angle_deg(options.ridge_angle_deg);
+    header.mutable_options()->set_corner_angle_deg(options.corner_angle_deg);
   }
   switch (options.environments) {
     case EnvironmentSource::kNone:
@@ -60,14 +84,13 @@ Request header_request(const Mesh& front, const VolumeCallOptions& options) {
       header.mutable_options()->set_environments(v1::ENVIRONMENT_MODE_AUTO);
       break;
   }
-  header.set_point_count(front.points.size());
-  header.set_triangle_count(front.triangles.size());
   return request;
 }
 
 // Streams the background grid in slices, each of one kind (points, sizes or tets) and at most
 // wire::kMaxSliceItems of it: under 1 MiB each, built one at a time. False once a write fails.
-bool send_grid(Stream& stream, const BackgroundGridSpec& grid) {
+template <class Request, class Response>
+bool send_grid(Stream<Request, Response>& stream, const BackgroundGridSpec& grid) {
   bool open = true;
   for (std::size_t begin = 0; open && begin < grid.points.size(); begin += wire::kMaxSliceItems) {
     Request request;
@@ -92,10 +115,11 @@ bool send_grid(Stream& stream, const BackgroundGridSpec& grid) {
 
 // Header, background grid slices, point slices, triangle slices, half-close. Stops early when a
 // write fails: the server ended the call, and Finish() says why.
-void send_front(Stream& stream, const Mesh& front, const VolumeCallOptions& options,
-                const ProgressCallback& on_progress) {
+template <class Request, class Response>
+void send_front(Stream<Request, Response>& stream, const Mesh& front,
+                const VolumeCallOptions& options, const ProgressCallback& on_progress) {
   const double total = static_cast<double>(front.points.size() + front.triangles.size());
-  bool open = stream.Write(header_request(front, options));
+  bool open = stream.Write(header_request(front, options, static_cast<const Request*>(nullptr)));
   if (open && options.spec && options.spec->background) {
     open = send_grid(stream, *options.spec->background);
   }
@@ -121,6 +145,7 @@ void send_front(Stream& stream, const Mesh& front, const VolumeCallOptions& opti
 
 // Appends the mesh slice carried by `response` (the server's message `number`) to `mesh`;
 // DATA_LOSS when the slice is malformed.
+template <class Response>
 absl::Status append_slice(const Response& response, std::int64_t number, Mesh& mesh) {
   const std::string where = absl::StrCat("message ", number);
   absl::Status status;
@@ -129,18 +154,25 @@ absl::Status append_slice(const Response& response, std::int64_t number, Mesh& m
   } else if (response.has_triangles()) {
     status = wire::append_triangles(response.triangles(), where, mesh.triangles,
                                     mesh.triangle_tags);
-  } else if (response.has_tets()) {
-    status = wire::append_tets(response.tets(), where, mesh.tets, mesh.tet_tags);
+  } else if constexpr (requires { response.has_tets(); }) {
+    if (response.has_tets()) {
+      status = wire::append_tets(response.tets(), where, mesh.tets, mesh.tet_tags);
+    }
   }
   if (status.ok()) return status;
   return absl::DataLossError(absl::StrCat("the server's answer is malformed: ", status.message()));
 }
 
+// The tets a Summary announces (a SurfaceSummary: none).
+std::uint64_t tet_count(const v1::Summary& summary) { return summary.tet_count(); }
+std::uint64_t tet_count(const v1::SurfaceSummary& /*summary*/) { return 0; }
+
 // DATA_LOSS unless the slices received add up to the counts the Summary announces.
-absl::Status check_whole(const Mesh& mesh, const v1::Summary& summary) {
+template <class Summary>
+absl::Status check_whole(const Mesh& mesh, const Summary& summary) {
   if (mesh.points.size() != summary.point_count() ||
       mesh.triangles.size() != summary.triangle_count() ||
-      mesh.tets.size() != summary.tet_count() ||
+      mesh.tets.size() != tet_count(summary) ||
       mesh.triangle_tags.size() != mesh.triangles.size() ||
       mesh.tet_tags.size() != mesh.tets.size()) {
     return absl::DataLossError(absl::StrFormat(
@@ -148,9 +180,19 @@ absl::Status check_whole(const Mesh& mesh, const v1::Summary& summary) {
         "(%d tags); its summary announces %d, %d and %d",
         mesh.points.size(), mesh.triangles.size(), mesh.triangle_tags.size(), mesh.tets.size(),
         mesh.tet_tags.size(), summary.point_count(), summary.triangle_count(),
-        summary.tet_count()));
+        tet_count(summary)));
   }
   return absl::OkStatus();
+}
+
+// `summary` in protobuf's JSON mapping, every field printed.
+std::string summary_json(const google::protobuf::Message& summary) {
+  google::protobuf::util::JsonPrintOptions json_options;
+  json_options.add_whitespace = true;
+  json_options.always_print_primitive_fields = true;
+  std::string json;
+  (void)google::protobuf::util::MessageToJsonString(summary, &json, json_options);
+  return json;
 }
 
 VolumeSummary plain_summary(const v1::Summary& summary) {
@@ -170,22 +212,42 @@ VolumeSummary plain_summary(const v1::Summary& summary) {
   for (const v1::StageTiming& timing : summary.timings()) {
     plain.timings.emplace_back(timing.stage(), timing.seconds());
   }
-  google::protobuf::util::JsonPrintOptions json_options;
-  json_options.add_whitespace = true;
-  json_options.always_print_primitive_fields = true;
-  (void)google::protobuf::util::MessageToJsonString(summary, &plain.json, json_options);
+  plain.surface_remeshed = summary.surface_remeshed();
+  plain.json = summary_json(summary);
+  return plain;
+}
+
+SurfaceSummary plain_summary(const v1::SurfaceSummary& summary) {
+  SurfaceSummary plain;
+  plain.point_count = summary.point_count();
+  plain.triangle_count = summary.triangle_count();
+  plain.min_angle_deg = summary.quality().min_angle_deg();
+  plain.max_angle_deg = summary.quality().max_angle_deg();
+  plain.share_below_30_deg = summary.quality().share_below_30_deg();
+  plain.count_below_15_deg = summary.quality().count_below_15_deg();
+  plain.patches = summary.features().patches();
+  plain.lines = summary.features().lines();
+  plain.corners = summary.features().corners();
+  plain.hausdorff = summary.distance().hausdorff();
+  plain.max_vertex_distance = summary.distance().max_vertex_distance();
+  plain.model_size = summary.distance().model_size();
+  for (const v1::StageTiming& timing : summary.timings()) {
+    plain.timings.emplace_back(timing.stage(), timing.seconds());
+  }
+  plain.json = summary_json(summary);
   return plain;
 }
 
 // Sends the front and collects the answer (see call_mesh_volume).
-absl::StatusOr<VolumeCallResult> run_call(Stream& stream, const Mesh& front,
-                                          const VolumeCallOptions& options,
-                                          const ProgressCallback& on_progress,
-                                          const WarningCallback& on_warning) {
+template <class Result, class Request, class Response>
+absl::StatusOr<Result> run_call(Stream<Request, Response>& stream, const Mesh& front,
+                                const VolumeCallOptions& options,
+                                const ProgressCallback& on_progress,
+                                const WarningCallback& on_warning) {
   send_front(stream, front, options, on_progress);
 
-  VolumeCallResult result;
-  std::optional<v1::Summary> summary;
+  Result result;
+  std::optional<std::decay_t<decltype(Response().summary())>> summary;
   Response response;
   std::int64_t received = 0;
   absl::Status malformed;
@@ -232,10 +294,15 @@ void CallCanceller::attach(grpc::ClientContext* context) {
   if (context_ != nullptr && cancelled_) context_->TryCancel();
 }
 
-absl::StatusOr<VolumeCallResult> call_mesh_volume(const std::string& address, const Mesh& front,
-                                                  const VolumeCallOptions& options,
-                                                  const ProgressCallback& on_progress,
-                                                  const WarningCallback& on_warning) {
+namespace {
+
+// One call of `Result`'s RPC (MeshVolume or MeshSurface; see call_mesh_volume): the channel,
+// the deadline, the canceller, the call, and the retry hint or the cut kept in the status.
+template <class Result>
+absl::StatusOr<Result> call_mesher(const std::string& address, const Mesh& front,
+                                   const VolumeCallOptions& options,
+                                   const ProgressCallback& on_progress,
+                                   const WarningCallback& on_warning) {
   // Issue 13 part 4: round_robin spreads calls over every address of the target (dns:/// names
   // resolving to several, ipv4:/ipv6: lists) and skips the ones that cannot be reached; with one
   // address it changes nothing.
@@ -252,10 +319,16 @@ absl::StatusOr<VolumeCallResult> call_mesh_volume(const std::string& address, co
                          std::chrono::duration_cast<std::chrono::system_clock::duration>(
                              std::chrono::duration<double>(options.timeout_seconds)));
   }
-  const std::unique_ptr<Stream> stream = stub->MeshVolume(&context);
+  const auto stream = [&] {
+    if constexpr (std::is_same_v<Result, SurfaceCallResult>) {
+      return stub->MeshSurface(&context);
+    } else {
+      return stub->MeshVolume(&context);
+    }
+  }();
   if (options.canceller != nullptr) options.canceller->attach(&context);
-  absl::StatusOr<VolumeCallResult> result =
-      run_call(*stream, front, options, on_progress, on_warning);
+  absl::StatusOr<Result> result =
+      run_call<Result>(*stream, front, options, on_progress, on_warning);
   if (options.canceller != nullptr) options.canceller->attach(nullptr);
   if (!result.ok()) {
     const auto& trailers = context.GetServerTrailingMetadata();
@@ -270,6 +343,23 @@ absl::StatusOr<VolumeCallResult> call_mesh_volume(const std::string& address, co
     return status;
   }
   return result;
+}
+
+}  // namespace
+
+absl::StatusOr<VolumeCallResult> call_mesh_volume(const std::string& address, const Mesh& front,
+                                                  const VolumeCallOptions& options,
+                                                  const ProgressCallback& on_progress,
+                                                  const WarningCallback& on_warning) {
+  return call_mesher<VolumeCallResult>(address, front, options, on_progress, on_warning);
+}
+
+absl::StatusOr<SurfaceCallResult> call_mesh_surface(const std::string& address,
+                                                    const Mesh& input,
+                                                    const VolumeCallOptions& options,
+                                                    const ProgressCallback& on_progress,
+                                                    const WarningCallback& on_warning) {
+  return call_mesher<SurfaceCallResult>(address, input, options, on_progress, on_warning);
 }
 
 std::string channel_target(const std::string& address, std::uint64_t seed) {

@@ -59,6 +59,12 @@ struct VolumeCallOptions {
   CallCanceller* canceller = nullptr;
   // TLS and the bearer token (channel_credentials.h); default: plaintext, no token.
   ClientSecurity security;
+  // MeshVolume: re-triangulate the front on the server first (VolumeOptions.remesh_surface).
+  bool remesh_surface = false;
+  // MeshSurface, and MeshVolume with remesh_surface: ridge and corner angles in degrees
+  // (SurfaceOptions; 0: the server's defaults, 30 and 60). `environments` is MeshVolume's only.
+  double ridge_angle_deg = 0.0;
+  double corner_angle_deg = 0.0;
 };
 
 // Where the call is, for the progress display: the client's own stages ("send", "receive")
@@ -80,6 +86,8 @@ struct VolumeSummary {
   bool validation_passed = false;
   std::vector<std::string> validation_messages;
   std::vector<std::pair<std::string, double>> timings;  // stage, seconds
+  // The boundary is a re-triangulation of the input (remesh_surface).
+  bool surface_remeshed = false;
   // The Summary in protobuf's JSON mapping (lowerCamelCase fields, as mesher.proto documents).
   std::string json;
 };
@@ -87,6 +95,29 @@ struct VolumeSummary {
 struct VolumeCallResult {
   Mesh mesh;  // points, the boundary triangles with tags, tets with tags
   VolumeSummary summary;
+};
+
+// The SurfaceSummary message, as plain values (the rest is in `json`).
+struct SurfaceSummary {
+  std::uint64_t point_count = 0;
+  std::uint64_t triangle_count = 0;
+  double min_angle_deg = 0.0;
+  double max_angle_deg = 0.0;
+  double share_below_30_deg = 0.0;
+  std::uint64_t count_below_15_deg = 0;
+  std::uint64_t patches = 0;
+  std::uint64_t lines = 0;
+  std::uint64_t corners = 0;
+  double hausdorff = 0.0;
+  double max_vertex_distance = 0.0;
+  double model_size = 0.0;
+  std::vector<std::pair<std::string, double>> timings;  // stage, seconds
+  std::string json;  // protobuf's JSON mapping
+};
+
+struct SurfaceCallResult {
+  Mesh mesh;  // points, triangles with their patch tags
+  SurfaceSummary summary;
 };
 
 // The server's hint on a failed call that may succeed if sent again later (the trailing
@@ -109,6 +140,14 @@ bool worth_retrying(const absl::Status& status, bool shared_server);
 // ipv4:a:p,b:p, ...), except that a bare comma list of IPv4 addresses "a:p,b:p" becomes the
 // ipv4: list gRPC reads, in an order shuffled by `seed`, so that calls spread over its replicas.
 std::string channel_target(const std::string& address, std::uint64_t seed);
+
+// Runs MeshSurface against `address` with `input` (points N×3, triangles M×3 with tags), with
+// the size, angles, timeout, canceller and security of `options`. Errors as call_mesh_volume's.
+absl::StatusOr<SurfaceCallResult> call_mesh_surface(const std::string& address,
+                                                    const Mesh& input,
+                                                    const VolumeCallOptions& options,
+                                                    const ProgressCallback& on_progress,
+                                                    const WarningCallback& on_warning);
 
 // Runs MeshVolume against `address` with `front` (points N×3, triangles M×3 with tags).
 // Errors: the call's gRPC status as the absl::Status of the same code and message;

@@ -37,11 +37,25 @@ std::string logfmt_value(const std::string& text) {
 
 }  // namespace
 
-void count_request(const v1::MeshVolumeRequest& request, CallRecord& record) {
+namespace {
+
+// Both requests have `points` and `triangles` parts.
+template <class Request>
+void count_mesh_request(const Request& request, CallRecord& record) {
   record.messages_in += 1;
   record.bytes_in += static_cast<std::int64_t>(request.ByteSizeLong());
   if (request.has_points()) record.points_in += request.points().xyz_size() / 3;
   if (request.has_triangles()) record.triangles_in += request.triangles().indices_size() / 3;
+}
+
+}  // namespace
+
+void count_request(const v1::MeshVolumeRequest& request, CallRecord& record) {
+  count_mesh_request(request, record);
+}
+
+void count_request(const v1::MeshSurfaceRequest& request, CallRecord& record) {
+  count_mesh_request(request, record);
 }
 
 std::uint64_t next_call_id() {

@@ -40,6 +40,7 @@ struct CallRecord {
 
 // Counts `request` into record's messages_in, bytes_in, points_in and triangles_in.
 void count_request(const v1::MeshVolumeRequest& request, CallRecord& record);
+void count_request(const v1::MeshSurfaceRequest& request, CallRecord& record);
 
 // A number for each call, unique in the process (shared by every server in it).
 std::uint64_t next_call_id();

@@ -77,7 +77,8 @@ absl::StatusOr<VolumeJobOutput> run_volume_job(const Mesh& front, const VolumePa
       .validation = {},
       .warnings = {},
       .repair = {},
-      .estimated_tets = 0};
+      .estimated_tets = 0,
+      .surface = std::nullopt};
   std::vector<StageTiming>& timings = output.volume.timings;
 
   if (absl::Status status = stop_if_cancelled(progress); !status.ok()) return status;

@@ -15,6 +15,7 @@
 
 #include "CLI/CLI.hpp"
 #include "grpc/grpc.h"
+#include "core/surface/generate_surface_mesh.h"
 #include "server/default_volume_job.h"
 #include "server/listen_note.h"
 #include "server/server.h"
@@ -131,7 +132,12 @@ int main(int argc, char** argv) {
   add_flags(app, options);
   CLI11_PARSE(app, argc, argv);
 
-  auto server = afmesh::server::MesherServer::start(options, afmesh::server::default_volume_job());
+  auto server = afmesh::server::MesherServer::start(
+      options, afmesh::server::default_volume_job(),
+      [](const afmesh::Mesh& input, const afmesh::SurfaceParams& params,
+         afmesh::Progress& progress) {
+        return afmesh::generate_surface_mesh(input, params, progress);
+      });
   if (!server.ok()) {
     std::fprintf(stderr, "afmesh-server: %s\n", std::string(server.status().message()).c_str());
     return 1;

@@ -1,8 +1,7 @@
 #include "server/mesh_volume_rpc.h"
 
 #include <chrono>
-#include <exception>
-#include <new>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,6 +10,8 @@
 #include "absl/strings/str_format.h"
 #include "core/volume/estimate_elements.h"
 #include "core/volume/repair_front.h"
+#include "server/run_guarded.h"
+#include "server/surface_step.h"
 #include "server/volume_environments.h"
 
 namespace afmesh::server {
@@ -18,31 +19,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using call_detail::seconds_since;
-
-// Runs `job`, turning exceptions into statuses: the server never dies on a request.
-absl::StatusOr<VolumeJobOutput> run_guarded(const VolumeJob& job, const Mesh& front,
-                                            const VolumeParams& params, Progress& progress) {
-  try {
-    return job(front, params, progress);
-  } catch (const std::bad_alloc&) {
-    return absl::ResourceExhaustedError("the server ran out of memory meshing this input");
-  } catch (const std::exception& e) {
-    return absl::InternalError(absl::StrCat("the mesher failed: ", e.what()));
-  }
-}
-
-// assign_environments, turning exceptions into statuses like run_guarded.
-absl::Status run_environments_guarded(v1::EnvironmentMode mode, const Mesh& front,
-                                      VolumeParams& params, Progress& progress,
-                                      std::vector<std::string>& notes) {
-  try {
-    return assign_environments(mode, front, params, progress, notes);
-  } catch (const std::bad_alloc&) {
-    return absl::ResourceExhaustedError("the server ran out of memory marking environments");
-  } catch (const std::exception& e) {
-    return absl::InternalError(absl::StrCat("marking environments failed: ", e.what()));
-  }
-}
 
 // Limits up front: the tets the size field asks for and the bytes the job will need, from
 // estimate_volume_mesh, against --max-elements (`max_elements`) and the server's memory budget;
@@ -63,21 +39,14 @@ absl::Status admit_by_estimate(const Mesh& front, VolumeParams& params, std::int
         estimate->coarse_front_triangles, front.triangles.size(), kCoarseFrontRatio,
         estimate->coarsest_front_ratio));
   }
-  if (estimate->tets > static_cast<double>(max_elements)) {
-    return absl::ResourceExhaustedError(absl::StrFormat(
-        "the size field asks for about %.3g tetrahedra (estimated before meshing from the "
-        "enclosed volume and the sizes), over this server's limit of %d (--max-elements); ask "
-        "for larger elements, or split the domain",
-        estimate->tets, max_elements));
-  }
-  return context.reserve_memory(estimate->bytes,
-                                absl::StrFormat("%.3g tetrahedra", estimate->tets));
+  return context.admit_estimate(estimate->tets, "tetrahedra", "the enclosed volume and the sizes",
+                                "domain", estimate->bytes, max_elements);
 }
 
 }  // namespace
 
-MeshVolumeRpc::MeshVolumeRpc(VolumeJob job, const InputLimits& limits)
-    : job_(std::move(job)), limits_(limits) {}
+MeshVolumeRpc::MeshVolumeRpc(VolumeJob job, const InputLimits& limits, SurfaceJob surface_job)
+    : job_(std::move(job)), surface_job_(std::move(surface_job)), limits_(limits) {}
 
 void MeshVolumeRpc::count_request(const Request& request, CallRecord& record) {
   server::count_request(request, record);
@@ -99,6 +68,20 @@ absl::StatusOr<VolumeOutputStream> MeshVolumeRpc::run(VolumeInput input,
   std::vector<StageTiming> timings = context.timings_before();
   std::vector<std::string> notes;
 
+  std::optional<SurfaceOutcome> surface;
+  if (input.remesh_surface()) {
+    absl::StatusOr<SurfaceOutcome> remeshed =
+        run_surface_step(surface_job_, front, input.surface_params(), limits_.max_elements,
+                         context, notes, timings);
+    if (!remeshed.ok()) return remeshed.status();
+    notes.push_back(absl::StrFormat(
+        "the input surface was re-triangulated first (options.remesh_surface): the mesh's "
+        "boundary is the new surface of %d triangles, not the input's %d",
+        remeshed->result.mesh.triangles.size(), front.triangles.size()));
+    front = remeshed->result.mesh;
+    surface = *std::move(remeshed);
+  }
+
   const Clock::time_point repair_start = Clock::now();
   const FrontRepairReport repair = repair_front(front);
   timings.push_back({"repair", seconds_since(repair_start)});
@@ -108,19 +91,25 @@ absl::StatusOr<VolumeOutputStream> MeshVolumeRpc::run(VolumeInput input,
   double estimated_tets = 0.0;
   absl::Status status =
       admit_by_estimate(front, params, limits_.max_elements, context, notes, estimated_tets);
-  if (status.ok()) status = run_environments_guarded(mode, front, params, progress, notes);
+  if (status.ok()) {
+    status = run_guarded("marking environments", [&] {
+      return assign_environments(mode, front, params, progress, notes);
+    });
+  }
   if (mode != v1::ENVIRONMENT_MODE_NONE) {
     timings.push_back({"environments", seconds_since(start)});
   }
   if (!status.ok()) return status;
   if (progress.cancelled()) return absl::CancelledError("the call was stopped before meshing");
 
-  absl::StatusOr<VolumeJobOutput> output = run_guarded(job_, front, params, progress);
+  absl::StatusOr<VolumeJobOutput> output =
+      run_guarded("meshing this input", [&] { return job_(front, params, progress); });
   if (!output.ok()) return output.status();
   if (absl::Status whole = check_job_output(*output); !whole.ok()) return whole;
   output->warnings.insert(output->warnings.begin(), notes.begin(), notes.end());
   output->repair = repair;
   output->estimated_tets = estimated_tets;
+  output->surface = std::move(surface);
   return VolumeOutputStream(*std::move(output), std::move(timings));
 }
 

@@ -10,6 +10,7 @@
 
 #include "server/call_gate.h"
 #include "server/memory_budget.h"
+#include "server/surface_job.h"
 #include "server/volume_input.h"
 #include "server/volume_job.h"
 #include "server/worker_pool.h"
@@ -40,9 +41,12 @@ struct ServiceOptions {
 // slot of `pool` (RESOURCE_EXHAUSTED when none is free), assemble and check their input, reserve
 // their estimated bytes of `budget`, run `job` on a worker and stream its result; each call is
 // counted into `metrics` when it ends. `pool`, `gate`, `budget` and `metrics` must outlive
-// every call. (options.memory_budget_bytes is for whoever makes `budget`.)
+// every call. (options.memory_budget_bytes is for whoever makes `budget`.) MeshSurface calls,
+// and MeshVolume calls with remesh_surface, run `surface_job` likewise (empty: they end
+// UNIMPLEMENTED).
 std::unique_ptr<grpc::Service> make_mesher_service(WorkerPool& pool, CallGate& gate,
                                                    MemoryBudget& budget, ServerMetrics& metrics,
-                                                   VolumeJob job, const ServiceOptions& options);
+                                                   VolumeJob job, const ServiceOptions& options,
+                                                   SurfaceJob surface_job = {});
 
 }  // namespace afmesh::server

@@ -39,7 +39,8 @@ int worker_count(int requested) {
 }  // namespace
 
 absl::StatusOr<std::unique_ptr<MesherServer>> MesherServer::start(const ServerOptions& options,
-                                                                  VolumeJob job) {
+                                                                  VolumeJob job,
+                                                                  SurfaceJob surface_job) {
   // Process-wide switches of gRPC; both must be set before a server is built.
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
@@ -62,7 +63,8 @@ absl::StatusOr<std::unique_ptr<MesherServer>> MesherServer::start(const ServerOp
     server->metrics_endpoint_ = *std::move(endpoint);
   }
   server->service_ = make_mesher_service(*server->pool_, server->gate_, *server->budget_,
-                                         *server->metrics_, std::move(job), service_options);
+                                         *server->metrics_, std::move(job), service_options,
+                                         std::move(surface_job));
 
   grpc::ServerBuilder builder;
   int port = 0;

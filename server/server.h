@@ -11,6 +11,7 @@
 #include "server/call_gate.h"
 #include "server/credentials.h"
 #include "server/mesher_service.h"
+#include "server/surface_job.h"
 #include "server/volume_job.h"
 #include "server/worker_pool.h"
 
@@ -46,9 +47,11 @@ class MesherServer {
  public:
   // Starts listening. INVALID_ARGUMENT naming the file when a security file is unreadable or
   // invalid (load_server_security), or naming --metrics when options.metrics is not IPV4:PORT;
-  // UNAVAILABLE when the address (or the metrics address) cannot be bound.
+  // UNAVAILABLE when the address (or the metrics address) cannot be bound. `surface_job` serves
+  // MeshSurface and remesh_surface (empty: those calls end UNIMPLEMENTED).
   static absl::StatusOr<std::unique_ptr<MesherServer>> start(const ServerOptions& options,
-                                                             VolumeJob job);
+                                                             VolumeJob job,
+                                                             SurfaceJob surface_job = {});
   // Shuts down (see shutdown()).
   ~MesherServer();
   MesherServer(const MesherServer&) = delete;

@@ -33,6 +33,9 @@ absl::Status JobContext::reserve_memory(double bytes, std::string_view elements)
         "of %.3g GiB (--memory-budget-mb); ask for larger elements",
         bytes / gib, elements, static_cast<double>(budget_.capacity()) / gib));
   }
+  // A later estimate of the same job (remesh_surface: the surface's, then the volume's)
+  // replaces the earlier one rather than adding to it.
+  reservation_.reset();
   reservation_ = budget_.try_reserve(static_cast<std::int64_t>(bytes));
   if (!reservation_) {
     return with_retry_after(
@@ -44,6 +47,18 @@ absl::Status JobContext::reserve_memory(double bytes, std::string_view elements)
         kRetryAfterBudgetMs);
   }
   return absl::OkStatus();
+}
+
+absl::Status JobContext::admit_estimate(double count, std::string_view elements,
+                                       std::string_view basis, std::string_view whole,
+                                       double bytes, std::int64_t max_elements) {
+  if (count > static_cast<double>(max_elements)) {
+    return absl::ResourceExhaustedError(absl::StrFormat(
+        "the size field asks for about %.3g %s (estimated before meshing from %s), over this "
+        "server's limit of %d (--max-elements); ask for larger elements, or split the %s",
+        count, elements, basis, max_elements, whole));
+  }
+  return reserve_memory(bytes, absl::StrFormat("%.3g %s", count, elements));
 }
 
 namespace call_detail {

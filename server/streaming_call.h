@@ -79,8 +79,17 @@ class JobContext {
   // Reserves `bytes` of the server's memory budget until the call is gone (its result streamed
   // out). RESOURCE_EXHAUSTED when `bytes` is over the whole budget ("meshing this input needs
   // about 3.1 GiB (about <elements>), over this server's memory budget ..."), or, with a retry
-  // hint, when the jobs running now hold too much of it.
+  // hint, when the jobs running now hold too much of it. A second call replaces the first's
+  // reservation.
   absl::Status reserve_memory(double bytes, std::string_view elements);
+
+  // Admits a job by its estimate made before any meshing: RESOURCE_EXHAUSTED when `count`
+  // `elements` (e.g. "tetrahedra") are over `max_elements` ("the size field asks for about
+  // 5.46e+06 surface triangles (estimated before meshing from <basis>), over this server's
+  // limit of 1000 (--max-elements); ask for larger elements, or split the <whole>"), else
+  // reserve_memory(bytes).
+  absl::Status admit_estimate(double count, std::string_view elements, std::string_view basis,
+                              std::string_view whole, double bytes, std::int64_t max_elements);
 
  private:
   Progress& progress_;

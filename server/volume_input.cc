@@ -10,6 +10,7 @@
 #include "core/sizing/size_spec.h"
 #include "proto/size_spec_convert.h"
 #include "proto/slice_codec.h"
+#include "server/surface_options.h"
 
 namespace afmesh::server {
 namespace {
@@ -153,7 +154,35 @@ absl::Status VolumeInput::add_header(const v1::MeshVolumeHeader& header) {
         static_cast<int>(mode)));
   }
   environment_mode_ = mode;
-  return params_from_options(header.options(), grid_streamed, params_);
+  if (absl::Status status = params_from_options(header.options(), grid_streamed, params_);
+      !status.ok()) {
+    return status;
+  }
+  return surface_options(header.options());
+}
+
+// With remesh_surface, the angles of the surface step; without, none may be given.
+absl::Status VolumeInput::surface_options(const v1::VolumeOptions& options) {
+  remesh_surface_ = options.remesh_surface();
+  if (!remesh_surface_) {
+    if (options.ridge_angle_deg() == 0.0 && options.corner_angle_deg() == 0.0) {
+      return absl::OkStatus();
+    }
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "options.%s is set, but options.remesh_surface is not: the angles only apply when the "
+        "surface is re-triangulated first",
+        options.ridge_angle_deg() != 0.0 ? "ridge_angle_deg" : "corner_angle_deg"));
+  }
+  ridge_angle_deg_ = options.ridge_angle_deg();
+  corner_angle_deg_ = options.corner_angle_deg();
+  SurfaceParams checked;
+  return surface_params_from(params_, ridge_angle_deg_, corner_angle_deg_, "options.", checked);
+}
+
+SurfaceParams VolumeInput::surface_params() const {
+  SurfaceParams params;
+  (void)surface_params_from(params_, ridge_angle_deg_, corner_angle_deg_, "options.", params);
+  return params;
 }
 
 absl::Status VolumeInput::add_points(const v1::PointSlice& slice) {

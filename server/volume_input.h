@@ -14,6 +14,7 @@
 #include "afmesh/v1/mesher.pb.h"
 #include "core/mesh/mesh.h"
 #include "core/sizing/size_spec.h"
+#include "core/surface/generate_surface_mesh.h"
 #include "core/volume/generate_volume_mesh.h"
 
 namespace afmesh::server {
@@ -49,6 +50,12 @@ class VolumeInput {
   absl::Status finish();
 
   const VolumeParams& params() const { return params_; }
+  // options.remesh_surface of the header: re-triangulate the front first, with
+  // surface_params() (the size of params() and the header's two angles, checked when it came:
+  // INVALID_ARGUMENT naming options.ridge_angle_deg / corner_angle_deg, or either given
+  // without options.remesh_surface).
+  bool remesh_surface() const { return remesh_surface_; }
+  SurfaceParams surface_params() const;
   // options.environments of the header (crossing environments, paper §2).
   v1::EnvironmentMode environment_mode() const { return environment_mode_; }
   // The assembled front (N×3 points, M×3 triangles, M tags); leaves this input empty.
@@ -56,6 +63,7 @@ class VolumeInput {
 
  private:
   absl::Status add_header(const v1::MeshVolumeHeader& header);
+  absl::Status surface_options(const v1::VolumeOptions& options);
   absl::Status add_points(const v1::PointSlice& slice);
   absl::Status add_triangles(const v1::TriangleSlice& slice);
   absl::Status add_grid_slice(const v1::BackgroundGridSlice& slice);
@@ -77,6 +85,9 @@ class VolumeInput {
   std::optional<std::uint64_t> declared_grid_tets_;
   BackgroundGridSpec grid_;  // the streamed grid, so far
   VolumeParams params_;
+  bool remesh_surface_ = false;
+  double ridge_angle_deg_ = 0.0;   // options.ridge_angle_deg, checked
+  double corner_angle_deg_ = 0.0;  // options.corner_angle_deg, checked
   v1::EnvironmentMode environment_mode_ = v1::ENVIRONMENT_MODE_NONE;
   Mesh front_;
 };

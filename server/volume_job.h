@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "core/mesh/mesh.h"
 #include "core/volume/generate_volume_mesh.h"
 #include "core/volume/repair_front.h"
+#include "server/surface_job.h"
 
 namespace afmesh::server {
 
@@ -47,6 +49,9 @@ struct VolumeJobOutput {
   // The tets the server expected before meshing (core/volume/estimate_elements.h; its limits
   // were checked against this); 0 when not estimated.
   double estimated_tets = 0.0;
+  // With VolumeOptions.remesh_surface, the surface step that made the front (set by the
+  // service): the Summary then says so and describes it.
+  std::optional<SurfaceOutcome> surface;
 };
 
 // Meshes `front` (N points, M triangles with tags; already checked by the service for finite

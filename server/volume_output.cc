@@ -5,6 +5,7 @@
 
 #include "absl/strings/str_format.h"
 #include "proto/slice_codec.h"
+#include "server/surface_step.h"
 
 namespace afmesh::server {
 namespace {
@@ -28,7 +29,10 @@ absl::Status check_indices(const std::vector<Element>& elements, std::size_t poi
 }  // namespace
 
 absl::Status check_job_output(const VolumeJobOutput& output) {
-  const Mesh& mesh = output.volume.mesh;
+  return check_mesh_output(output.volume.mesh);
+}
+
+absl::Status check_mesh_output(const Mesh& mesh) {
   if (mesh.triangle_tags.size() != mesh.triangles.size() ||
       mesh.tet_tags.size() != mesh.tets.size()) {
     return absl::InternalError(absl::StrFormat(
@@ -148,17 +152,21 @@ void VolumeOutputStream::fill_summary(v1::Summary& summary) const {
   repaired.set_components(static_cast<std::uint64_t>(repair.components));
   repaired.set_cavities(static_cast<std::uint64_t>(repair.cavities));
   summary.set_estimated_tet_count(output_.estimated_tets);
+  if (output_.surface) {
+    summary.set_surface_remeshed(true);
+    fill_surface_summary(*output_.surface, *summary.mutable_surface());
+    add_timings(output_.surface->result.timings, *summary.mutable_surface());
+  }
+  add_timings(timings(), summary);
+}
 
-  auto add_timing = [&summary](const std::string& stage, double seconds) {
-    v1::StageTiming& timing = *summary.add_timings();
-    timing.set_stage(stage);
-    timing.set_seconds(seconds);
-  };
-  for (const StageTiming& t : timings_before_) add_timing(t.stage, t.seconds);
-  for (const StageTiming& t : output_.volume.timings) add_timing(t.stage, t.seconds);
-  add_timing(
-      "send",
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - *send_start_).count());
+std::vector<StageTiming> VolumeOutputStream::timings() const {
+  std::vector<StageTiming> all = timings_before_;
+  all.insert(all.end(), output_.volume.timings.begin(), output_.volume.timings.end());
+  const auto since = send_start_.value_or(std::chrono::steady_clock::now());
+  all.push_back(
+      {"send", std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count()});
+  return all;
 }
 
 }  // namespace afmesh::server

@@ -18,6 +18,7 @@ namespace afmesh::server {
 // Checks that a job's mesh can be sent as a whole: tag arrays as long as their elements and
 // every triangle and tet index in range. INTERNAL naming the element otherwise (a job bug: the
 // service sends no part of such a mesh).
+absl::Status check_mesh_output(const Mesh& mesh);
 absl::Status check_job_output(const VolumeJobOutput& output);
 
 class VolumeOutputStream {
@@ -28,6 +29,9 @@ class VolumeOutputStream {
 
   // Fills `response` with the next message; false once the Summary has been produced.
   bool next(v1::MeshVolumeResponse& response);
+
+  // The Summary's timings: `timings_before`, the job's, then "send" (up to now).
+  std::vector<StageTiming> timings() const;
 
   // The mesh the stream carries.
   const Mesh& mesh() const { return output_.volume.mesh; }

@@ -50,6 +50,8 @@ constexpr std::size_t kMessageCap = 1 << 20;  // bytes of payload per message
 // Meshes and requests.
 
 using afmesh::testing::tetrahedron_front;
+using afmesh::testing::carries_mesh;
+using afmesh::testing::mesh_from;
 using afmesh::testing::same_bits;
 
 // A mesh large enough to need several slices of each kind, with coordinates that only survive
@@ -119,33 +121,10 @@ std::vector<Request> requests_for(const Mesh& front, std::size_t slice = 32768) 
   return requests;
 }
 
-// The mesh carried by the point, triangle and tet slices of `responses`; every slice must be
-// well formed.
-Mesh mesh_from(const std::vector<Response>& responses) {
-  Mesh mesh;
-  for (const Response& response : responses) {
-    absl::Status status;
-    if (response.has_points()) {
-      status = wire::append_points(response.points(), "response", mesh.points);
-    } else if (response.has_triangles()) {
-      status = wire::append_triangles(response.triangles(), "response", mesh.triangles,
-                                      mesh.triangle_tags);
-    } else if (response.has_tets()) {
-      status = wire::append_tets(response.tets(), "response", mesh.tets, mesh.tet_tags);
-    }
-    EXPECT_TRUE(status.ok()) << status;
-  }
-  return mesh;
-}
-
 int count_events(const std::vector<Response>& responses, Response::EventCase kind) {
   int count = 0;
   for (const Response& response : responses) count += response.event_case() == kind ? 1 : 0;
   return count;
-}
-
-bool carries_mesh(const Response& response) {
-  return response.has_points() || response.has_triangles() || response.has_tets();
 }
 
 // ---------------------------------------------------------------------------------------------

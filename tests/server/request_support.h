@@ -5,8 +5,11 @@
 #include <cstring>
 #include <vector>
 
+#include "absl/status/status.h"
 #include "afmesh/v1/mesher.pb.h"
 #include "core/mesh/mesh.h"
+#include "gtest/gtest.h"
+#include "proto/slice_codec.h"
 
 namespace afmesh::testing {
 
@@ -43,6 +46,37 @@ inline std::vector<v1::MeshVolumeRequest> tetrahedron_requests(double size = 0.5
 // True when both point arrays hold the same bits (so -0.0 differs from 0.0).
 inline bool same_bits(const std::vector<Point>& a, const std::vector<Point>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Point)) == 0;
+}
+
+// True when a MeshVolumeResponse or MeshSurfaceResponse carries a slice of the mesh.
+template <class Response>
+bool carries_mesh(const Response& response) {
+  if constexpr (requires { response.has_tets(); }) {
+    if (response.has_tets()) return true;
+  }
+  return response.has_points() || response.has_triangles();
+}
+
+// The mesh carried by the point, triangle (and tet) slices of `responses`; every slice must be
+// well formed.
+template <class Response>
+Mesh mesh_from(const std::vector<Response>& responses) {
+  Mesh mesh;
+  for (const Response& response : responses) {
+    absl::Status status;
+    if (response.has_points()) {
+      status = wire::append_points(response.points(), "response", mesh.points);
+    } else if (response.has_triangles()) {
+      status = wire::append_triangles(response.triangles(), "response", mesh.triangles,
+                                      mesh.triangle_tags);
+    } else if constexpr (requires { response.has_tets(); }) {
+      if (response.has_tets()) {
+        status = wire::append_tets(response.tets(), "response", mesh.tets, mesh.tet_tags);
+      }
+    }
+    EXPECT_TRUE(status.ok()) << status;
+  }
+  return mesh;
 }
 
 }  // namespace afmesh::testing

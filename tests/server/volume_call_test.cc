@@ -178,5 +178,87 @@ TEST_F(VolumeCallRetryTest, AnUnreachableSharedServerIsRetried) {
   EXPECT_FALSE(worth_retrying(status, false));
 }
 
+// call_mesh_surface against the service in-process with a fake surface job: the surface comes
+// back whole with its tags, the summary as plain values and JSON, and the angles reach the job;
+// call_mesh_volume's remesh_surface runs the surface job first.
+class SurfaceCallTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    static const bool initialised = (grpc_init(), true);
+    (void)initialised;
+  }
+
+  void SetUp() override {
+    server::ServerOptions options;
+    options.listen = "127.0.0.1:0";
+    options.workers = 1;
+    options.service.log_calls = false;
+    absl::StatusOr<std::unique_ptr<server::MesherServer>> server = server::MesherServer::start(
+        options,
+        [](const Mesh& front, const VolumeParams&,
+           Progress&) -> absl::StatusOr<server::VolumeJobOutput> {
+          server::VolumeJobOutput output;
+          output.volume.mesh = front;
+          output.volume.mesh.tets = {{0, 1, 2, 3}};
+          output.volume.mesh.tet_tags = {0};
+          output.validation.passed = true;
+          return output;
+        },
+        [this](const Mesh& input, const SurfaceParams& params,
+               Progress&) -> absl::StatusOr<SurfaceResult> {
+          seen_ = params;
+          SurfaceResult result;
+          result.mesh = input;
+          result.report.corners = 4;
+          result.report.hausdorff = 0.5;
+          return result;
+        });
+    ASSERT_TRUE(server.ok()) << server.status();
+    server_ = *std::move(server);
+  }
+
+  void TearDown() override { server_->shutdown(); }
+
+  std::unique_ptr<server::MesherServer> server_;
+  SurfaceParams seen_;
+};
+
+TEST_F(SurfaceCallTest, TheSurfaceComesBackWholeWithTagsAndItsSummary) {
+  VolumeCallOptions options;
+  options.size = 0.5;
+  options.ridge_angle_deg = 42.0;
+  options.corner_angle_deg = 99.0;
+  absl::StatusOr<SurfaceCallResult> result =
+      call_mesh_surface(server_->address(), tetrahedron_front(), options,
+                        [](std::string_view, double) {}, [](std::string_view) {});
+  ASSERT_TRUE(result.ok()) << result.status();
+  EXPECT_EQ(result->mesh.triangles, tetrahedron_front().triangles);
+  EXPECT_EQ(result->mesh.triangle_tags, tetrahedron_front().triangle_tags);
+  EXPECT_TRUE(result->mesh.tets.empty());
+  EXPECT_EQ(result->summary.triangle_count, 4u);
+  EXPECT_EQ(result->summary.corners, 4u);
+  EXPECT_EQ(result->summary.hausdorff, 0.5);
+  EXPECT_NEAR(result->summary.min_angle_deg, 45.0, 1e-9);
+  EXPECT_NE(result->summary.json.find("\"hausdorff\": 0.5"), std::string::npos)
+      << result->summary.json;
+  EXPECT_EQ(seen_.ridge_angle_deg, 42.0);
+  EXPECT_EQ(seen_.corner_angle_deg, 99.0);
+  EXPECT_EQ(seen_.size, 0.5);
+}
+
+TEST_F(SurfaceCallTest, RemeshSurfaceRunsTheSurfaceJobInTheVolumeCall) {
+  VolumeCallOptions options;
+  options.size = 0.5;
+  options.remesh_surface = true;
+  options.ridge_angle_deg = 33.0;
+  absl::StatusOr<VolumeCallResult> result =
+      call_mesh_volume(server_->address(), tetrahedron_front(), options,
+                       [](std::string_view, double) {}, [](std::string_view) {});
+  ASSERT_TRUE(result.ok()) << result.status();
+  EXPECT_TRUE(result->summary.surface_remeshed);
+  EXPECT_EQ(seen_.ridge_angle_deg, 33.0);
+  EXPECT_NE(result->summary.json.find("\"surfaceRemeshed\": true"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace afmesh::cli
