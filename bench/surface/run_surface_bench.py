@@ -317,7 +317,7 @@ def failure(status, out, err, timeout):
     lines = [l.strip() for l in (err + "\n" + out).splitlines()
              if l.strip() and not l.startswith("Command exited") and not set(l.strip()) <= set(".")]
     problem = peers.first_problem_line("\n".join(lines))
-    tail = problem or (lines[-1] if lines else "no message")
+    tail = problem or (" | ".join(lines[:2]) if lines else "no message")
     return f"{peers.exit_status_text(status)}: {tail}"
 
 
