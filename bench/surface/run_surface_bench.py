@@ -13,7 +13,8 @@ RSS) with a timeout; a tool that fails shows its exit status and message in its 
 Columns, per tool: tris = output triangles; phase s = wall seconds of the remeshing phase (gmsh:
 classifySurfaces + createGeometry + generate(2); netgen: GenerateMesh; CGAL: detect_sharp_edges
 + isotropic_remeshing; afmesh: the whole command, marked '*', as its phases are not exposed);
-tris/s = tris / phase s; proc s = the whole process (start-up, reading and writing included);
+tris/s = tris / phase s; proc s = the whole process (start-up, reading and writing included),
+cpu s = its CPU seconds (user + system; on a loaded machine wall > cpu);
 min / %>=30 / <15 = smallest triangle angle, share of triangles whose smallest angle is >= 30
 degrees, count under 15; H/diag = two-sided Hausdorff distance (each side sampled at vertices,
 edge midpoints and centroids) over the input's bounding-box diagonal, in percent; ridge = share
@@ -21,7 +22,8 @@ of the input's ridge length (normals > A apart) covered by output edges; corners
 (3+ ridges) with an output vertex on them; edge/h = mean output edge length / h; B/tri = (peak
 RSS of the phase - RSS before it) / tris (afmesh: the peak RSS of its largest process / tris,
 marked '*'). The ratio line divides afmesh's tris/s (whole command) by each peer's tris/s over
-its whole process, and its B/tri by the peer's.
+its whole process (by wall and by CPU seconds), and its B/tri by the peer's: > 1 means afmesh
+is faster (or uses more memory per triangle).
 """
 
 import argparse
@@ -299,21 +301,27 @@ def run_child(job, result_path):
 
 def timed(command, timeout, workdir):
     """Runs `command` under /usr/bin/time in its own session (killed with its children on
-    timeout). Returns (status or None, stdout, stderr, wall seconds, peak RSS bytes or None)."""
+    timeout). Returns (status or None, stdout, stderr, wall seconds, peak RSS bytes or None,
+    CPU seconds (user + system) or None)."""
     usage = os.path.join(workdir, "usage.txt")
+    if os.path.exists(usage):
+        os.remove(usage)
     status, out, err, wall = run_bench.run_process(
-        ["/usr/bin/time", "-f", "%M", "-o", usage, *command], timeout)
-    peak = None
+        ["/usr/bin/time", "-f", "usage %M %U %S", "-o", usage, *command], timeout)
+    peak = cpu = None
     if os.path.exists(usage):
         with open(usage) as f:
-            numbers = [line.strip() for line in f if line.strip().isdigit()]
-        peak = int(numbers[-1]) * 1024 if numbers else None
-    return status, out, err, wall, peak
+            rows = [line.split() for line in f if line.startswith("usage ")]
+        if rows:
+            peak, cpu = int(rows[-1][1]) * 1024, float(rows[-1][2]) + float(rows[-1][3])
+    return status, out, err, wall, peak, cpu
 
 
 def failure(status, out, err, timeout):
     if status is None:
         return f"timed out after {timeout:g} s (killed)"
+    if status == 0:
+        return "exit status 0 but no output file"
     lines = [l.strip() for l in (err + "\n" + out).splitlines()
              if l.strip() and not l.startswith("Command exited") and not set(l.strip()) <= set(".")]
     problem = peers.first_problem_line("\n".join(lines))
@@ -345,17 +353,18 @@ def run_tool(args, tool, case, workdir):
     result_path = os.path.join(workdir, "result.json")
     if os.path.exists(result_path):
         os.remove(result_path)
-    status, out, err, wall, peak = timed(command, args.timeout, workdir)
+    status, out, err, wall, peak, cpu = timed(command, args.timeout, workdir)
     if status != 0 or not os.path.exists(output):
         return {"error": failure(status, out, err, args.timeout), "process_seconds": wall}
-    figures = {"process_seconds": wall, "process_peak_rss_bytes": peak}
+    figures = {"process_seconds": wall, "process_cpu_seconds": cpu,
+               "process_peak_rss_bytes": peak}
     if tool == "cgal":
         figures.update(json.loads(next(l for l in out.splitlines() if l.startswith("{"))))
     elif tool in ("gmsh", "netgen"):
         with open(result_path) as f:
             figures.update(json.load(f))
     else:  # afmesh: its phases are not exposed; the whole command stands for them
-        figures.update({"seconds": wall, "seconds_whole_process": True,
+        figures.update({"seconds": wall, "cpu_seconds": cpu, "seconds_whole_process": True,
                         "options": f"--size {h:g} --ridge-angle {angle:g}"})
     figures["output"] = output
     return figures
@@ -397,7 +406,8 @@ def derived(figures):
 # Printing.
 
 COLUMNS = (("tool", 8, "s"), ("tris", 9, "d"), ("phase s", 9, ".3f"), ("tris/s", 9, ".0f"),
-           ("proc s", 8, ".2f"), ("min", 6, ".1f"), ("%>=30", 7, ".2f"), ("<15", 6, "d"),
+           ("proc s", 8, ".2f"), ("cpu s", 7, ".2f"), ("min", 6, ".1f"), ("%>=30", 7, ".2f"),
+           ("<15", 6, "d"),
            ("H/diag%", 8, ".4f"), ("ridge%", 7, ".1f"), ("corners", 8, "s"), ("edge/h", 7, ".3f"),
            ("B/tri", 7, ".0f"))
 
@@ -407,14 +417,15 @@ def row_cells(row):
     star = "*" if row.get("seconds_whole_process") else ""
     corners = (f"{row['corners_kept']}/{row['corners']}" if row.get("corners") else "-")
     cells = [row["tool"], row.get("triangles"), row.get("seconds"),
-             row.get("triangles_per_second"), row.get("process_seconds"), row.get("min_angle"),
+             row.get("triangles_per_second"), row.get("process_seconds"),
+             row.get("process_cpu_seconds"), row.get("min_angle"),
              pct(row.get("share_min_angle_ge_30")), row.get("count_min_angle_lt_15"),
              pct(row.get("hausdorff_over_diag")),
              pct(row.get("ridge_length_kept")) if row.get("ridge_edges") else None, corners,
              row.get("mean_edge_over_h"), row.get("bytes_per_triangle")]
     text = [run_bench._cell(v, w, s) for v, (_, w, s) in zip(cells, COLUMNS)]
     if star:
-        text[2], text[12] = text[2] + "*", text[12] + "*"
+        text[2], text[-1] = text[2] + "*", text[-1] + "*"
     return " ".join(text)
 
 
@@ -440,9 +451,14 @@ def print_case(case, rows):
         if row["tool"] == "afmesh" or "error" in row or ours is None:
             continue
         speed = ours["triangles_per_process_second"] / row["triangles_per_process_second"]
+        cpu = (row["process_cpu_seconds"] / row["triangles"]
+               / (ours["process_cpu_seconds"] / ours["triangles"])
+               if ours.get("process_cpu_seconds") and row.get("process_cpu_seconds") else None)
         memory = (ours["bytes_per_triangle"] / row["bytes_per_triangle"]
                   if ours.get("bytes_per_triangle") and row.get("bytes_per_triangle") else None)
-        ratios.append(f"{row['tool']} {speed:.2f}x tris/s, {run_bench._cell(memory, 0, '.2f')}x B/tri")
+        ratios.append(f"{row['tool']} {speed:.2f}x tris/s (wall), "
+                      f"{run_bench._cell(cpu, 0, '.2f')}x tris per cpu s, "
+                      f"{run_bench._cell(memory, 0, '.2f')}x B/tri")
     if ours is None:
         print("   afmesh / peer: not yet (afmesh gave no output)")
     elif ratios:
