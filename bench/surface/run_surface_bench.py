@@ -94,7 +94,8 @@ def write_stl(points, triangles, path, ascii_path):
     corners = points[triangles].astype(np.float32)  # M x 3 x 3
     normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
     lengths = np.linalg.norm(normals, axis=1)[:, None]
-    normals = np.where(lengths > 0, normals / np.where(lengths > 0, lengths, 1), 0).astype(np.float32)
+    safe = np.where(lengths > 0, lengths, 1)
+    normals = np.where(lengths > 0, normals / safe, 0).astype(np.float32)
     record = np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
     rows = np.zeros(len(triangles), dtype=record)
     rows["n"], rows["v"] = normals, corners
@@ -203,7 +204,8 @@ def make_input(name, work):
     bounding-box diagonal)."""
     folder = os.path.join(work, "inputs")
     os.makedirs(folder, exist_ok=True)
-    path, ascii_path = os.path.join(folder, name + ".stl"), os.path.join(folder, name + ".ascii.stl")
+    path = os.path.join(folder, name + ".stl")
+    ascii_path = os.path.join(folder, name + ".ascii.stl")
     if not (os.path.exists(path) and os.path.exists(ascii_path)):
         kind = INPUTS[name][0] if name in INPUTS else name
         if kind == "cube":
@@ -399,7 +401,8 @@ def derived(figures):
         peak = figures.get("process_peak_rss_bytes")
         figures["bytes_per_triangle"] = peak / tris if peak else None
     elif "rss_peak_bytes" in figures:
-        figures["bytes_per_triangle"] = (figures["rss_peak_bytes"] - figures["rss_before_bytes"]) / tris
+        phase_bytes = figures["rss_peak_bytes"] - figures["rss_before_bytes"]
+        figures["bytes_per_triangle"] = phase_bytes / tris
 
 
 # ---------------------------------------------------------------------------------------------
@@ -490,7 +493,8 @@ def cgal_binary(build_dir):
 def cases(args):
     """(name, label, h, title) of every case of this run."""
     chosen = []
-    names = args.inputs.split(",") if args.inputs else (QUICK_INPUTS if args.quick else DEFAULT_INPUTS)
+    names = (args.inputs.split(",") if args.inputs
+             else QUICK_INPUTS if args.quick else DEFAULT_INPUTS)
     for name in names:
         if name not in INPUTS:
             sys.exit(f"run_surface_bench.py: unknown input '{name}'; known: {', '.join(INPUTS)}")
