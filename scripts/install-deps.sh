@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what afmesh needs to build and test, from Debian 12's apt only.
 # Usage: scripts/install-deps.sh [--peers] [--image] [--fuzz] [--balancers]
-#   --peers adds gmsh, netgen, tetgen for bench/; --image adds buildah and mmdebstrap for
+#   --peers adds gmsh, netgen, tetgen, CGAL for bench/; --image adds buildah and mmdebstrap for
 #   deploy/build-image.sh; --fuzz adds clang-14 and its libFuzzer and sanitizer runtimes for the
 #   fuzz preset (fuzz/run.sh); --balancers adds nginx and haproxy for the scale-out run
 #   (bench/load/scaleout.sh, run unprivileged on loopback ports: the packages' own services are
@@ -21,7 +21,7 @@ packages=(
 )
 for arg in "$@"; do
   case "$arg" in
-    --peers) packages+=(gmsh python3-gmsh netgen python3-netgen tetgen time) ;;
+    --peers) packages+=(gmsh python3-gmsh netgen python3-netgen tetgen time libcgal-dev libgmp-dev libmpfr-dev) ;;
     --image) packages+=(buildah mmdebstrap) ;;
     --fuzz) packages+=(clang-14 libclang-rt-14-dev) ;;
     --balancers) packages+=(nginx haproxy) ;;
