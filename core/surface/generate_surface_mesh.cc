@@ -100,8 +100,8 @@ absl::StatusOr<Mesh> clean_surface_input(const Mesh& input, SurfaceReport& repor
 }
 
 
-// The patch of `surface` left of the directed input edge a→b (the face traversing it so), if
-// any, and right of it: out[0] the faces traversing a→b, out[1] those traversing b→a.
+// The input faces at edge (a, b): `forward` those traversing it a→b (the edge has them on its
+// left), `backward` those traversing it b→a.
 void faces_at_edge(const DiscreteSurface& surface, Index a, Index b,
                    std::vector<Index>& forward, std::vector<Index>& backward) {
   forward.clear();

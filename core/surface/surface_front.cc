@@ -25,6 +25,13 @@ Index SurfaceMeshState::add_point(const Point& x, double size, FaceId host_face,
   return static_cast<Index>(points.size() - 1);
 }
 
+void SurfaceMeshState::drop_last_point() {
+  points.pop_back();
+  point_size.pop_back();
+  host.pop_back();
+  anchor.pop_back();
+}
+
 void SurfaceMeshState::add_triangle(const Triangle& t, PatchId patch) {
   triangles.push_back(t);
   triangle_tags.push_back(features.patches[index_of(patch)].tag);
@@ -69,12 +76,10 @@ Located locate_in_patch(const DiscreteSurface& surface, const SurfaceFeatures& f
         Point closest;
         const double d = squared_distance_to_face(surface, x, g, closest);
         ++at.evaluations;
-        if (d < best_distance || (d == best_distance && best != kInvalidIndex && g < best)) {
-          if (d < best_distance) {
-            best = g;
-            best_distance = d;
-            best_closest = closest;
-          }
+        if (d < best_distance) {  // strictly nearer: ties keep the first (lowest corner's) face
+          best = g;
+          best_distance = d;
+          best_closest = closest;
         }
       }
     }
@@ -442,7 +447,7 @@ bool PatchFront::delete_side(Index f) {
       if (triangle_quality(s_.points[v[0]], s_.points[v[1]], best).min_angle_deg <
               rules.min_angle_deg ||
           !lies_along(v, best, plane)) {
-        s_.points.pop_back(), s_.point_size.pop_back(), s_.host.pop_back(), s_.anchor.pop_back();
+        s_.drop_last_point();
         continue;
       }
     }
@@ -450,9 +455,7 @@ bool PatchFront::delete_side(Index f) {
       add_face(f, v, p);
       return true;
     }
-    if (c.point == kInvalidIndex) {
-      s_.points.pop_back(), s_.point_size.pop_back(), s_.host.pop_back(), s_.anchor.pop_back();
-    }
+    if (c.point == kInvalidIndex) s_.drop_last_point();
   }
   return false;
 }

@@ -68,6 +68,8 @@ struct SurfaceMeshState {
   // The wanted size at x (local frame): the size field there.
   double field_size(const Point& x) const { return field.size_at(surface.to_global(x)); }
   Index add_point(const Point& x, double size, FaceId host_face, Index anchor_vertex);
+  // Takes back the last add_point (a new point whose face was refused).
+  void drop_last_point();
   void add_triangle(const Triangle& t, PatchId patch);
 };
 
