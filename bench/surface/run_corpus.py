@@ -4,13 +4,13 @@ summary line.
 
 Runs `afmesh-bench-surface --input F --json` (default size: the file's mean edge length) on each
 file of ../shared/corpus/ (beside the checkout; --corpus DIR), one after the other, each a fresh
-process with a timeout. Columns: outcome (valid = the bench's checks pass, open = the input is
-open per the corpus README's 'closed' column and the only checks that fail are closed and
-manifold_edges, refused = the input was refused before meshing (INVALID_ARGUMENT), stopped = the mesher stopped
-(FAILED_PRECONDITION or another error), timeout = killed after --timeout seconds), triangles,
-cpu s (user + system of the child, so a loaded machine does not inflate it), wall s, min angle,
-% of triangles with smallest angle >= 30 degrees, Hausdorff / bounding-box diagonal, and the
-first line of the message when the run did not succeed.
+process with a timeout. Columns: outcome (valid = the bench's checks pass, open = the input is open
+per the corpus README's 'closed' column and the only checks that fail are closed and manifold_edges,
+refused = the input was refused before meshing (INVALID_ARGUMENT), stopped = the mesher stopped
+(FAILED_PRECONDITION or another error), timeout = killed after --timeout seconds), triangles, cpu s
+(user + system of the child, so a loaded machine does not inflate it), wall s, min angle, % of
+triangles with smallest angle >= 30 degrees, Hausdorff / bounding-box diagonal, and the first line
+of the message when the run did not succeed.
 
   bench/surface/run_corpus.py [--bench PATH] [--corpus DIR] [--timeout SEC] [--only a,b] [--json]
 """
