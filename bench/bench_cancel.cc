@@ -1,9 +1,12 @@
 // afmesh-bench-cancel: how long the server's MeshVolume job (server/default_volume_job.h: the
-// front, compaction, optimisation, then quality and validation) runs on after its call is
-// cancelled, stage by stage (issue 12: a cancelled call frees its worker within 100 ms).
+// front, compaction, optimisation, then quality and validation) or its MeshSurface job
+// (generate_surface_mesh: input, surface, features, curvature, lines, front, flips, distance)
+// runs on after its call is cancelled, stage by stage (issue 12: a cancelled call frees its
+// worker within 100 ms).
 //
 //   afmesh-bench-cancel --shape lblock --size 0.02 [--trials 8] [--seed 1] [--stage S] [--json]
 //   afmesh-bench-cancel --input front.stl --size H ...
+//   afmesh-bench-cancel --surface --input surface.stl --size H ...   (the surface job)
 //
 // A first run without cancelling gives each stage's interval (the job's own timings). Then
 // every stage longer than 20 ms gets `trials` runs cancelled at a time drawn uniformly from the
@@ -17,6 +20,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <functional>
 #include <optional>
 #include <random>
 #include <string>
@@ -28,6 +32,7 @@
 #include "bench/json_line.h"
 #include "core/common/progress.h"
 #include "core/io/mesh_io.h"
+#include "core/surface/generate_surface_mesh.h"
 #include "server/default_volume_job.h"
 
 namespace afmesh::bench {
@@ -67,15 +72,44 @@ struct StageInterval {
   double end = 0.0;
 };
 
-// The stages of the job in order, from its timings (the core's, then quality+validation).
-std::vector<StageInterval> stage_intervals(const server::VolumeJobOutput& output) {
+// The stages of a job in order, from its timings.
+std::vector<StageInterval> stage_intervals(const std::vector<StageTiming>& timings) {
   std::vector<StageInterval> stages;
   double t = 0.0;
-  for (const StageTiming& timing : output.volume.timings) {
+  for (const StageTiming& timing : timings) {
     stages.push_back({timing.stage, t, t + timing.seconds});
     t += timing.seconds;
   }
   return stages;
+}
+
+// What a job run gives the bench: its stage timings and its element count (tets or triangles).
+struct JobRun {
+  std::vector<StageTiming> timings;
+  std::size_t elements = 0;
+};
+// Runs the job once with `progress`; its output is freed before it returns.
+using Job = std::function<absl::StatusOr<JobRun>(Progress& progress)>;
+
+Job volume_job(const Mesh& front, double size) {
+  return [&front, size](Progress& progress) -> absl::StatusOr<JobRun> {
+    VolumeParams params;
+    params.size = size;
+    absl::StatusOr<server::VolumeJobOutput> output =
+        server::run_volume_job(front, params, progress);
+    if (!output.ok()) return output.status();
+    return JobRun{output->volume.timings, output->volume.mesh.tets.size()};
+  };
+}
+
+Job surface_job(const Mesh& input, double size) {
+  return [&input, size](Progress& progress) -> absl::StatusOr<JobRun> {
+    SurfaceParams params;
+    params.size = size;
+    absl::StatusOr<SurfaceResult> output = generate_surface_mesh(input, params, progress);
+    if (!output.ok()) return output.status();
+    return JobRun{output->timings, output->mesh.triangles.size()};
+  };
 }
 
 double percentile(std::vector<double> values, double p) {
@@ -84,24 +118,21 @@ double percentile(std::vector<double> values, double p) {
   return values[i];
 }
 
-int run(const Mesh& front, double size, int trials, unsigned seed, const std::string& only,
-        bool json) {
-  VolumeParams params;
-  params.size = size;
+int run(const Job& job, const char* what, std::size_t input_triangles, double size, int trials,
+        unsigned seed, const std::string& only, bool json) {
   TimedCancel never(std::nullopt);
   const Clock::time_point start = Clock::now();
-  absl::StatusOr<server::VolumeJobOutput> reference = server::run_volume_job(front, params, never);
+  const absl::StatusOr<JobRun> reference = job(never);
   const double total = seconds_between(start, Clock::now());
   if (!reference.ok()) {
     std::fprintf(stderr, "afmesh-bench-cancel: %s\n", reference.status().ToString().c_str());
     return 1;
   }
-  const std::size_t tets = reference->volume.mesh.tets.size();
-  const std::vector<StageInterval> stages = stage_intervals(*reference);
-  reference = absl::UnknownError("freed");  // the trials run without the reference mesh held
+  const std::size_t elements = reference->elements;
+  const std::vector<StageInterval> stages = stage_intervals(reference->timings);
   if (!json) {
-    std::printf("%zu front triangles, size %g: %zu tets in %.2f s; stages:", front.triangles.size(),
-                size, tets, total);
+    std::printf("%zu input triangles, size %g: %zu %s in %.2f s; stages:", input_triangles, size,
+                elements, what, total);
     for (const StageInterval& s : stages)
       std::printf(" %s %.3f s", s.name.c_str(), s.end - s.begin);
     std::printf("\n%-20s %6s %9s %9s %9s %10s\n", "stage", "trials", "p50 ms", "p99 ms", "max ms",
@@ -120,9 +151,7 @@ int run(const Mesh& front, double size, int trials, unsigned seed, const std::st
       const Clock::time_point cancel_at = job_start + std::chrono::duration_cast<Clock::duration>(
                                                           std::chrono::duration<double>(at));
       TimedCancel progress(cancel_at);
-      absl::StatusOr<server::VolumeJobOutput> output =
-          server::run_volume_job(front, params, progress);
-      output = absl::UnknownError("freed");
+      (void)job(progress);  // its output freed inside
       const Clock::time_point returned = Clock::now();
       // A run slower than the reference may end before `at`: that trial measures nothing.
       if (returned < cancel_at) continue;
@@ -141,7 +170,7 @@ int run(const Mesh& front, double size, int trials, unsigned seed, const std::st
           .add("p99_ms", p99)
           .add("max_ms", max)
           .add("max_unwind_ms", *std::max_element(unwind_ms.begin(), unwind_ms.end()))
-          .add("tets", static_cast<std::int64_t>(tets));
+          .add(what, static_cast<std::int64_t>(elements));
       std::printf("%s\n", j.str().c_str());
     } else {
       std::printf("%-20s %6zu %9.1f %9.1f %9.1f %10.1f\n", stage.name.c_str(), latencies_ms.size(),
@@ -157,12 +186,12 @@ int run(const Mesh& front, double size, int trials, unsigned seed, const std::st
 }  // namespace afmesh::bench
 
 int main(int argc, char** argv) {
-  CLI::App app{"Cancellation latency of the MeshVolume job, stage by stage"};
+  CLI::App app{"Cancellation latency of the MeshVolume or MeshSurface job, stage by stage"};
   std::string shape = "lblock", input;
   double size = 0.035;
   int trials = 8;
   unsigned seed = 1;
-  bool json = false;
+  bool json = false, surface = false;
   std::string only;
   app.add_option("--stage", only, "cancel in this stage only (e.g. front)");
   app.add_option("--shape", shape, "benchmark solid (bench/bench_shapes.h)");
@@ -171,6 +200,7 @@ int main(int argc, char** argv) {
   app.add_option("--trials", trials, "cancelled runs per stage")->check(CLI::PositiveNumber);
   app.add_option("--seed", seed, "seed of the cancellation times");
   app.add_flag("--json", json, "one JSON line per stage");
+  app.add_flag("--surface", surface, "the MeshSurface job on the input surface");
   CLI11_PARSE(app, argc, argv);
   absl::StatusOr<afmesh::Mesh> front =
       input.empty() ? afmesh::bench::bench_surface(shape, size) : afmesh::read_mesh(input);
@@ -178,5 +208,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "afmesh-bench-cancel: %s\n", front.status().ToString().c_str());
     return 1;
   }
-  return afmesh::bench::run(*front, size, trials, seed, only, json);
+  const afmesh::bench::Job job = surface ? afmesh::bench::surface_job(*front, size)
+                                         : afmesh::bench::volume_job(*front, size);
+  return afmesh::bench::run(job, surface ? "triangles" : "tets", front->triangles.size(), size,
+                            trials, seed, only, json);
 }

@@ -43,20 +43,24 @@ int orient_in_plane(const std::vector<Point>& p, const Point& n, Index a, Index 
 
 }  // namespace
 
-std::int64_t flip_edges(const std::vector<Point>& points, std::vector<Triangle>& triangles,
-                        const std::vector<Index>& patch,
-                        const absl::flat_hash_set<std::pair<Index, Index>>& fixed,
-                        const FlipParams& params) {
+absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
+                                        std::vector<Triangle>& triangles,
+                                        const std::vector<Index>& patch,
+                                        const absl::flat_hash_set<std::pair<Index, Index>>& fixed,
+                                        const FlipParams& params, Progress& progress) {
+  CancelCheck cancel(progress);
   const double min_cosine = std::cos(params.max_normal_turn_deg * std::numbers::pi / 180.0);
   absl::flat_hash_set<std::pair<Index, Index>> edges;
   for (const Triangle& t : triangles)
     for (int k = 0; k < 3; ++k) edges.insert(edge_key(t[k], t[(k + 1) % 3]));
   std::int64_t flips = 0;
   for (int pass = 0; pass < params.max_passes; ++pass) {
+    if (cancel.look()) return absl::CancelledError("edge flips: cancelled");
     const EdgeNeighbours neighbours = triangle_edge_neighbours(triangles);
     std::vector<bool> touched(triangles.size(), false);
     std::int64_t flipped = 0;
     for (Index t1 = 0; t1 < static_cast<Index>(triangles.size()); ++t1) {
+      if (cancel.due()) return absl::CancelledError("edge flips: cancelled");
       for (int k = 0; k < 3 && !touched[t1]; ++k) {
         const Index t2 = neighbours.across[t1][k];
         if (t2 == kInvalidIndex || t2 < t1 || touched[t2] || neighbours.same_way[t1][k] ||

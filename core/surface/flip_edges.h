@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "absl/container/flat_hash_set.h"
+#include "absl/status/statusor.h"
+#include "core/common/progress.h"
 #include "core/mesh/mesh.h"
 
 namespace afmesh {
@@ -23,10 +25,13 @@ struct FlipParams {
 
 // Flips edges of `triangles` (M×3 over `points`, oriented consistently) between triangles of the
 // same `patch` (M values) that are not in `fixed` (edges as (min, max) point pairs). Returns the
-// number of flips. O(passes · M log M).
-std::int64_t flip_edges(const std::vector<Point>& points, std::vector<Triangle>& triangles,
-                        const std::vector<Index>& patch,
-                        const absl::flat_hash_set<std::pair<Index, Index>>& fixed,
-                        const FlipParams& params = {});
+// number of flips, or CANCELLED soon after progress.cancelled() turns true (`triangles` then
+// hold the flips made so far: still a valid triangulation). O(passes · M log M).
+absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
+                                        std::vector<Triangle>& triangles,
+                                        const std::vector<Index>& patch,
+                                        const absl::flat_hash_set<std::pair<Index, Index>>& fixed,
+                                        const FlipParams& params = {},
+                                        Progress& progress = no_progress());
 
 }  // namespace afmesh

@@ -235,13 +235,19 @@ std::vector<double> expected_patch_triangles(const SurfaceMeshState& s) {
 }
 
 // Step 6: the largest distance from samples of `from` (vertices, edge midpoints, centroids) to
-// `to`. Both in the same frame.
-double sampled_distance(const Mesh& from, const DiscreteSurface& to, double* vertex_max) {
+// `to`. Both in the same frame. CANCELLED soon after progress.cancelled() turns true.
+absl::StatusOr<double> sampled_distance(const Mesh& from, const DiscreteSurface& to,
+                                        double* vertex_max, Progress& progress) {
+  CancelCheck cancel(progress, 1024);  // each sample a nearest-face query
   double worst = 0, worst_vertex = 0;
   auto at = [&](const Point& x) { return std::sqrt(to.nearest_face(x).squared_distance); };
-  for (const Point& x : from.points) worst_vertex = std::max(worst_vertex, at(x));
+  for (const Point& x : from.points) {
+    if (cancel.due()) return absl::CancelledError("surface distance: cancelled");
+    worst_vertex = std::max(worst_vertex, at(x));
+  }
   worst = worst_vertex;
   for (const Triangle& t : from.triangles) {
+    if (cancel.due()) return absl::CancelledError("surface distance: cancelled");
     const Point& a = from.points[t[0]];
     const Point& b = from.points[t[1]];
     const Point& c = from.points[t[2]];
@@ -263,8 +269,12 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   if (!clean.ok()) return clean.status();
   absl::StatusOr<std::unique_ptr<SizeField>> field = make_size_field(params.spec, params.size, clean->points);
   if (!field.ok()) return field.status();
+  clock.lap("input");
+  if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
   absl::StatusOr<DiscreteSurface> surface = DiscreteSurface::build(*clean);     // S2, S3
   if (!surface.ok()) return surface.status();
+  clock.lap("surface");
+  if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
   FeatureParams feature_params;
   feature_params.ridge_angle_deg = params.ridge_angle_deg;
   feature_params.corner_angle_deg = params.corner_angle_deg;
@@ -287,11 +297,14 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
         **field, *surface,
         curvature_point_sizes(*surface, *features, params.curvature_angle_deg, growth));
     sizes = limited.get();
+    clock.lap("curvature");
+    if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
   }
   SurfaceMeshState s(*surface, *features, *sizes, growth);
   std::vector<std::vector<Side>> patch_sides(features->patches.size());
   if (absl::Status st = sides_along_lines(s, patch_sides); !st.ok()) return st;
   clock.lap("lines");
+  if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
 
   const std::vector<Box> boxes = patch_boxes(*surface, *features);
   const std::vector<double> expected = expected_patch_triangles(s);
@@ -310,7 +323,10 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
           s.triangles.size(), p + 1, features->patches.size(), params.max_triangles));
   }
   clock.lap("front");
-  flip_edges(s.points, s.triangles, s.triangle_patch, s.line_sides);
+  if (absl::StatusOr<std::int64_t> flips =
+          flip_edges(s.points, s.triangles, s.triangle_patch, s.line_sides, {}, progress);
+      !flips.ok())
+    return flips.status();
   clock.lap("flips");
 
   Mesh local;
@@ -319,13 +335,16 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   local.triangle_tags = std::move(s.triangle_tags);
   absl::StatusOr<DiscreteSurface> output = DiscreteSurface::build(local);
   if (!output.ok()) return output.status();
+  if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
   Mesh input_local;
   input_local.points = surface->local_points();
   input_local.triangles = surface->triangles();
-  const double out_to_in =
-      sampled_distance(local, *surface, &result.report.max_vertex_distance);
-  const double in_to_out = sampled_distance(input_local, *output, nullptr);
-  result.report.hausdorff = std::max(out_to_in, in_to_out);
+  const absl::StatusOr<double> out_to_in =
+      sampled_distance(local, *surface, &result.report.max_vertex_distance, progress);
+  if (!out_to_in.ok()) return out_to_in.status();
+  const absl::StatusOr<double> in_to_out = sampled_distance(input_local, *output, nullptr, progress);
+  if (!in_to_out.ok()) return in_to_out.status();
+  result.report.hausdorff = std::max(*out_to_in, *in_to_out);
   clock.lap("distance");
 
   result.mesh = std::move(local);
