@@ -158,7 +158,8 @@ absl::Status sides_along_lines(SurfaceMeshState& s, std::vector<std::vector<Side
     for (std::size_t i = 0; i < last; ++i) {
       s.line_sides.insert({std::min(ids[i], ids[i + 1]), std::max(ids[i], ids[i + 1])});
       const double length = norm(sub(s.points[ids[i + 1]], s.points[ids[i]]));
-      for (const Index p : {ids[i], ids[i + 1]}) s.point_size[p] = std::min(s.point_size[p], length);
+      for (const Index p : {ids[i], ids[i + 1]})
+        s.point_size[p] = std::min(s.point_size[p], length);
     }
     // Each patch along the line gets its sides with the patch on their left: forward where a
     // face of the patch traverses the line's first segment the line's way.
@@ -267,7 +268,8 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   if (absl::Status st = check_params(params); !st.ok()) return st;
   absl::StatusOr<Mesh> clean = clean_surface_input(input, result.report);
   if (!clean.ok()) return clean.status();
-  absl::StatusOr<std::unique_ptr<SizeField>> field = make_size_field(params.spec, params.size, clean->points);
+  absl::StatusOr<std::unique_ptr<SizeField>> field =
+      make_size_field(params.spec, params.size, clean->points);
   if (!field.ok()) return field.status();
   clock.lap("input");
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
@@ -342,7 +344,8 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   const absl::StatusOr<double> out_to_in =
       sampled_distance(local, *surface, &result.report.max_vertex_distance, progress);
   if (!out_to_in.ok()) return out_to_in.status();
-  const absl::StatusOr<double> in_to_out = sampled_distance(input_local, *output, nullptr, progress);
+  const absl::StatusOr<double> in_to_out =
+      sampled_distance(input_local, *output, nullptr, progress);
   if (!in_to_out.ok()) return in_to_out.status();
   result.report.hausdorff = std::max(*out_to_in, *in_to_out);
   clock.lap("distance");

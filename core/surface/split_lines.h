@@ -7,8 +7,9 @@
 // polyline and I = ∫ ds / h(s) the line's length in units of the local size,
 //   n = max(1, round(I)) sides, and the end of side j at the s_j where ∫_0^{s_j} ds/h = j I / n,
 // so every side spans the same share of the size-scaled length (a side is about h long where h
-// varies slowly). The paper gives no rule for the count or the placement; these are ours. The ends stay fixed at the corners (bit for bit: corners are shared by the
-// lines and patches that meet there); the other points lie on the polyline's segments.
+// varies slowly). The paper gives no rule for the count or the placement; these are ours. The
+// ends stay fixed at the corners (bit for bit: corners are shared by the lines and patches that
+// meet there); the other points lie on the polyline's segments.
 //
 // The integral is evaluated by the trapezoidal rule on 1/h over pieces of each segment no longer
 // than h / samples_per_size (h taken at the piece's start), so it needs about
