@@ -56,10 +56,6 @@ double squared_distance_to_face(const DiscreteSurface& surface, const Point& x, 
 
 Located locate_in_patch(const DiscreteSurface& surface, const SurfaceFeatures& features,
                         PatchId patch, const Point& x, FaceId hint, int max_steps) {
-  // The surface's own walk (edge neighbours first) is cheaper; where it ends in the patch, the
-  // face is the patch's nearest too.
-  if (Located quick = surface.locate(x, hint); in_patch(features, patch, index_of(quick.face)))
-    return quick;
   Located at;
   Index face = index_of(hint);
   at.squared_distance = squared_distance_to_face(surface, x, face, at.closest);
