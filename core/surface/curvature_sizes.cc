@@ -81,8 +81,7 @@ double CurvatureLimitedSize::size_at(const Point& x) const {
   const Located at = surface_.nearest_face(surface_.to_local(x));
   double curvature = std::numeric_limits<double>::infinity();
   for (const Index v : surface_.triangle(at.face)) curvature = std::min(curvature, point_sizes_[v]);
-  const double base = base_.size_at(x);
-  return std::min(base, std::max(curvature, kMinCurvatureShare * base));
+  return std::min(base_.size_at(x), curvature);
 }
 
 }  // namespace afmesh

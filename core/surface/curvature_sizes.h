@@ -29,15 +29,8 @@ std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
                                           const SurfaceFeatures& features, double alpha_p_deg,
                                           double growth);
 
-// Not in the paper: the curvature bound never asks for less than this share of the size field's
-// size. On a noisy scan, neighbouring faces a fraction of the size apart differ by tens of
-// degrees: eq. 21 read there asks for elements of the noise's size (the corpus bunny at h 0.05
-// built 291k triangles, 20 times its expected count, before its front stopped).
-inline constexpr double kMinCurvatureShare = 0.25;
-
-// min(base(x), max(the curvature size at x, kMinCurvatureShare · base(x))), with the curvature
-// size the smallest delta_i of the corners of the input face nearest to x (x in global
-// coordinates, as every SizeField).
+// min(base(x), the curvature size at x): the smallest delta_i of the corners of the input face
+// nearest to x (x in global coordinates, as every SizeField).
 class CurvatureLimitedSize final : public SizeField {
  public:
   CurvatureLimitedSize(const SizeField& base, const DiscreteSurface& surface,
