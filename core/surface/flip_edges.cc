@@ -54,6 +54,9 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
   for (const Triangle& t : triangles)
     for (int k = 0; k < 3; ++k) edges.insert(edge_key(t[k], t[(k + 1) % 3]));
   std::int64_t flips = 0;
+  // After the first pass only the edges of triangles a flip changed can gain from a flip: the
+  // others' quadrilaterals are as the pass before found them.
+  std::vector<bool> changed(triangles.size(), true);
   for (int pass = 0; pass < params.max_passes; ++pass) {
     if (cancel.look()) return absl::CancelledError("edge flips: cancelled");
     const EdgeNeighbours neighbours = triangle_edge_neighbours(triangles);
@@ -64,7 +67,7 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
       for (int k = 0; k < 3 && !touched[t1]; ++k) {
         const Index t2 = neighbours.across[t1][k];
         if (t2 == kInvalidIndex || t2 < t1 || touched[t2] || neighbours.same_way[t1][k] ||
-            patch[t1] != patch[t2])
+            patch[t1] != patch[t2] || !(changed[t1] || changed[t2]))
           continue;
         const Index a = triangles[t1][k], b = triangles[t1][(k + 1) % 3],
                     c = triangles[t1][(k + 2) % 3];
@@ -94,6 +97,7 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
     }
     flips += flipped;
     if (flipped == 0) break;
+    changed.swap(touched);
   }
   return flips;
 }
