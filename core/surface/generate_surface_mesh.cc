@@ -237,26 +237,41 @@ std::vector<double> expected_patch_triangles(const SurfaceMeshState& s) {
 
 // Step 6: the largest distance from samples of `from` (vertices, edge midpoints, centroids) to
 // `to`. Both in the same frame. CANCELLED soon after progress.cancelled() turns true.
+// With `hosts` (a face of `to` near each point of `from`), a sample is first located by the
+// surface's walk from its corner's host (S2), a few steps where the tree's query costs several
+// times that. The walk's face gives an upper bound of the sample's distance: at or below the
+// largest distance so far it cannot raise the maximum, and only a sample above it is asked of
+// the tree. The maximum is the tree's, exactly (not in the paper).
 absl::StatusOr<double> sampled_distance(const Mesh& from, const DiscreteSurface& to,
-                                        double* vertex_max, Progress& progress) {
+                                        const std::vector<FaceId>* hosts, double* vertex_max,
+                                        Progress& progress) {
   CancelCheck cancel(progress, 1024);  // each sample a nearest-face query
-  double worst = 0, worst_vertex = 0;
-  auto at = [&](const Point& x) { return std::sqrt(to.nearest_face(x).squared_distance); };
-  for (const Point& x : from.points) {
+  // The squared distance of x from `to`, or a bound of it at or below `worst2`.
+  auto at = [&](const Point& x, Index near, double worst2) {
+    if (hosts != nullptr) {
+      const double bound = to.locate(x, (*hosts)[near]).squared_distance;
+      if (bound <= worst2) return bound;
+    }
+    return to.nearest_face(x).squared_distance;
+  };
+  double worst2 = 0;
+  for (Index v = 0; v < static_cast<Index>(from.points.size()); ++v) {
     if (cancel.due()) return absl::CancelledError("surface distance: cancelled");
-    worst_vertex = std::max(worst_vertex, at(x));
+    worst2 = std::max(worst2, at(from.points[v], v, worst2));
   }
-  worst = worst_vertex;
+  if (vertex_max != nullptr) *vertex_max = std::sqrt(worst2);
   for (const Triangle& t : from.triangles) {
     if (cancel.due()) return absl::CancelledError("surface distance: cancelled");
     const Point& a = from.points[t[0]];
     const Point& b = from.points[t[1]];
     const Point& c = from.points[t[2]];
-    worst = std::max({worst, at(scale(add(a, add(b, c)), 1.0 / 3.0)), at(scale(add(a, b), 0.5)),
-                      at(scale(add(b, c), 0.5)), at(scale(add(c, a), 0.5))});
+    const std::pair<Point, Index> samples[] = {{scale(add(a, add(b, c)), 1.0 / 3.0), t[0]},
+                                               {scale(add(a, b), 0.5), t[0]},
+                                               {scale(add(b, c), 0.5), t[1]},
+                                               {scale(add(c, a), 0.5), t[2]}};
+    for (const auto& [x, near] : samples) worst2 = std::max(worst2, at(x, near, worst2));
   }
-  if (vertex_max != nullptr) *vertex_max = worst_vertex;
-  return worst;
+  return std::sqrt(worst2);
 }
 
 }  // namespace
@@ -342,10 +357,10 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   input_local.points = surface->local_points();
   input_local.triangles = surface->triangles();
   const absl::StatusOr<double> out_to_in =
-      sampled_distance(local, *surface, &result.report.max_vertex_distance, progress);
+      sampled_distance(local, *surface, &s.host, &result.report.max_vertex_distance, progress);
   if (!out_to_in.ok()) return out_to_in.status();
   const absl::StatusOr<double> in_to_out =
-      sampled_distance(input_local, *output, nullptr, progress);
+      sampled_distance(input_local, *output, nullptr, nullptr, progress);
   if (!in_to_out.ok()) return in_to_out.status();
   result.report.hausdorff = std::max(*out_to_in, *in_to_out);
   clock.lap("distance");
