@@ -2,7 +2,8 @@
 // thread: output triangles per second, peak memory, the size and quality of what it made, and its
 // distance to the input. bench/surface/ runs the peers (CGAL, gmsh, netgen) side by side.
 //
-//   afmesh-bench-surface --input FILE --size H [--ridge-angle DEG] [--out FILE] [--json]
+//   afmesh-bench-surface --input FILE --size H [--ridge-angle DEG] [--curvature-angle DEG]
+//                        [--out FILE] [--json]
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -21,8 +22,8 @@
 namespace afmesh::bench {
 namespace {
 
-int run(const std::string& input, double size, double ridge_angle, const std::string& out,
-        bool json) {
+int run(const std::string& input, double size, double ridge_angle, double curvature_angle,
+        const std::string& out, bool json) {
   absl::StatusOr<Mesh> surface = read_mesh(input);
   if (!surface.ok()) {
     std::fprintf(stderr, "afmesh-bench-surface: %s\n", surface.status().ToString().c_str());
@@ -31,6 +32,7 @@ int run(const std::string& input, double size, double ridge_angle, const std::st
   SurfaceParams params;
   params.size = size > 0 ? size : mean_edge_length(*surface);
   params.ridge_angle_deg = ridge_angle;
+  params.curvature_angle_deg = curvature_angle;
   PeakMemoryProbe memory;
   memory.start();
   const auto start = std::chrono::steady_clock::now();
@@ -105,13 +107,15 @@ int run(const std::string& input, double size, double ridge_angle, const std::st
 int main(int argc, char** argv) {
   CLI::App app{"The core surface mesher on one surface (one thread)"};
   std::string input, out;
-  double size = 0, ridge_angle = 30;
+  double size = 0, ridge_angle = 30, curvature_angle = afmesh::SurfaceParams{}.curvature_angle_deg;
   bool json = false;
   app.add_option("--input", input, "surface file (.stl, .obj, .off, .mesh, .msh)")->required();
   app.add_option("--size", size, "target edge length h (default: the input's mean edge)");
   app.add_option("--ridge-angle", ridge_angle, "ridge angle, degrees");
+  app.add_option("--curvature-angle", curvature_angle,
+                 "largest turn of an element where the input curves, degrees (0: off)");
   app.add_option("--out", out, "write the surface (format by extension)");
   app.add_flag("--json", json, "one JSON object");
   CLI11_PARSE(app, argc, argv);
-  return afmesh::bench::run(input, size, ridge_angle, out, json);
+  return afmesh::bench::run(input, size, ridge_angle, curvature_angle, out, json);
 }

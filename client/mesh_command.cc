@@ -242,6 +242,7 @@ int run_mesh_command(const MeshCommandOptions& options, MeshCommand command) {
   call_options.spec = std::move(spec);
   call_options.ridge_angle_deg = options.ridge_angle_deg;
   call_options.corner_angle_deg = options.corner_angle_deg;
+  call_options.curvature_angle_deg = options.curvature_angle_deg;
   call_options.timeout_seconds = options.timeout_seconds;
   call_options.canceller = canceller.get();
   call_options.security = *std::move(security);
@@ -356,11 +357,20 @@ void add_surface_angle_flags(CLI::App& command, MeshCommandOptions& options) {
                   "a ridge turning by more than DEG degrees at a vertex makes a corner, kept in "
                   "the result (default 60)")
       ->check(CLI::Range(0.0, 180.0) & !CLI::IsMember({0.0}));
+  command
+      .add_option("--curvature-angle", options.curvature_angle_flag,
+                  "where IN curves, elements turn by at most DEG degrees: the size is reduced "
+                  "there, so small holes and fillets are not meshed over (default 30, about 12 "
+                  "elements round a circle; 0: the size alone)")
+      ->check(CLI::Range(0.0, 180.0) & !CLI::IsMember({180.0}));
 }
 
 void note_given_flags(const CLI::App& command, MeshCommandOptions& options) {
   options.size_given = command.count("--size") > 0;
   options.growth_given = command.count("--growth") > 0;
+  if (command.count("--curvature-angle") > 0) {
+    options.curvature_angle_deg = options.curvature_angle_flag;
+  }
 }
 
 }  // namespace afmesh::cli

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -35,14 +36,17 @@ struct MeshCommandOptions {
   double timeout_seconds = 0.0;
   double ridge_angle_deg = 0.0;   // --ridge-angle; 0: the server's default
   double corner_angle_deg = 0.0;  // --corner-angle; 0: the server's default
+  std::optional<double> curvature_angle_deg;  // --curvature-angle; unset: the server's default
+  double curvature_angle_flag = 0.0;          // its parsed value (note_given_flags)
 };
 
 // Adds the shared flags to `command`, with the help texts of IN and -o.
 void add_mesh_command_flags(CLI::App& command, MeshCommandOptions& options,
                             const std::string& input_help, const std::string& output_help);
-// Adds --ridge-angle and --corner-angle (SurfaceOptions).
+// Adds --ridge-angle, --corner-angle and --curvature-angle (SurfaceOptions).
 void add_surface_angle_flags(CLI::App& command, MeshCommandOptions& options);
-// After parsing: which of --size and --growth were given.
+// After parsing: which of --size and --growth were given, and --curvature-angle's value if it
+// was.
 void note_given_flags(const CLI::App& command, MeshCommandOptions& options);
 
 // What a command's call brought back.

@@ -60,6 +60,9 @@ v1::MeshSurfaceRequest header_request(const Mesh& front, const VolumeCallOptions
   set_size_and_counts(front, options, header);
   header.mutable_options()->set_ridge_angle_deg(options.ridge_angle_deg);
   header.mutable_options()->set_corner_angle_deg(options.corner_angle_deg);
+  if (options.curvature_angle_deg) {
+    header.mutable_options()->set_curvature_angle_deg(*options.curvature_angle_deg);
+  }
   return request;
 }
 
@@ -72,6 +75,9 @@ v1::MeshVolumeRequest header_request(const Mesh& front, const VolumeCallOptions&
     header.mutable_options()->set_remesh_surface(true);
     header.mutable_options()->set_ridge_angle_deg(options.ridge_angle_deg);
     header.mutable_options()->set_corner_angle_deg(options.corner_angle_deg);
+    if (options.curvature_angle_deg) {
+      header.mutable_options()->set_curvature_angle_deg(*options.curvature_angle_deg);
+    }
   }
   switch (options.environments) {
     case EnvironmentSource::kNone:

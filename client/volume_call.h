@@ -62,9 +62,11 @@ struct VolumeCallOptions {
   // MeshVolume: re-triangulate the front on the server first (VolumeOptions.remesh_surface).
   bool remesh_surface = false;
   // MeshSurface, and MeshVolume with remesh_surface: ridge and corner angles in degrees
-  // (SurfaceOptions; 0: the server's defaults, 30 and 60). `environments` is MeshVolume's only.
+  // (SurfaceOptions; 0: the server's defaults, 30 and 60), and the curvature angle (unset: the
+  // server's default, 30; 0: no curvature bound). `environments` is MeshVolume's only.
   double ridge_angle_deg = 0.0;
   double corner_angle_deg = 0.0;
+  std::optional<double> curvature_angle_deg;
 };
 
 // Where the call is, for the progress display: the client's own stages ("send", "receive")

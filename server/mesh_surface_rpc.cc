@@ -47,18 +47,15 @@ v1::MeshVolumeRequest volume_request(const v1::MeshSurfaceRequest& request) {
 absl::Status SurfaceInput::add(const v1::MeshSurfaceRequest& request) {
   if (absl::Status status = volume_.add(volume_request(request)); !status.ok()) return status;
   if (!request.has_header()) return absl::OkStatus();
-  ridge_angle_deg_ = request.header().options().ridge_angle_deg();
-  corner_angle_deg_ = request.header().options().corner_angle_deg();
+  angles_ = angles_of(request.header().options());
   SurfaceParams checked;
-  return surface_params_from(volume_.params(), ridge_angle_deg_, corner_angle_deg_, "options.",
-                             checked);
+  return surface_params_from(volume_.params(), angles_, "options.", checked);
 }
 
 SurfaceParams SurfaceInput::params() const {
   SurfaceParams params;
   // Checked when the header came.
-  (void)surface_params_from(volume_.params(), ridge_angle_deg_, corner_angle_deg_, "options.",
-                            params);
+  (void)surface_params_from(volume_.params(), angles_, "options.", params);
   return params;
 }
 

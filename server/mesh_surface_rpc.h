@@ -16,6 +16,7 @@
 #include "server/call_log.h"
 #include "server/streaming_call.h"
 #include "server/surface_job.h"
+#include "server/surface_options.h"
 #include "server/volume_input.h"
 #include "server/volume_output.h"
 
@@ -26,8 +27,9 @@ class SurfaceInput {
   explicit SurfaceInput(const InputLimits& limits) : volume_(limits) {}
 
   // As VolumeInput::add (the same errors, named alike: "options.size.max_size ...",
-  // "message 3 ..."), and INVALID_ARGUMENT for options.ridge_angle_deg outside (0, 180) or
-  // options.corner_angle_deg outside (0, 180] (0 means the default).
+  // "message 3 ..."), and INVALID_ARGUMENT for options.ridge_angle_deg outside (0, 180),
+  // options.corner_angle_deg outside (0, 180] (0 means the default) or
+  // options.curvature_angle_deg outside [0, 180) (surface_options.h).
   absl::Status add(const v1::MeshSurfaceRequest& request);
   // As VolumeInput::finish.
   absl::Status finish() { return volume_.finish(); }
@@ -38,8 +40,7 @@ class SurfaceInput {
 
  private:
   VolumeInput volume_;
-  double ridge_angle_deg_ = 0.0;
-  double corner_angle_deg_ = 0.0;
+  SurfaceAngles angles_;  // the header's, checked
 };
 
 class SurfaceOutputStream {

@@ -6,26 +6,51 @@
 
 namespace afmesh::server {
 
-absl::Status surface_params_from(const VolumeParams& size, double ridge_angle_deg,
-                                 double corner_angle_deg, std::string_view prefix,
-                                 SurfaceParams& params) {
-  if (ridge_angle_deg != 0.0 &&
-      !(std::isfinite(ridge_angle_deg) && ridge_angle_deg > 0.0 && ridge_angle_deg < 180.0)) {
-    return absl::InvalidArgumentError(absl::StrFormat(
-        "%sridge_angle_deg must be in (0, 180) degrees (or 0 for %g), got %g", prefix,
-        SurfaceParams{}.ridge_angle_deg, ridge_angle_deg));
+SurfaceAngles angles_of(const v1::SurfaceOptions& options) {
+  SurfaceAngles angles{.ridge_deg = options.ridge_angle_deg(),
+                       .corner_deg = options.corner_angle_deg()};
+  if (options.has_curvature_angle_deg()) angles.curvature_deg = options.curvature_angle_deg();
+  return angles;
+}
+
+SurfaceAngles angles_of(const v1::VolumeOptions& options) {
+  SurfaceAngles angles{.ridge_deg = options.ridge_angle_deg(),
+                       .corner_deg = options.corner_angle_deg()};
+  if (options.has_curvature_angle_deg()) angles.curvature_deg = options.curvature_angle_deg();
+  return angles;
+}
+
+bool any_angle_given(const SurfaceAngles& angles) {
+  return angles.ridge_deg != 0.0 || angles.corner_deg != 0.0 || angles.curvature_deg.has_value();
+}
+
+absl::Status surface_params_from(const VolumeParams& size, const SurfaceAngles& angles,
+                                 std::string_view prefix, SurfaceParams& params) {
+  const double ridge = angles.ridge_deg, corner = angles.corner_deg;
+  if (ridge != 0.0 && !(std::isfinite(ridge) && ridge > 0.0 && ridge < 180.0)) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("%sridge_angle_deg must be in (0, 180) degrees (or 0 for %g), got %g",
+                        prefix, SurfaceParams{}.ridge_angle_deg, ridge));
   }
-  if (corner_angle_deg != 0.0 &&
-      !(std::isfinite(corner_angle_deg) && corner_angle_deg > 0.0 && corner_angle_deg <= 180.0)) {
+  if (corner != 0.0 && !(std::isfinite(corner) && corner > 0.0 && corner <= 180.0)) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("%scorner_angle_deg must be in (0, 180] degrees (or 0 for %g), got %g",
+                        prefix, SurfaceParams{}.corner_angle_deg, corner));
+  }
+  if (angles.curvature_deg &&
+      !(std::isfinite(*angles.curvature_deg) && *angles.curvature_deg >= 0.0 &&
+        *angles.curvature_deg < 180.0)) {
     return absl::InvalidArgumentError(absl::StrFormat(
-        "%scorner_angle_deg must be in (0, 180] degrees (or 0 for %g), got %g", prefix,
-        SurfaceParams{}.corner_angle_deg, corner_angle_deg));
+        "%scurvature_angle_deg must be in [0, 180) degrees (0: no curvature bound; unset: %g), "
+        "got %g",
+        prefix, SurfaceParams{}.curvature_angle_deg, *angles.curvature_deg));
   }
   params.size = size.size;
   params.growth = size.growth;
   params.spec = size.spec;
-  if (ridge_angle_deg != 0.0) params.ridge_angle_deg = ridge_angle_deg;
-  if (corner_angle_deg != 0.0) params.corner_angle_deg = corner_angle_deg;
+  if (ridge != 0.0) params.ridge_angle_deg = ridge;
+  if (corner != 0.0) params.corner_angle_deg = corner;
+  if (angles.curvature_deg) params.curvature_angle_deg = *angles.curvature_deg;
   return absl::OkStatus();
 }
 

@@ -1,20 +1,34 @@
 // SurfaceParams from the wire's options, shared by MeshSurface (SurfaceOptions) and MeshVolume
-// with remesh_surface (VolumeOptions' ridge and corner angles).
+// with remesh_surface (VolumeOptions' ridge, corner and curvature angles).
 #pragma once
 
+#include <optional>
 #include <string_view>
 
 #include "absl/status/status.h"
+#include "afmesh/v1/mesher.pb.h"
 #include "core/surface/generate_surface_mesh.h"
 #include "core/volume/generate_volume_mesh.h"
 
 namespace afmesh::server {
 
+// The surface step's angles as the wire gives them: ridge and corner 0 for their default,
+// curvature unset for its default (0 is "no curvature bound").
+struct SurfaceAngles {
+  double ridge_deg = 0.0;
+  double corner_deg = 0.0;
+  std::optional<double> curvature_deg;
+};
+SurfaceAngles angles_of(const v1::SurfaceOptions& options);
+SurfaceAngles angles_of(const v1::VolumeOptions& options);
+// True when any angle is given (not its default).
+bool any_angle_given(const SurfaceAngles& angles);
+
 // `params` with the size of `size` (its size, growth and specification, already checked by
-// VolumeInput) and the two angles, 0 meaning SurfaceParams' default. INVALID_ARGUMENT naming
-// "<prefix>ridge_angle_deg" outside (0, 180) or "<prefix>corner_angle_deg" outside (0, 180].
-absl::Status surface_params_from(const VolumeParams& size, double ridge_angle_deg,
-                                 double corner_angle_deg, std::string_view prefix,
-                                 SurfaceParams& params);
+// VolumeInput) and `angles` (defaults as SurfaceParams'). INVALID_ARGUMENT naming
+// "<prefix>ridge_angle_deg" outside (0, 180), "<prefix>corner_angle_deg" outside (0, 180] or
+// "<prefix>curvature_angle_deg" outside [0, 180).
+absl::Status surface_params_from(const VolumeParams& size, const SurfaceAngles& angles,
+                                 std::string_view prefix, SurfaceParams& params);
 
 }  // namespace afmesh::server

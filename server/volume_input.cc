@@ -10,7 +10,6 @@
 #include "core/sizing/size_spec.h"
 #include "proto/size_spec_convert.h"
 #include "proto/slice_codec.h"
-#include "server/surface_options.h"
 
 namespace afmesh::server {
 namespace {
@@ -164,24 +163,23 @@ absl::Status VolumeInput::add_header(const v1::MeshVolumeHeader& header) {
 // With remesh_surface, the angles of the surface step; without, none may be given.
 absl::Status VolumeInput::surface_options(const v1::VolumeOptions& options) {
   remesh_surface_ = options.remesh_surface();
+  angles_ = angles_of(options);
   if (!remesh_surface_) {
-    if (options.ridge_angle_deg() == 0.0 && options.corner_angle_deg() == 0.0) {
-      return absl::OkStatus();
-    }
+    if (!any_angle_given(angles_)) return absl::OkStatus();
     return absl::InvalidArgumentError(absl::StrFormat(
         "options.%s is set, but options.remesh_surface is not: the angles only apply when the "
         "surface is re-triangulated first",
-        options.ridge_angle_deg() != 0.0 ? "ridge_angle_deg" : "corner_angle_deg"));
+        angles_.ridge_deg != 0.0    ? "ridge_angle_deg"
+        : angles_.corner_deg != 0.0 ? "corner_angle_deg"
+                                    : "curvature_angle_deg"));
   }
-  ridge_angle_deg_ = options.ridge_angle_deg();
-  corner_angle_deg_ = options.corner_angle_deg();
   SurfaceParams checked;
-  return surface_params_from(params_, ridge_angle_deg_, corner_angle_deg_, "options.", checked);
+  return surface_params_from(params_, angles_, "options.", checked);
 }
 
 SurfaceParams VolumeInput::surface_params() const {
   SurfaceParams params;
-  (void)surface_params_from(params_, ridge_angle_deg_, corner_angle_deg_, "options.", params);
+  (void)surface_params_from(params_, angles_, "options.", params);
   return params;
 }
 

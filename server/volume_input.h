@@ -16,6 +16,7 @@
 #include "core/sizing/size_spec.h"
 #include "core/surface/generate_surface_mesh.h"
 #include "core/volume/generate_volume_mesh.h"
+#include "server/surface_options.h"
 
 namespace afmesh::server {
 
@@ -52,8 +53,8 @@ class VolumeInput {
   const VolumeParams& params() const { return params_; }
   // options.remesh_surface of the header: re-triangulate the front first, with
   // surface_params() (the size of params() and the header's two angles, checked when it came:
-  // INVALID_ARGUMENT naming options.ridge_angle_deg / corner_angle_deg, or either given
-  // without options.remesh_surface).
+  // INVALID_ARGUMENT naming options.ridge_angle_deg / corner_angle_deg /
+  // curvature_angle_deg, or any given without options.remesh_surface).
   bool remesh_surface() const { return remesh_surface_; }
   SurfaceParams surface_params() const;
   // options.environments of the header (crossing environments, paper §2).
@@ -86,8 +87,7 @@ class VolumeInput {
   BackgroundGridSpec grid_;  // the streamed grid, so far
   VolumeParams params_;
   bool remesh_surface_ = false;
-  double ridge_angle_deg_ = 0.0;   // options.ridge_angle_deg, checked
-  double corner_angle_deg_ = 0.0;  // options.corner_angle_deg, checked
+  SurfaceAngles angles_;  // options' ridge, corner and curvature angles, checked
   v1::EnvironmentMode environment_mode_ = v1::ENVIRONMENT_MODE_NONE;
   Mesh front_;
 };

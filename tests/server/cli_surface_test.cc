@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -75,6 +76,12 @@ TEST_F(CliSurfaceTest, CornerAngleOfZeroOrOver180IsAUsageError) {
   EXPECT_THAT(stderr_text(), HasSubstr("--corner-angle"));
 }
 
+TEST_F(CliSurfaceTest, CurvatureAngleOutsideZeroTo180IsAUsageError) {
+  EXPECT_EQ(run("surface " + in() + out() + " --curvature-angle 180"), 2);
+  EXPECT_THAT(stderr_text(), HasSubstr("--curvature-angle"));
+  EXPECT_EQ(run("surface " + in() + out() + " --curvature-angle -1"), 2);
+}
+
 TEST_F(CliSurfaceTest, NonPositiveSizeAndGrowthBelowOneAreUsageErrors) {
   EXPECT_EQ(run("surface " + in() + out() + " --size 0"), 2);
   EXPECT_EQ(run("surface " + in() + out() + " --growth 0.5"), 2);
@@ -100,13 +107,15 @@ TEST_F(CliSurfaceTest, VolumeAnglesNeedRemeshSurface) {
   EXPECT_EQ(run("volume " + in() + out("v.msh") + " --ridge-angle 40"), 2);
   EXPECT_THAT(stderr_text(), HasSubstr("--remesh-surface"));
   EXPECT_EQ(run("volume " + in() + out("v.msh") + " --corner-angle 40"), 2);
+  EXPECT_EQ(run("volume " + in() + out("v.msh") + " --curvature-angle 0"), 2);
+  EXPECT_THAT(stderr_text(), HasSubstr("--remesh-surface"));
 }
 
 TEST_F(CliSurfaceTest, HelpListsTheSurfaceCommandAndItsFlags) {
   EXPECT_EQ(run("surface --help"), 0);
   for (const char* flag : {"--size", "--growth", "--spec", "--ridge-angle", "--corner-angle",
-                           "--server", "--json", "--quiet", "--timeout", "--retries",
-                           "--tls-ca", "--token-file"}) {
+                           "--curvature-angle", "--server", "--json", "--quiet", "--timeout",
+                           "--retries", "--tls-ca", "--token-file"}) {
     EXPECT_THAT(stdout_text(), HasSubstr(flag));
   }
   EXPECT_EQ(run("volume --help"), 0);
@@ -157,6 +166,32 @@ TEST_F(CliSurfaceTest, EndToEndCubeIsClosedManifoldOrientedWithCornersKeptAndOnT
       }
     }
   }
+}
+
+// --curvature-angle through the CLI, the wire and the core: on a sphere of radius 1 at size 0.6
+// the default bound (30°: edges of about 2 tan 15° = 0.54) asks for more triangles than the
+// size alone (--curvature-angle 0), and a tighter bound (15°) for more still.
+TEST_F(CliSurfaceTest, CurvatureAngleSetsHowFineACurvedSurfaceIsMeshed) {
+  ASSERT_TRUE(write_mesh(sphere_surface({0, 0, 0}, 1.0, 0.1), (dir_ / "ball.stl").string()).ok());
+  const auto triangles = [&](const std::string& flags) -> std::size_t {
+    const fs::path result = dir_ / "ball.mesh";
+    EXPECT_EQ(run("surface " + shell_quoted(dir_ / "ball.stl") + " -o " + shell_quoted(result) +
+                  " --size 0.6 --quiet" + flags),
+              0)
+        << stderr_text();
+    const absl::StatusOr<Mesh> mesh = read_mesh(result.string());
+    EXPECT_TRUE(mesh.ok()) << mesh.status();
+    if (!mesh.ok()) return 0;
+    EXPECT_TRUE(validate_surface(*mesh).valid()) << flags;
+    return mesh->triangles.size();
+  };
+  const std::size_t off = triangles(" --curvature-angle 0");
+  const std::size_t by_default = triangles("");
+  const std::size_t tight = triangles(" --curvature-angle 15");
+  std::printf("sphere at 0.6: %zu triangles with the bound off, %zu at 30 deg, %zu at 15 deg\n",
+              off, by_default, tight);
+  EXPECT_LT(off, by_default);
+  EXPECT_LT(by_default, tight);
 }
 
 }  // namespace

@@ -337,6 +337,27 @@ TEST_F(MeshSurfaceServiceTest, UnsetAnglesMeanTheCoreDefaults) {
   ASSERT_TRUE(call(tetrahedron_requests()).status.ok());
   EXPECT_EQ(probe_->params.ridge_angle_deg, SurfaceParams{}.ridge_angle_deg);
   EXPECT_EQ(probe_->params.corner_angle_deg, SurfaceParams{}.corner_angle_deg);
+  EXPECT_EQ(probe_->params.curvature_angle_deg, SurfaceParams{}.curvature_angle_deg);
+}
+
+// curvature_angle_deg is optional on the wire: unset is the default (above), 0 turns the
+// curvature bound off (here), any other value in (0, 180) is the bound (the JSON test below).
+TEST_F(MeshSurfaceServiceTest, CurvatureAngleOfZeroReachesTheJob) {
+  start(fixed_job(probe_, tetrahedron_front()));
+  Request head = header(0.25);
+  head.mutable_header()->mutable_options()->set_curvature_angle_deg(0.0);
+  ASSERT_TRUE(call(requests_for(tetrahedron_front(), head)).status.ok());
+  EXPECT_EQ(probe_->params.curvature_angle_deg, 0.0);
+}
+
+TEST_F(MeshSurfaceServiceTest, RejectsCurvatureAnglesOutsideZeroTo180) {
+  start(fixed_job(probe_, tetrahedron_front()));
+  for (const double angle : {180.0, -1.0, std::nan("")}) {
+    Request head = header(0.25);
+    head.mutable_header()->mutable_options()->set_curvature_angle_deg(angle);
+    expect_rejected(requests_for(tetrahedron_front(), head), grpc::StatusCode::INVALID_ARGUMENT,
+                    {"options.curvature_angle_deg must be in [0, 180)"});
+  }
 }
 
 // The header as a JSON user would write it (protobuf's JSON mapping), with a source.
@@ -347,7 +368,7 @@ TEST_F(MeshSurfaceServiceTest, HeaderFromProtoJsonCarriesItsSpecToTheJob) {
       R"({"options": {"size": {"maxSize": 0.5, "growth": 1.3,
            "sources": [{"points": [{"x": 0, "y": 0, "z": 0}], "delta0": 0.05, "r0": 0.1,
                         "r1": 0.2, "power": {"gamma": 1.5}}]},
-          "ridgeAngleDeg": 45, "cornerAngleDeg": 90}})",
+          "ridgeAngleDeg": 45, "cornerAngleDeg": 90, "curvatureAngleDeg": 12.5}})",
       head.mutable_header());
   ASSERT_TRUE(parsed.ok()) << parsed.ToString();
   ASSERT_TRUE(call(requests_for(tetrahedron_front(), head)).status.ok());
@@ -357,6 +378,7 @@ TEST_F(MeshSurfaceServiceTest, HeaderFromProtoJsonCarriesItsSpecToTheJob) {
   ASSERT_EQ(probe_->params.spec->sources.size(), 1u);
   EXPECT_EQ(probe_->params.ridge_angle_deg, 45.0);
   EXPECT_EQ(probe_->params.corner_angle_deg, 90.0);
+  EXPECT_EQ(probe_->params.curvature_angle_deg, 12.5);
 }
 
 TEST_F(MeshSurfaceServiceTest, JobFailureReachesTheClientWithoutSlices) {
@@ -588,6 +610,21 @@ TEST_F(MeshSurfaceServiceTest, VolumeRejectsSurfaceAnglesWithoutRemeshSurface) {
   EXPECT_EQ(outcome.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_THAT(outcome.status.error_message(),
               HasSubstr("options.ridge_angle_deg is set, but options.remesh_surface is not"));
+}
+
+TEST_F(MeshSurfaceServiceTest, VolumeCarriesTheCurvatureAngleOnlyWithRemeshSurface) {
+  start(fixed_job(probe_, tetrahedron_front()));
+  std::vector<v1::MeshVolumeResponse> responses;
+  std::vector<v1::MeshVolumeRequest> requests = remesh_requests(0.0, 0.0, true);
+  requests[0].mutable_header()->mutable_options()->set_curvature_angle_deg(0.0);
+  ASSERT_TRUE(call_volume(requests, responses).status.ok());
+  EXPECT_EQ(probe_->params.curvature_angle_deg, 0.0);
+  requests = remesh_requests(0.0, 0.0, false);
+  requests[0].mutable_header()->mutable_options()->set_curvature_angle_deg(20.0);
+  const Outcome outcome = call_volume(requests, responses);
+  EXPECT_EQ(outcome.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(outcome.status.error_message(),
+              HasSubstr("options.curvature_angle_deg is set, but options.remesh_surface is not"));
 }
 
 TEST_F(MeshSurfaceServiceTest, VolumeRejectsABadRidgeAngleWithRemeshSurface) {

@@ -228,6 +228,7 @@ TEST_F(SurfaceCallTest, TheSurfaceComesBackWholeWithTagsAndItsSummary) {
   options.size = 0.5;
   options.ridge_angle_deg = 42.0;
   options.corner_angle_deg = 99.0;
+  options.curvature_angle_deg = 0.0;  // set: the bound off
   absl::StatusOr<SurfaceCallResult> result =
       call_mesh_surface(server_->address(), tetrahedron_front(), options,
                         [](std::string_view, double) {}, [](std::string_view) {});
@@ -243,6 +244,7 @@ TEST_F(SurfaceCallTest, TheSurfaceComesBackWholeWithTagsAndItsSummary) {
       << result->summary.json;
   EXPECT_EQ(seen_.ridge_angle_deg, 42.0);
   EXPECT_EQ(seen_.corner_angle_deg, 99.0);
+  EXPECT_EQ(seen_.curvature_angle_deg, 0.0);
   EXPECT_EQ(seen_.size, 0.5);
 }
 
