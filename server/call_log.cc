@@ -104,7 +104,7 @@ const char* code_name(grpc::StatusCode code) {
   }
 }
 
-const char* outcome_of(grpc::StatusCode code) {
+const char* outcome_of(grpc::StatusCode code, bool retry_hint) {
   switch (code) {
     case grpc::StatusCode::OK:
       return "ok";
@@ -114,6 +114,7 @@ const char* outcome_of(grpc::StatusCode code) {
     case grpc::StatusCode::PERMISSION_DENIED:
       return "refused";
     case grpc::StatusCode::RESOURCE_EXHAUSTED:
+      return retry_hint ? "busy" : "over_limit";
     case grpc::StatusCode::UNAVAILABLE:
       return "busy";
     case grpc::StatusCode::CANCELLED:
@@ -132,7 +133,8 @@ std::string format_call_log(const CallRecord& record) {
       "seconds=%.3f outcome=%s code=%s points_out=%d tets_out=%d message=%s",
       record.id, logfmt_value(record.rpc), logfmt_value(record.peer), record.messages_in,
       record.bytes_in, record.points_in, record.triangles_in, record.seconds,
-      outcome_of(record.status.error_code()), code_name(record.status.error_code()),
+      outcome_of(record.status.error_code(), record.retry_after_ms.has_value()),
+      code_name(record.status.error_code()),
       record.points_out, record.tets_out,
       record.status.ok() ? std::string("\"\"") : logfmt_value(record.status.error_message()));
 }

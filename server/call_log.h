@@ -36,6 +36,8 @@ struct CallRecord {
   std::int64_t bytes_out = 0;
   // How long the call's job ran on a worker; unset when none ran (refused or stopped before).
   std::optional<double> job_seconds;
+  // The retry hint (retry-after-ms) sent with a refusal that may pass later; unset otherwise.
+  std::optional<int> retry_after_ms;
 };
 
 // Counts `request` into record's messages_in, bytes_in, points_in and triangles_in.
@@ -49,9 +51,11 @@ std::uint64_t next_call_id();
 const char* code_name(grpc::StatusCode code);
 
 // What happened, coarser than the code, for dashboards: ok, bad_input (INVALID_ARGUMENT),
-// refused (UNAUTHENTICATED, PERMISSION_DENIED), busy (RESOURCE_EXHAUSTED, UNAVAILABLE),
-// stopped (CANCELLED, DEADLINE_EXCEEDED), mesh_failed (FAILED_PRECONDITION), error (the rest).
-const char* outcome_of(grpc::StatusCode code);
+// refused (UNAUTHENTICATED, PERMISSION_DENIED), busy (RESOURCE_EXHAUSTED with a retry hint, or
+// UNAVAILABLE: asking again later may pass), over_limit (RESOURCE_EXHAUSTED without a hint: the
+// request is over a limit, and asking again cannot help), stopped (CANCELLED,
+// DEADLINE_EXCEEDED), mesh_failed (FAILED_PRECONDITION), error (the rest).
+const char* outcome_of(grpc::StatusCode code, bool retry_hint = true);
 
 // The line, without a trailing newline.
 std::string format_call_log(const CallRecord& record);

@@ -388,6 +388,7 @@ class StreamingCall final
       const std::optional<int> retry_after_ms = status.ok() ? std::nullopt : retry_after_ms_;
       lock.unlock();
       call_detail::add_final_trailers(*context_, retry_after_ms);
+      record.retry_after_ms = retry_after_ms;
       report_finish(status, std::move(record));
       this->Finish(status);
       return;

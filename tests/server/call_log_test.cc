@@ -29,6 +29,16 @@ TEST(CallLog, SuccessfulCallIsOneLineOfKeyValuePairs) {
             "message=\"\"");
 }
 
+// A refusal with a retry hint (every worker taken) is "busy"; one over a limit, which no retry
+// cures, is "over_limit", so a dashboard tells load from requests too large for the server.
+TEST(CallLog, AResourceRefusalIsBusyWithARetryHintAndOverLimitWithout) {
+  CallRecord record;
+  record.status = grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED, "about 1e10 tetrahedra");
+  EXPECT_THAT(format_call_log(record), HasSubstr("outcome=over_limit code=RESOURCE_EXHAUSTED"));
+  record.retry_after_ms = 2000;
+  EXPECT_THAT(format_call_log(record), HasSubstr("outcome=busy code=RESOURCE_EXHAUSTED"));
+}
+
 TEST(CallLog, MessagesAreQuotedAndEscapedSoTheLineStaysOneRecord) {
   CallRecord record;
   record.status = grpc::Status(grpc::StatusCode::INVALID_ARGUMENT,
@@ -45,6 +55,8 @@ TEST(CallLog, OutcomesGroupTheCodes) {
   EXPECT_STREQ(outcome_of(grpc::StatusCode::UNAUTHENTICATED), "refused");
   EXPECT_STREQ(outcome_of(grpc::StatusCode::PERMISSION_DENIED), "refused");
   EXPECT_STREQ(outcome_of(grpc::StatusCode::RESOURCE_EXHAUSTED), "busy");
+  EXPECT_STREQ(outcome_of(grpc::StatusCode::RESOURCE_EXHAUSTED, /*retry_hint=*/false),
+               "over_limit");
   EXPECT_STREQ(outcome_of(grpc::StatusCode::UNAVAILABLE), "busy");
   EXPECT_STREQ(outcome_of(grpc::StatusCode::CANCELLED), "stopped");
   EXPECT_STREQ(outcome_of(grpc::StatusCode::DEADLINE_EXCEEDED), "stopped");
