@@ -14,6 +14,7 @@
 #include "core/geometry/vec.h"
 #include "core/quality/measures.h"
 #include "core/quality/mesh_topology.h"
+#include "core/quality/validate.h"
 #include "core/sizing/size_field.h"
 #include "core/sizing/spec_size_field.h"
 #include "core/surface/curvature_sizes.h"
@@ -276,6 +277,25 @@ absl::StatusOr<double> sampled_distance(const Mesh& from, const DiscreteSurface&
 
 }  // namespace
 
+absl::Status explain_stuck(absl::Status stuck, const Mesh& clean, Progress& progress) {
+  if (stuck.code() != absl::StatusCode::kFailedPrecondition) return stuck;
+  ValidationParams params;
+  params.max_findings_per_check = 1;
+  const absl::StatusOr<ValidationReport> report = validate_surface(clean, params, progress);
+  if (!report.ok()) return report.status();
+  const Check* crossing = report->find(check::kNoSelfIntersections);
+  if (crossing == nullptr || crossing->outcome != CheckOutcome::kFailed ||
+      crossing->findings.empty() || crossing->findings[0].triangles.empty())
+    return stuck;
+  const Triangle& t = clean.triangles[crossing->findings[0].triangles[0]];
+  const Point c =  // `clean` is in the input's (global) frame
+      scale(add(clean.points[t[0]], add(clean.points[t[1]], clean.points[t[2]])), 1.0 / 3.0);
+  return absl::FailedPreconditionError(absl::StrFormat(
+      "%s. The input surface intersects itself: %d pairs of its triangles cross, the first near "
+      "(%g, %g, %g); repair the crossings (or re-export the surface) and send it again",
+      stuck.message(), crossing->finding_count, c[0], c[1], c[2]));
+}
+
 absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const SurfaceParams& params,
                                                     Progress& progress) {
   SurfaceResult result;
@@ -333,7 +353,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
         kMaxTrianglesOverExpected * expected[p] + 4.0 * patch_sides[p].size() + 1000.0);
     if (absl::Status st = mesh_patch(s, patch, patch_sides[p], boxes[p], front_params, progress);
         !st.ok())
-      return st;
+      return explain_stuck(std::move(st), *clean, progress);
     if (static_cast<std::int64_t>(s.triangles.size()) > params.max_triangles)
       return absl::ResourceExhaustedError(absl::StrFormat(
           "the surface has %d triangles after %d of its %d patches, over the limit of %d",

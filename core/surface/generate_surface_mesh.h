@@ -84,4 +84,12 @@ struct SurfaceResult {
 absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const SurfaceParams& params,
                                                     Progress& progress = no_progress());
 
+// Not in the paper: `stuck` (a FAILED_PRECONDITION where a patch's front stopped) with, when
+// `clean` (the input as step 1 left it) intersects itself, how many pairs of its triangles cross
+// and where the first is: an input that crosses itself has no surface the front can follow
+// there, and the message should name that, not only the side. Any other status is returned as
+// it is; CANCELLED when progress is. O(M log M), run only after a failure.
+absl::Status explain_stuck(absl::Status stuck, const Mesh& clean,
+                           Progress& progress = no_progress());
+
 }  // namespace afmesh
