@@ -41,6 +41,43 @@ int orient_in_plane(const std::vector<Point>& p, const Point& n, Index a, Index 
   return orient2d(x.data(), y.data(), z.data());
 }
 
+// Points the slot of `neighbour` that lies across edge {a, b} from `from` at `to` instead (the
+// triangle on that side of the edge after a flip).
+void repoint(EdgeNeighbours& neighbours, const std::vector<Triangle>& triangles, Index neighbour,
+             Index a, Index b, Index from, Index to) {
+  if (neighbour == kInvalidIndex) return;
+  const Triangle& t = triangles[neighbour];
+  for (int s = 0; s < 3; ++s) {
+    const Index u = t[s], v = t[(s + 1) % 3];
+    if (neighbours.across[neighbour][s] == from && ((u == a && v == b) || (u == b && v == a))) {
+      neighbours.across[neighbour][s] = to;
+      return;
+    }
+  }
+}
+
+// The flip of the diagonal (a, b) of t1 = (a, b, c) (slot k) and t2 = (b, a, d) (slot j) into
+// t1 = (a, d, c) and t2 = (d, b, c), with the adjacency kept as a rebuild would give it: the four
+// outer edges keep their neighbours and orientation flags, moved to their new slots.
+void flip(std::vector<Triangle>& triangles, EdgeNeighbours& neighbours, Index t1, int k,
+          Index t2, int j) {
+  const Index a = triangles[t1][k], b = triangles[t1][(k + 1) % 3], c = triangles[t1][(k + 2) % 3];
+  const int k1 = (k + 1) % 3, k2 = (k + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+  const Index n_bc = neighbours.across[t1][k1], n_ca = neighbours.across[t1][k2];
+  const Index n_ad = neighbours.across[t2][j1], n_db = neighbours.across[t2][j2];
+  const bool w_bc = neighbours.same_way[t1][k1], w_ca = neighbours.same_way[t1][k2];
+  const bool w_ad = neighbours.same_way[t2][j1], w_db = neighbours.same_way[t2][j2];
+  const Index d = triangles[t2][j2];
+  triangles[t1] = {a, d, c};
+  triangles[t2] = {d, b, c};
+  neighbours.across[t1] = {n_ad, t2, n_ca};
+  neighbours.same_way[t1] = {w_ad, false, w_ca};
+  neighbours.across[t2] = {n_db, n_bc, t1};
+  neighbours.same_way[t2] = {w_db, w_bc, false};
+  repoint(neighbours, triangles, n_ad, a, d, t2, t1);
+  repoint(neighbours, triangles, n_bc, b, c, t1, t2);
+}
+
 }  // namespace
 
 absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
@@ -57,9 +94,10 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
   // After the first pass only the edges of triangles a flip changed can gain from a flip: the
   // others' quadrilaterals are as the pass before found them.
   std::vector<bool> changed(triangles.size(), true);
+  // Built once, then kept by each flip (flip()).
+  EdgeNeighbours neighbours = triangle_edge_neighbours(triangles);
   for (int pass = 0; pass < params.max_passes; ++pass) {
     if (cancel.look()) return absl::CancelledError("edge flips: cancelled");
-    const EdgeNeighbours neighbours = triangle_edge_neighbours(triangles);
     std::vector<bool> touched(triangles.size(), false);
     std::int64_t flipped = 0;
     for (Index t1 = 0; t1 < static_cast<Index>(triangles.size()); ++t1) {
@@ -72,10 +110,11 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
         const Index a = triangles[t1][k], b = triangles[t1][(k + 1) % 3],
                     c = triangles[t1][(k + 2) % 3];
         if (fixed.contains(edge_key(a, b))) continue;
-        Index d = kInvalidIndex;  // the corner of t2 off edge (b, a)
-        for (const Index q : triangles[t2])
-          if (q != a && q != b) d = q;
-        if (d == kInvalidIndex || d == c || edges.contains(edge_key(c, d))) continue;
+        int j = 0;  // t2's slot of edge (b, a); its third corner d follows
+        while (j < 3 && !(triangles[t2][j] == b && triangles[t2][(j + 1) % 3] == a)) ++j;
+        if (j == 3) continue;
+        const Index d = triangles[t2][(j + 2) % 3];
+        if (d == c || edges.contains(edge_key(c, d))) continue;
         const double before = std::min(min_angle(points, a, b, c), min_angle(points, b, a, d));
         const double after = std::min(min_angle(points, a, d, c), min_angle(points, d, b, c));
         if (!(after > before + params.min_gain_deg)) continue;
@@ -87,8 +126,7 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
         if (dot(unit_normal(points, a, d, c), n) < min_cosine ||
             dot(unit_normal(points, d, b, c), n) < min_cosine)
           continue;
-        triangles[t1] = {a, d, c};
-        triangles[t2] = {d, b, c};
+        flip(triangles, neighbours, t1, k, t2, j);
         edges.erase(edge_key(a, b));
         edges.insert(edge_key(c, d));
         touched[t1] = touched[t2] = true;
