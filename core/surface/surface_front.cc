@@ -245,6 +245,9 @@ class PatchFront {
   void add_triangle(const Triangle& t);
   // Whether a triangle of the front has directed edge (a, b) (has it on its left).
   bool has_edge(Index a, Index b);
+  // Whether a triangle of `cavity` (sorted) shares a directed edge with a triangle outside it:
+  // the two lie over each other (S6 let the front cross itself there).
+  bool overlaps_outside(const std::vector<Index>& cavity);
   // Removes the triangles `cavity` of the patch and puts the boundary of the hole they leave
   // on the front.
   void open_cavity(const std::vector<Index>& cavity);
@@ -533,7 +536,8 @@ bool PatchFront::delete_side(Index f) {
 // The back-off's reach (not in the paper): the cavity of the k-th back-off in a region holds
 // the triangles with a corner within (1 + k)·d of the side's midpoint, d the larger of the
 // side's length and its target size; a region is re-opened at most kMaxBackOffsAtPlace times
-// (as the volume front's kMaxCavityRings), after which the side stops the patch.
+// (as the volume front's kMaxCavityRings; a radius passed over because its cavity overlaps the
+// triangles beyond counts as one), after which the side stops the patch.
 constexpr int kMaxBackOffsAtPlace = 6;
 
 void PatchFront::collect_cavity(const Side& seeds, const Point& x, double radius,
@@ -569,6 +573,24 @@ bool PatchFront::has_edge(Index a, Index b) {
     const Triangle& k = s_.triangles[t];
     for (int e = 0; e < 3; ++e)
       if (k[e] == a && k[(e + 1) % 3] == b) return true;
+  }
+  return false;
+}
+
+bool PatchFront::overlaps_outside(const std::vector<Index>& cavity) {
+  for (const Index t : cavity) {
+    const Triangle& k = s_.triangles[t];
+    for (int e = 0; e < 3; ++e) {
+      const Index a = k[e], b = k[(e + 1) % 3];
+      around_.clear();
+      incidence_.elements_of(s_.triangles, a, around_);
+      for (const Index u : around_) {
+        if (std::binary_search(cavity.begin(), cavity.end(), u)) continue;
+        const Triangle& w = s_.triangles[u];
+        for (int f = 0; f < 3; ++f)
+          if (w[f] == a && w[(f + 1) % 3] == b) return true;
+      }
+    }
   }
   return false;
 }
@@ -610,10 +632,14 @@ bool PatchFront::back_off(Index f) {
   if (!(d > 0)) return false;
   const Point x = midpoint(v);
   int& count = repairs_.at(x, d);
-  if (count >= kMaxBackOffsAtPlace) return false;
-  ++count;
-  collect_cavity(v, x, (1.0 + count) * d, cavity_);
-  if (cavity_.empty()) return false;
+  // A cavity whose triangles overlap triangles outside it cannot be re-meshed (the front
+  // would be rebuilt over them and run away): a larger one is tried.
+  do {
+    if (count >= kMaxBackOffsAtPlace) return false;
+    ++count;
+    collect_cavity(v, x, (1.0 + count) * d, cavity_);
+    if (cavity_.empty()) return false;
+  } while (overlaps_outside(cavity_));
   open_cavity(cavity_);
   const FrontItem<2>& item = front_.item(f);
   if (item.alive && item.stamp == stamp) front_.requeue(f, queue_key(v));
