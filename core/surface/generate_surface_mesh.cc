@@ -223,6 +223,10 @@ std::vector<Box> patch_boxes(const DiscreteSurface& surface, const SurfaceFeatur
 // of an equilateral triangle of the size wanted at their centroids (a bound for the front: a
 // patch meshed far finer than asked stops, kMaxTrianglesOverExpected).
 constexpr double kMaxTrianglesOverExpected = 10.0;
+// Not in the paper: the back-offs allowed in a patch (PatchFrontParams::max_back_offs), a few
+// plus one per this many of the triangles it should get.
+constexpr std::int64_t kMinBackOffs = 50;
+constexpr double kExpectedTrianglesPerBackOff = 100.0;
 std::vector<double> expected_patch_triangles(const SurfaceMeshState& s) {
   std::vector<double> expected(s.features.patches.size(), 0.0);
   const std::vector<Point>& p = s.surface.local_points();
@@ -351,6 +355,8 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
     PatchFrontParams front_params;
     front_params.max_triangles = static_cast<std::int64_t>(
         kMaxTrianglesOverExpected * expected[p] + 4.0 * patch_sides[p].size() + 1000.0);
+    front_params.max_back_offs =
+        kMinBackOffs + static_cast<std::int64_t>(expected[p] / kExpectedTrianglesPerBackOff);
     if (absl::Status st = mesh_patch(s, patch, patch_sides[p], boxes[p], front_params, progress);
         !st.ok())
       return explain_stuck(std::move(st), *clean, progress);

@@ -4,13 +4,16 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string_view>
 
 #include "absl/strings/str_format.h"
 #include "core/front/advancing_front.h"
 #include "core/front/front_sizes.h"
+#include "core/front/repair_counts.h"
 #include "core/geometry/closest_points.h"
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
+#include "core/mesh/simplex_incidence.h"
 #include "core/quality/measures.h"
 #include "core/sizing/attached_sizes.h"
 
@@ -36,6 +39,41 @@ void SurfaceMeshState::add_triangle(const Triangle& t, PatchId patch) {
   triangles.push_back(t);
   triangle_tags.push_back(features.patches[index_of(patch)].tag);
   triangle_patch.push_back(index_of(patch));
+}
+
+void SurfaceMeshState::compact_patch(Index first_point, std::size_t first_triangle) {
+  std::size_t kept = first_triangle;
+  for (std::size_t t = first_triangle; t < triangles.size(); ++t) {
+    if (triangles[t][0] == kInvalidIndex) continue;
+    triangles[kept] = triangles[t];
+    triangle_tags[kept] = triangle_tags[t];
+    triangle_patch[kept] = triangle_patch[t];
+    ++kept;
+  }
+  triangles.resize(kept);
+  triangle_tags.resize(kept);
+  triangle_patch.resize(kept);
+  const Index n = static_cast<Index>(points.size());
+  std::vector<Index> new_index(static_cast<std::size_t>(n - first_point), kInvalidIndex);
+  for (std::size_t t = first_triangle; t < kept; ++t)
+    for (const Index q : triangles[t])
+      if (q >= first_point) new_index[q - first_point] = 0;  // used
+  Index next = first_point;
+  for (Index q = first_point; q < n; ++q) {
+    if (new_index[q - first_point] == kInvalidIndex) continue;
+    points[next] = points[q];
+    point_size[next] = point_size[q];
+    host[next] = host[q];
+    anchor[next] = anchor[q];
+    new_index[q - first_point] = next++;
+  }
+  points.resize(next);
+  point_size.resize(next);
+  host.resize(next);
+  anchor.resize(next);
+  for (std::size_t t = first_triangle; t < kept; ++t)
+    for (Index& q : triangles[t])
+      if (q >= first_point) q = new_index[q - first_point];
 }
 
 namespace {
@@ -144,7 +182,11 @@ class PatchFront {
   PatchFront(SurfaceMeshState& s, PatchId patch, const Box& domain, double cell)
       : s_(s), patch_(patch), front_(s.points, domain, cell) {}
 
-  void add_side(const Side& v) { front_.add(v, queue_key(v)); }
+  // One of the patch's initial sides (kept by every back-off).
+  void add_initial_side(const Side& v) {
+    front_.add(v, queue_key(v));
+    initial_.insert({v[0], v[1]});
+  }
   void defer(Index f) { front_.defer(f, queue_key(front_.item(f).v)); }
   AdvancingFront<2>& front() { return front_; }
 
@@ -153,8 +195,17 @@ class PatchFront {
   // S11, the end game: closes the small hole that side f bounds by ear clipping; false when
   // the hole is not a simple loop of at most kMaxHoleSides sides or cannot be cut into ears.
   bool fill_hole(Index f);
-  // FAILED_PRECONDITION for side f: where it is and its sizes.
-  absl::Status stuck(Index f, std::int64_t triangles_before) const;
+  // The back-off for side f, which failed in every class and bounds no small hole (not in the
+  // paper; as the volume front's cavity re-meshing, open_cavity in core/volume/front_steps.h):
+  // removes the triangles of the patch near the side, within a radius growing with each retry
+  // in the same region, and puts the cavity's boundary on the front; f is queued again as new
+  // if it is still on the front. False when there was nothing to remove or the region has been
+  // re-opened kMaxBackOffsAtPlace times.
+  bool back_off(Index f);
+  // FAILED_PRECONDITION for side f: why the patch stops, where, its sizes, and the back-offs
+  // tried.
+  absl::Status stuck(Index f, std::string_view why, std::int64_t triangles_before,
+                     std::int64_t back_offs) const;
 
  private:
   // Eq. 15 at the side's midpoint: min(delta(x), c_i · min(delta_A, delta_B)).
@@ -190,11 +241,32 @@ class PatchFront {
   bool new_point_is_clear(const Point& x, double d, const SideRules& rules, Index f) const;
   bool face_crosses_front(Index f, const Side& v, Index p, const SidePlane& plane) const;
   void add_face(Index f, const Side& v, Index p);
+  // Every triangle of the front goes through here: into s_ and into the incidence.
+  void add_triangle(const Triangle& t);
+  // Whether a triangle of the front has directed edge (a, b) (has it on its left).
+  bool has_edge(Index a, Index b);
+  // Whether a triangle of `cavity` (sorted) shares a directed edge with a triangle outside it:
+  // the two lie over each other (S6 let the front cross itself there).
+  bool overlaps_outside(const std::vector<Index>& cavity);
+  // Removes the triangles `cavity` of the patch and puts the boundary of the hole they leave
+  // on the front.
+  void open_cavity(const std::vector<Index>& cavity);
+  // The patch's triangles with a corner within `radius` of x, reached from the points `seeds`
+  // through the corners within it; sorted.
+  void collect_cavity(const Side& seeds, const Point& x, double radius,
+                      std::vector<Index>& cavity);
 
   SurfaceMeshState& s_;
   PatchId patch_;
   AdvancingFront<2> front_;
+  // The triangles this front built (indices into s_.triangles), by point: the back-off finds
+  // the triangles near a side through them.
+  SimplexIncidence<3> incidence_;
+  absl::flat_hash_set<std::pair<Index, Index>> initial_;  // the initial sides, as (a, b)
+  RepairCounts repairs_;
+  std::vector<Side> edges_;
   std::vector<Candidate> candidates_;
+  std::vector<Index> cavity_, cavity_points_, around_;
   mutable std::vector<Index> near_;
 };
 
@@ -313,8 +385,13 @@ bool PatchFront::face_crosses_front(Index f, const Side& v, Index p,
   });
 }
 
+void PatchFront::add_triangle(const Triangle& t) {
+  s_.add_triangle(t, patch_);
+  incidence_.add(s_.triangles, static_cast<Index>(s_.triangles.size() - 1));
+}
+
 void PatchFront::add_face(Index f, const Side& v, Index p) {
-  s_.add_triangle({v[0], v[1], p}, patch_);                                   // S7
+  add_triangle({v[0], v[1], p});                                              // S7
   front_.remove(f);                                                           // S10
   for (const Side& side : {Side{v[0], p}, Side{p, v[1]}}) {
     if (auto g = front_.find({side[1], side[0]})) {
@@ -415,7 +492,7 @@ bool PatchFront::fill_hole(Index f) {
   if (orient2d(xy[ring[0]].data(), xy[ring[1]].data(), xy[ring[2]].data()) <= 0) return false;
   ears.push_back({corners[ring[0]], corners[ring[1]], corners[ring[2]]});
   for (const Index g : loop) front_.remove(g);
-  for (const Triangle& ear : ears) s_.add_triangle(ear, patch_);
+  for (const Triangle& ear : ears) add_triangle(ear);
   return true;
 }
 
@@ -456,14 +533,129 @@ bool PatchFront::delete_side(Index f) {
   return false;
 }
 
-absl::Status PatchFront::stuck(Index f, std::int64_t triangles_before) const {
+// The back-off's reach (not in the paper): the cavity of the k-th back-off in a region holds
+// the triangles with a corner within (1 + k)·d of the side's midpoint, d the larger of the
+// side's length and its target size; a region is re-opened at most kMaxBackOffsAtPlace times
+// (as the volume front's kMaxCavityRings; a radius passed over because its cavity overlaps the
+// triangles beyond counts as one), after which the side stops the patch.
+constexpr int kMaxBackOffsAtPlace = 6;
+
+void PatchFront::collect_cavity(const Side& seeds, const Point& x, double radius,
+                                std::vector<Index>& cavity) {
+  cavity.clear();
+  cavity_points_.clear();
+  absl::flat_hash_set<Index> in_cavity, seen;  // membership only: the order is the vectors'
+  const double r2 = radius * radius;
+  // From the side's corners, through the triangles at each point reached, to their corners
+  // within the radius: a search of the region, never of the whole patch; and along the mesh,
+  // so that another sheet of the surface near in space (the next strand of a knotted tube)
+  // is left alone.
+  cavity_points_ = {seeds[0], seeds[1]};
+  seen.insert(cavity_points_.begin(), cavity_points_.end());
+  for (std::size_t i = 0; i < cavity_points_.size(); ++i) {
+    around_.clear();
+    incidence_.elements_of(s_.triangles, cavity_points_[i], around_);
+    for (const Index t : around_) {
+      if (!in_cavity.insert(t).second) continue;
+      cavity.push_back(t);
+      for (const Index q : s_.triangles[t])
+        if (squared_norm(sub(s_.points[q], x)) <= r2 && seen.insert(q).second)
+          cavity_points_.push_back(q);
+    }
+  }
+  std::sort(cavity.begin(), cavity.end());
+}
+
+bool PatchFront::has_edge(Index a, Index b) {
+  around_.clear();
+  incidence_.elements_of(s_.triangles, a, around_);
+  for (const Index t : around_) {
+    const Triangle& k = s_.triangles[t];
+    for (int e = 0; e < 3; ++e)
+      if (k[e] == a && k[(e + 1) % 3] == b) return true;
+  }
+  return false;
+}
+
+bool PatchFront::overlaps_outside(const std::vector<Index>& cavity) {
+  for (const Index t : cavity) {
+    const Triangle& k = s_.triangles[t];
+    for (int e = 0; e < 3; ++e) {
+      const Index a = k[e], b = k[(e + 1) % 3];
+      around_.clear();
+      incidence_.elements_of(s_.triangles, a, around_);
+      for (const Index u : around_) {
+        if (std::binary_search(cavity.begin(), cavity.end(), u)) continue;
+        const Triangle& w = s_.triangles[u];
+        for (int f = 0; f < 3; ++f)
+          if (w[f] == a && w[(f + 1) % 3] == b) return true;
+      }
+    }
+  }
+  return false;
+}
+
+void PatchFront::open_cavity(const std::vector<Index>& cavity) {
+  edges_.clear();
+  for (const Index t : cavity) {
+    const Triangle k = s_.triangles[t];
+    incidence_.remove(s_.triangles, t);
+    s_.triangles[t][0] = kInvalidIndex;
+    for (int e = 0; e < 3; ++e) {
+      edges_.push_back({k[e], k[(e + 1) % 3]});
+      edges_.push_back({k[(e + 1) % 3], k[e]});
+    }
+  }
+  std::sort(edges_.begin(), edges_.end());
+  edges_.erase(std::unique(edges_.begin(), edges_.end()), edges_.end());
+  // Side (a, b) belongs on the front when no triangle is on its left (the unmeshed side) and
+  // one is on its right, or it is one of the patch's initial sides (a line's, or the seed's).
+  // Decided from the remaining triangles rather than by flipping the sides the front holds, so
+  // that the cavity's boundary is right even where the front had laid triangles over each
+  // other before it got stuck (a fault of S6 this does not mend, but must not spread).
+  for (const Side& side : edges_) {
+    const bool wanted = !has_edge(side[0], side[1]) &&
+                        (has_edge(side[1], side[0]) || initial_.contains({side[0], side[1]}));
+    if (wanted) {
+      if (!front_.find(side)) front_.add(side, queue_key(side));
+    } else {
+      // All copies: where triangles were laid twice, the front can hold a side twice.
+      while (const std::optional<Index> g = front_.find(side)) front_.remove(*g);
+    }
+  }
+}
+
+bool PatchFront::back_off(Index f) {
+  const Side v = front_.item(f).v;
+  const std::uint32_t stamp = front_.item(f).stamp;
+  const double d = std::max(target_size(v), norm(sub(s_.points[v[1]], s_.points[v[0]])));
+  if (!(d > 0)) return false;
+  const Point x = midpoint(v);
+  int& count = repairs_.at(x, d);
+  // A cavity whose triangles overlap triangles outside it cannot be re-meshed (the front
+  // would be rebuilt over them and run away): a larger one is tried.
+  do {
+    if (count >= kMaxBackOffsAtPlace) return false;
+    ++count;
+    collect_cavity(v, x, (1.0 + count) * d, cavity_);
+    if (cavity_.empty()) return false;
+  } while (overlaps_outside(cavity_));
+  open_cavity(cavity_);
+  const FrontItem<2>& item = front_.item(f);
+  if (item.alive && item.stamp == stamp) front_.requeue(f, queue_key(v));
+  return true;
+}
+
+absl::Status PatchFront::stuck(Index f, std::string_view why, std::int64_t triangles_before,
+                               std::int64_t back_offs) const {
   const Side v = front_.item(f).v;
   const Point x = s_.surface.to_global(s_.points[v[0]]);
   return absl::FailedPreconditionError(absl::StrFormat(
-      "the surface front of patch %d (input tag %d) got stuck at side (%d, %d) near (%g, %g, "
-      "%g), %g long, size wanted %g; %d triangles built in the patch, %d sides left",
-      index_of(patch_), s_.features.patches[index_of(patch_)].tag, v[0], v[1], x[0], x[1], x[2],
-      norm(sub(s_.points[v[1]], s_.points[v[0]])), target_size(v),
+      "the surface front of patch %d (input tag %d) got stuck (%s) at side (%d, %d) near (%g, "
+      "%g, %g), %g long, size wanted %g, after %d back-offs in the patch; %d triangles built in "
+      "the patch (some later removed by back-offs), %d sides left",
+      index_of(patch_), s_.features.patches[index_of(patch_)].tag, why, v[0], v[1], x[0], x[1],
+      x[2], norm(sub(s_.points[v[1]], s_.points[v[0]])), target_size(v), back_offs,
       static_cast<std::int64_t>(s_.triangles.size()) - triangles_before, front_.size()));
 }
 
@@ -476,15 +668,17 @@ absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Si
   for (const Side& v : sides)
     cell = std::min(cell, std::max(s.point_size[v[0]], norm(sub(s.points[v[1]], s.points[v[0]]))));
   PatchFront pf(s, patch, domain, cell);
-  for (const Side& v : sides) pf.add_side(v);
+  for (const Side& v : sides) pf.add_initial_side(v);
   const std::int64_t triangles_before = static_cast<std::int64_t>(s.triangles.size());
-  std::int64_t steps = 0;
+  const Index points_before = static_cast<Index>(s.points.size());
+  std::int64_t steps = 0, back_offs = 0;
   while (std::optional<Index> f = pf.front().pop()) {                         // S1, S11
     const std::int64_t built = static_cast<std::int64_t>(s.triangles.size()) - triangles_before;
     if (++steps > params.steps_per_item * (built + static_cast<std::int64_t>(sides.size())) +
-                      params.step_slack ||
-        built > params.max_triangles)
-      return pf.stuck(*f, triangles_before);
+                      params.step_slack)
+      return pf.stuck(*f, "too many steps", triangles_before, back_offs);
+    if (built > params.max_triangles)
+      return pf.stuck(*f, "far more triangles than the size asks", triangles_before, back_offs);
     if (steps % 256 == 0 && progress.cancelled())
       return absl::CancelledError("surface meshing cancelled");
     if (pf.delete_side(*f)) continue;
@@ -494,8 +688,16 @@ absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Si
       continue;
     }
     if (pf.fill_hole(*f)) continue;
-    return pf.stuck(*f, triangles_before);
+    if (back_offs < params.max_back_offs && pf.back_off(*f)) {
+      ++back_offs;
+      continue;
+    }
+    return pf.stuck(*f,
+                    back_offs < params.max_back_offs ? "no face, and the back-offs there failed"
+                                                     : "no face, and no back-off left",
+                    triangles_before, back_offs);
   }
+  s.compact_patch(points_before, static_cast<std::size_t>(triangles_before));
   return absl::OkStatus();
 }
 

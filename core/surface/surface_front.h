@@ -19,10 +19,14 @@
 //      with their sizes (S9).
 //  S11 until the patch's front is empty.
 // A side that fails is tried again later with relaxed rules (as the volume front does); one
-// that fails in every class stops the patch with FAILED_PRECONDITION naming where.
+// that fails in every class and bounds no small hole makes the front back off (not in the
+// paper; as the volume front's cavity re-meshing): the patch's triangles near it are removed
+// and the cavity's boundary goes back on the front. Only when that has been tried too often
+// does the patch stop with FAILED_PRECONDITION naming where.
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -59,6 +63,8 @@ struct SurfaceMeshState {
   // For a line point: an input vertex of the line segment it lies on (the walk into a patch
   // starts from a face around it); kInvalidIndex for a patch's interior points.
   std::vector<Index> anchor;
+  // A triangle removed by a back-off has triangles[t][0] == kInvalidIndex until its patch is
+  // done (compact_patch).
   std::vector<Triangle> triangles;
   std::vector<Index> triangle_tags;   // the input tag of each triangle's patch
   std::vector<Index> triangle_patch;  // the patch each triangle was meshed in
@@ -71,6 +77,11 @@ struct SurfaceMeshState {
   // Takes back the last add_point (a new point whose face was refused).
   void drop_last_point();
   void add_triangle(const Triangle& t, PatchId patch);
+  // The one place where removed elements go: drops the removed triangles from `first_triangle`
+  // on, and the points from `first_point` on that no remaining triangle from `first_triangle`
+  // on uses, renumbering the rest (every array kept parallel). The points and triangles before
+  // are untouched: a patch's own points are used by its triangles only.
+  void compact_patch(Index first_point, std::size_t first_triangle);
 };
 
 // S2 within one patch: the face of `patch` nearest to x (local frame), walking from `hint` (a
@@ -93,12 +104,17 @@ struct PatchFrontParams {
   // its size field asks (about its area over the area of a triangle of the local size) is
   // going wrong, wherever it is, and would otherwise never stop.
   std::int64_t max_triangles = std::numeric_limits<std::int64_t>::max();
+  // A side that cannot be closed makes the front back off (re-open the triangles around it) at
+  // most this many times in the patch, and at most 6 times in the same region
+  // (kMaxBackOffsAtPlace in surface_front.cc; not in the paper).
+  std::int64_t max_back_offs = 50;
 };
 
 // S1–S11 for `patch` from its initial sides (each oriented with the patch on its left; corners
 // and line points already in s.points). `domain` bounds the patch (its bins' box). Appends the
-// patch's triangles (tag: the patch's input tag) and its new points to s. CANCELLED once
-// progress is cancelled; FAILED_PRECONDITION when a side cannot be closed, naming where.
+// patch's triangles (tag: the patch's input tag) and its new points to s (those a back-off left
+// unused are dropped, compact_patch). CANCELLED once progress is cancelled; FAILED_PRECONDITION
+// when a side cannot be closed even after the back-offs allowed, naming where.
 absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Side>& sides,
                         const Box& domain, const PatchFrontParams& params, Progress& progress);
 

@@ -82,7 +82,7 @@ bool side_is_a_meshed_face(MesherState& s, const Triangle (&sides)[3], Index p) 
   for (const Triangle& side : sides) {
     if (s.front.find({side[0], side[2], side[1]})) continue;  // the face this side closes
     around.clear();
-    s.incidence.tets_of(s.tets, p, around);
+    s.incidence.elements_of(s.tets, p, around);
     for (const Index t : around) {
       if (is_corner(s.tets[t], side[0]) && is_corner(s.tets[t], side[1])) return true;
     }

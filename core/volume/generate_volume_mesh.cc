@@ -8,11 +8,11 @@
 #include <memory>
 #include <string>
 
-#include "absl/container/flat_hash_map.h"
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "core/environments/environments.h"
+#include "core/front/repair_counts.h"
 #include "core/geometry/vec.h"
 #include "core/quality/measures.h"
 #include "core/quality/optimise.h"
@@ -163,23 +163,6 @@ std::string describe_input_near_face(const MesherState& s, const Mesh& input, co
   const double d = volume::element_size_for_target(s, v, target);
   return describe_input_near(input, x, 3.0 * std::max(d, target), target);
 }
-
-// Back-off bookkeeping: how often the front had to re-open its elements in each region. Counted
-// by place, not by point, because re-meshing replaces the points: the region of a face of size d
-// is its cell in a grid whose spacing is the power of two just above 2d.
-class RepairCounts {
- public:
-  int& at(const Point& x, double d) {
-    const int level = static_cast<int>(std::ceil(std::log2(2.0 * d)));
-    const double cell = std::ldexp(1.0, level);
-    std::array<std::int64_t, 4> key{level, 0, 0, 0};
-    for (int a = 0; a < 3; ++a) key[a + 1] = static_cast<std::int64_t>(std::floor(x[a] / cell));
-    return counts_[key];
-  }
-
- private:
-  absl::flat_hash_map<std::array<std::int64_t, 4>, int> counts_;
-};
 
 // The back-off for a face that failed in every queue class (F11): fill the small pocket it
 // bounds from one kernel point; failing that, re-open the elements around it, one ring more each

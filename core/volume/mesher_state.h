@@ -9,6 +9,7 @@
 
 #include "core/front/advancing_front.h"
 #include "core/mesh/mesh.h"
+#include "core/mesh/simplex_incidence.h"
 #include "core/sizing/size_field.h"
 #include "core/volume/generate_volume_mesh.h"
 
@@ -21,20 +22,6 @@ struct Candidate {
   Point position{};
   double rank = 0;  // lower is tried first
   double clearance_size = 0;  // a new point: the element size its clearance is checked with
-};
-
-// Tets around each point, as singly linked lists threaded through the tets (for cavity repair).
-class TetIncidence {
- public:
-  void add(const std::vector<Tet>& tets, Index t);
-  void remove(const std::vector<Tet>& tets, Index t);
-  // Appends the live tets using point p to `out`.
-  void tets_of(const std::vector<Tet>& tets, Index p, std::vector<Index>& out) const;
-
- private:
-  static int corner_of(const Tet& tet, Index p);
-  std::vector<Index> first_;                // per point
-  std::vector<std::array<Index, 4>> next_;  // per tet and corner
 };
 
 struct MesherState {
@@ -54,7 +41,7 @@ struct MesherState {
   std::int64_t live_tets = 0;
   // Sum of the live tets' volumes (a measure, for the guard against overlapping elements).
   double meshed_volume = 0;
-  TetIncidence incidence;
+  SimplexIncidence<4> incidence;  // the tets around each point (cavity repair, F7.3)
   AdvancingFront<3> front;  // the faces of the volume front
 
   // Scratch buffers reused for every face: no allocation per element in the loop.

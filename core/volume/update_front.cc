@@ -59,13 +59,13 @@ void add_element(MesherState& s, Index face, Index p) {
 std::int64_t open_cavity(MesherState& s, Index face, int rings) {
   std::vector<Index>& cavity = s.cavity;
   cavity.clear();
-  for (Index p : s.front.item(face).v) s.incidence.tets_of(s.tets, p, cavity);
+  for (Index p : s.front.item(face).v) s.incidence.elements_of(s.tets, p, cavity);
   for (int ring = 1; ring < rings; ++ring) {
     std::sort(cavity.begin(), cavity.end());
     cavity.erase(std::unique(cavity.begin(), cavity.end()), cavity.end());
     const std::size_t n = cavity.size();
     for (std::size_t i = 0; i < n; ++i)
-      for (Index p : s.tets[cavity[i]]) s.incidence.tets_of(s.tets, p, cavity);
+      for (Index p : s.tets[cavity[i]]) s.incidence.elements_of(s.tets, p, cavity);
   }
   std::sort(cavity.begin(), cavity.end());
   cavity.erase(std::unique(cavity.begin(), cavity.end()), cavity.end());

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <set>
+#include <string>
 
 #include "core/common/progress.h"
 #include "core/geometry/vec.h"
@@ -174,6 +175,54 @@ TEST(GenerateSurfaceMesh, StopsWithCancelledAtEveryLook) {
     EXPECT_EQ(r.status().code(), absl::StatusCode::kCancelled) << "cancelled at look " << k;
     EXPECT_EQ(progress.calls(), k + 1) << "looks after the cancel, cancelled at look " << k;
   }
+}
+
+// Issue 11, part 5: netgen_part1 at its mean edge got stuck in patch 2 (a side 0.56 long, size
+// wanted 1.03, 8 sides left); the front now backs off (re-opens the triangles around the side
+// and meshes the cavity again) and the surface closes. Back-offs leave no unused point.
+TEST(Regression, Issue11StuckFrontBacksOffAndCloses) {
+  const Mesh input = testing::corpus_mesh("netgen_part1.stl");
+  ASSERT_FALSE(input.triangles.empty());
+  SurfaceParams params;
+  params.size = mean_edge_length(input);
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  ASSERT_TRUE(r.ok()) << r.status();
+  expect_closed_valid(r->mesh);
+  EXPECT_LT(r->report.hausdorff, 0.05 * r->report.model_size);
+}
+
+// Back-offs keep the job deterministic: twice the same surface, with or without a Progress
+// that is never cancelled.
+TEST(Regression, Issue11BackOffIsDeterministic) {
+  const Mesh input = testing::corpus_mesh("netgen_part1.stl");
+  ASSERT_FALSE(input.triangles.empty());
+  SurfaceParams params;
+  params.size = mean_edge_length(input);
+  const absl::StatusOr<SurfaceResult> first = generate_surface_mesh(input, params);
+  const absl::StatusOr<SurfaceResult> second = generate_surface_mesh(input, params);
+  CancelAfter never(std::int64_t{1} << 40);
+  const absl::StatusOr<SurfaceResult> watched = generate_surface_mesh(input, params, never);
+  ASSERT_TRUE(first.ok()) << first.status();
+  ASSERT_TRUE(second.ok()) << second.status();
+  ASSERT_TRUE(watched.ok()) << watched.status();
+  EXPECT_EQ(second->mesh.points, first->mesh.points);
+  EXPECT_EQ(second->mesh.triangles, first->mesh.triangles);
+  EXPECT_EQ(second->mesh.triangle_tags, first->mesh.triangle_tags);
+  EXPECT_EQ(watched->mesh.points, first->mesh.points);
+  EXPECT_EQ(watched->mesh.triangles, first->mesh.triangles);
+}
+
+// Where backing off cannot help (of_cyclone: a line side 0.0007 long where the size wanted is
+// 0.013, rebuilt the same way each time), the front stops after a bounded number of back-offs
+// and says so.
+TEST(Regression, Issue11HopelessSideStopsAfterItsBackOffs) {
+  const Mesh input = testing::corpus_mesh("of_cyclone.stl");
+  ASSERT_FALSE(input.triangles.empty());
+  SurfaceParams params;
+  params.size = mean_edge_length(input);
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  ASSERT_EQ(r.status().code(), absl::StatusCode::kFailedPrecondition) << r.status();
+  EXPECT_NE(r.status().message().find("back-offs"), std::string::npos) << r.status();
 }
 
 }  // namespace
