@@ -43,12 +43,11 @@ def closed_files(corpus):
     return closed
 
 
-def run_one(bench, path, timeout):
-    """One run; returns (rc or None on timeout, stdout, stderr, cpu s, wall s)."""
+def run_timed(argv, timeout):
+    """Runs argv; returns (rc or None on timeout, stdout, stderr, cpu s of the child, wall s)."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.monotonic()
-    proc = subprocess.Popen([bench, "--input", path, "--json"], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         out, err = proc.communicate(timeout=timeout)
         rc = proc.returncode
@@ -102,7 +101,8 @@ def main():
         print("%-24s %-8s %8s %7s %7s %6s %6s %9s  %s" % (
             "file", "outcome", "tris", "cpu s", "wall s", "min", "%>=30", "H/diag", "message"))
     for name in names:
-        rc, out, err, cpu, wall = run_one(args.bench, os.path.join(corpus, name), args.timeout)
+        rc, out, err, cpu, wall = run_timed(
+            [args.bench, "--input", os.path.join(corpus, name), "--json"], args.timeout)
         outcome, r, message = judge(name, closed, rc, out, err)
         counts[outcome] = counts.get(outcome, 0) + 1
         total_cpu += cpu

@@ -1,0 +1,76 @@
+#!/usr/bin/python3
+"""The volume mesher on raw CAD tessellations, with and without --remesh-surface (issue 11):
+one line per file and mode.
+
+Runs `afmesh volume F -o OUT.msh --json --quiet` (its private server; default size: the file's
+mean edge length) on each closed CAD file of ../shared/corpus/, once as it is and once with
+--remesh-surface (the surface re-triangulated at the size first, in the same job), each a fresh
+process with a timeout. Columns: outcome (ok, or the exit code and the first line of the
+message, or timeout), tets, min dihedral angle, % of tets under 20 degrees, boundary triangles,
+cpu s (user + system of the CLI and its server) and wall s.
+
+  bench/surface/run_volume_cad.py [--cli PATH] [--corpus DIR] [--timeout SEC] [--only a,b]
+"""
+
+import argparse
+import json
+import os
+import sys
+import tempfile
+
+from run_corpus import DEFAULT_CORPUS, REPO_DIR, closed_files, run_timed
+
+DEFAULT_CLI = os.path.join(REPO_DIR, "build", "release", "client", "afmesh")
+# The corpus's CAD tessellations (corpus README: CAD parts, not scans or terrain).
+CAD = ["cgal_pinion", "cgal_rotor", "cgal_couplingdown", "gmsh_lever", "netgen_hinge",
+       "netgen_part1", "simbody_UR10_Wrist2", "of_simpleCar", "plb_obstacle"]
+
+
+def row(cli, path, remesh, timeout):
+    with tempfile.TemporaryDirectory() as tmp:
+        argv = [cli, "volume", path, "-o", os.path.join(tmp, "out.msh"), "--json", "--quiet"]
+        if remesh:
+            argv.append("--remesh-surface")
+        rc, out, err, cpu, wall = run_timed(argv, timeout)
+    if rc is None:
+        return {"outcome": "timeout", "cpu": cpu, "wall": wall}
+    if rc != 0:
+        message = err.strip().splitlines()[-1] if err.strip() else ""
+        return {"outcome": f"exit {rc}", "message": message, "cpu": cpu, "wall": wall}
+    summary = json.loads(out)
+    quality = summary.get("quality", {})
+    return {"outcome": "ok", "tets": int(summary.get("tetCount", 0)),
+            "triangles": int(summary.get("triangleCount", 0)),
+            "min_dihedral": quality.get("minDihedralDeg", 0.0),
+            "below_20": 100.0 * quality.get("shareBelow20Deg", 0.0), "cpu": cpu, "wall": wall}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--cli", default=DEFAULT_CLI)
+    ap.add_argument("--corpus", default=DEFAULT_CORPUS)
+    ap.add_argument("--timeout", type=float, default=120.0)
+    ap.add_argument("--only", default="", help="comma-separated file stems")
+    args = ap.parse_args()
+    corpus = os.path.abspath(args.corpus)
+    closed = closed_files(corpus)
+    names = [n for n in (args.only.split(",") if args.only else CAD)
+             if f"{n}.stl" in closed or args.only]
+    print(f"{'file':22} {'mode':8} {'outcome':8} {'tets':>9} {'min dih':>8} {'% <20':>6} "
+          f"{'bnd tris':>9} {'cpu s':>7} {'wall s':>7}  message")
+    for name in names:
+        path = os.path.join(corpus, f"{name}.stl")
+        for remesh in (False, True):
+            r = row(args.cli, path, remesh, args.timeout)
+            mode = "remesh" if remesh else "raw"
+            if r["outcome"] == "ok":
+                print(f"{name:22} {mode:8} {'ok':8} {r['tets']:9d} {r['min_dihedral']:8.2f} "
+                      f"{r['below_20']:6.2f} {r['triangles']:9d} {r['cpu']:7.2f} {r['wall']:7.2f}")
+            else:
+                print(f"{name:22} {mode:8} {r['outcome']:8} {'-':>9} {'-':>8} {'-':>6} {'-':>9} "
+                      f"{r['cpu']:7.2f} {r['wall']:7.2f}  {r.get('message', '')[:160]}")
+            sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    main()
