@@ -88,14 +88,17 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
   CancelCheck cancel(progress);
   const double min_cosine = std::cos(params.max_normal_turn_deg * std::numbers::pi / 180.0);
   absl::flat_hash_set<std::pair<Index, Index>> edges;
-  for (const Triangle& t : triangles)
+  edges.reserve(3 * triangles.size() / 2 + 3);
+  for (const Triangle& t : triangles) {
+    if (cancel.due()) return absl::CancelledError("edge flips: cancelled");
     for (int k = 0; k < 3; ++k) edges.insert(edge_key(t[k], t[(k + 1) % 3]));
+  }
   std::int64_t flips = 0;
   // After the first pass only the edges of triangles a flip changed can gain from a flip: the
   // others' quadrilaterals are as the pass before found them.
   std::vector<bool> changed(triangles.size(), true);
   // Built once, then kept by each flip (flip()).
-  EdgeNeighbours neighbours = triangle_edge_neighbours(triangles);
+  EdgeNeighbours neighbours = triangle_edge_neighbours(triangles);  // a sort: ~0.1 s per 400k
   for (int pass = 0; pass < params.max_passes; ++pass) {
     if (cancel.look()) return absl::CancelledError("edge flips: cancelled");
     std::vector<bool> touched(triangles.size(), false);
