@@ -16,6 +16,7 @@
 #include "core/io/stl.h"
 #include "google/protobuf/util/json_util.h"
 #include "proto/size_spec_convert.h"
+#include "proto/slice_codec.h"
 
 namespace {
 
@@ -56,10 +57,12 @@ std::string written(Writer writer) {
   return text;
 }
 
-// A length-prefixed stream of serialized requests (fuzz_volume_request's input).
-std::string stream(const std::vector<afmesh::v1::MeshVolumeRequest>& requests) {
+// A length-prefixed stream of serialized requests (fuzz_volume_request's and
+// fuzz_surface_request's input).
+template <class Request>
+std::string stream(const std::vector<Request>& requests) {
   std::string bytes;
-  for (const afmesh::v1::MeshVolumeRequest& r : requests) {
+  for (const Request& r : requests) {
     const std::string one = r.SerializeAsString();
     bytes.push_back(static_cast<char>(one.size() & 0xff));
     bytes.push_back(static_cast<char>(one.size() >> 8));
@@ -68,35 +71,39 @@ std::string stream(const std::vector<afmesh::v1::MeshVolumeRequest>& requests) {
   return bytes;
 }
 
-std::vector<afmesh::v1::MeshVolumeRequest> cube_requests(afmesh::v1::EnvironmentMode mode,
-                                                         bool streamed_grid) {
+// The cube's stream at size 0.4: header, points, triangles (with tags), and with
+// `streamed_grid` a background grid slice (the six tets, size 0.3 at every point). MeshVolume's
+// and MeshSurface's streams have the same parts and fields, so Request is either.
+template <class Request>
+std::vector<Request> cube_requests(bool streamed_grid) {
   const afmesh::Mesh surface = cube_surface();
-  std::vector<afmesh::v1::MeshVolumeRequest> requests(3);
-  afmesh::v1::MeshVolumeHeader& header = *requests[0].mutable_header();
+  std::vector<Request> requests(3);
+  auto& header = *requests[0].mutable_header();
   header.mutable_options()->mutable_size()->set_max_size(0.4);
-  header.mutable_options()->set_environments(mode);
   header.set_point_count(surface.points.size());
   header.set_triangle_count(surface.triangles.size());
-  for (const afmesh::Point& p : surface.points) {
-    for (double c : p) requests[1].mutable_points()->add_xyz(c);
-  }
-  for (std::size_t t = 0; t < surface.triangles.size(); ++t) {
-    for (afmesh::Index v : surface.triangles[t]) requests[2].mutable_triangles()->add_indices(v);
-    requests[2].mutable_triangles()->add_tags(surface.triangle_tags[t]);
-  }
+  afmesh::wire::encode_points(surface.points, 0, surface.points.size(),
+                              *requests[1].mutable_points());
+  afmesh::wire::encode_triangles(surface.triangles, surface.triangle_tags, 0,
+                                 surface.triangles.size(), *requests[2].mutable_triangles());
   if (streamed_grid) {
     const afmesh::Mesh grid = cube_tets();
     header.set_grid_point_count(grid.points.size());
     header.set_grid_tet_count(grid.tets.size());
     afmesh::v1::BackgroundGridSlice& slice = *requests.emplace_back().mutable_background_grid();
-    for (const afmesh::Point& p : grid.points) {
-      for (double c : p) slice.add_xyz(c);
-      slice.add_sizes(0.3);
-    }
-    for (const afmesh::Tet& t : grid.tets) {
-      for (afmesh::Index v : t) slice.add_tets(v);
-    }
+    afmesh::wire::encode_grid_points(grid.points, 0, grid.points.size(), slice);
+    afmesh::wire::encode_grid_sizes(std::vector<double>(grid.points.size(), 0.3), 0,
+                                    grid.points.size(), slice);
+    afmesh::wire::encode_grid_tets(grid.tets, 0, grid.tets.size(), slice);
   }
+  return requests;
+}
+
+std::vector<afmesh::v1::MeshVolumeRequest> cube_volume_requests(afmesh::v1::EnvironmentMode mode,
+                                                                bool streamed_grid) {
+  std::vector<afmesh::v1::MeshVolumeRequest> requests =
+      cube_requests<afmesh::v1::MeshVolumeRequest>(streamed_grid);
+  requests[0].mutable_header()->mutable_options()->set_environments(mode);
   return requests;
 }
 
@@ -145,11 +152,11 @@ int main(int argc, char** argv) {
   write(out / "size_spec", "inline_grid.json", inline_grid_spec_json());
 
   write(out / "volume_request", "cube_none",
-        stream(cube_requests(afmesh::v1::ENVIRONMENT_MODE_NONE, false)));
+        stream(cube_volume_requests(afmesh::v1::ENVIRONMENT_MODE_NONE, false)));
   write(out / "volume_request", "cube_tags",
-        stream(cube_requests(afmesh::v1::ENVIRONMENT_MODE_TAGS, false)));
+        stream(cube_volume_requests(afmesh::v1::ENVIRONMENT_MODE_TAGS, false)));
   write(out / "volume_request", "cube_streamed_grid",
-        stream(cube_requests(afmesh::v1::ENVIRONMENT_MODE_NONE, true)));
+        stream(cube_volume_requests(afmesh::v1::ENVIRONMENT_MODE_NONE, true)));
 
   // fuzz_volume_mesher: shape, mode, size, then corner moves, flips and tags (all zero here).
   write(out / "volume_mesher", "cube", std::string("\x00\x00\x80", 3));
