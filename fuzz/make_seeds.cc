@@ -1,7 +1,7 @@
 // afmesh-fuzz-seeds OUT_DIR: writes small, valid seed inputs for every fuzz target into
 // OUT_DIR/<target>/ (a unit cube as a surface and as six tets, written by core/io's own writers;
-// MeshVolume request streams of that cube; front descriptions for the mesher). make_corpora.sh
-// adds the files of tests/data and examples/ beside them.
+// MeshVolume and MeshSurface request streams of that cube; front descriptions for the volume
+// mesher). make_corpora.sh adds the files of tests/data and examples/ beside them.
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -107,6 +107,18 @@ std::vector<afmesh::v1::MeshVolumeRequest> cube_volume_requests(afmesh::v1::Envi
   return requests;
 }
 
+// MeshSurface's cube stream; with `angles`, ridge and corner angles of 45 and 100 degrees.
+std::vector<afmesh::v1::MeshSurfaceRequest> cube_surface_requests(bool angles, bool streamed_grid) {
+  std::vector<afmesh::v1::MeshSurfaceRequest> requests =
+      cube_requests<afmesh::v1::MeshSurfaceRequest>(streamed_grid);
+  if (angles) {
+    afmesh::v1::SurfaceOptions& options = *requests[0].mutable_header()->mutable_options();
+    options.set_ridge_angle_deg(45.0);
+    options.set_corner_angle_deg(100.0);
+  }
+  return requests;
+}
+
 std::string inline_grid_spec_json() {
   const afmesh::Mesh grid = cube_tets();
   afmesh::SizeSpec spec;
@@ -157,6 +169,10 @@ int main(int argc, char** argv) {
         stream(cube_volume_requests(afmesh::v1::ENVIRONMENT_MODE_TAGS, false)));
   write(out / "volume_request", "cube_streamed_grid",
         stream(cube_volume_requests(afmesh::v1::ENVIRONMENT_MODE_NONE, true)));
+
+  write(out / "surface_request", "cube_default", stream(cube_surface_requests(false, false)));
+  write(out / "surface_request", "cube_angles", stream(cube_surface_requests(true, false)));
+  write(out / "surface_request", "cube_streamed_grid", stream(cube_surface_requests(false, true)));
 
   // fuzz_volume_mesher: shape, mode, size, then corner moves, flips and tags (all zero here).
   write(out / "volume_mesher", "cube", std::string("\x00\x00\x80", 3));
