@@ -1,11 +1,12 @@
 // afmesh-fuzz-seeds OUT_DIR: writes small, valid seed inputs for every fuzz target into
 // OUT_DIR/<target>/ (a unit cube as a surface and as six tets, written by core/io's own writers;
-// MeshVolume and MeshSurface request streams of that cube; front descriptions for the volume
-// mesher). make_corpora.sh adds the files of tests/data and examples/ beside them.
+// MeshVolume and MeshSurface request streams of that cube; shape descriptions for the volume and
+// surface meshers). make_corpora.sh adds the files of tests/data and examples/ beside them.
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,11 @@ std::string written(Writer writer) {
     std::exit(1);
   }
   return text;
+}
+
+// The bytes of a fuzz input written as numbers.
+std::string bytes(std::initializer_list<unsigned char> values) {
+  return std::string(values.begin(), values.end());
 }
 
 // A length-prefixed stream of serialized requests (fuzz_volume_request's and
@@ -174,13 +180,43 @@ int main(int argc, char** argv) {
   write(out / "surface_request", "cube_angles", stream(cube_surface_requests(true, false)));
   write(out / "surface_request", "cube_streamed_grid", stream(cube_surface_requests(false, true)));
 
+  // Free triangles (shape 2, options 0, size 0x80) for both meshers: the corner tetrahedron's
+  // boundary: 4 points (the count byte 0, then the origin and the three unit points on the
+  // 1/32 lattice) and 4 triangles.
+  const std::string points = bytes({0, 0, 0, 0x20, 0, 0, 0, 0x20, 0, 0, 0, 0x20});
+  const std::string tetrahedron_free =
+      bytes({2, 0, 0x80, 0}) + points + bytes({0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3});
+
   // fuzz_volume_mesher: shape, mode, size, then corner moves, flips and tags (all zero here).
   write(out / "volume_mesher", "cube", std::string("\x00\x00\x80", 3));
   write(out / "volume_mesher", "octahedron_tags", std::string("\x01\x01\x40", 3));
   write(out / "volume_mesher", "cube_cavity_auto", std::string("\x00\x06\xc0", 3));
-  write(out / "volume_mesher", "tetrahedron_free",
-        std::string("\x02\x00\x80\x00" "\x00\x00\x00" "\x20\x00\x00" "\x00\x20\x00"
-                    "\x00\x00\x20" "\x00\x02\x01" "\x00\x01\x03" "\x00\x03\x02" "\x01\x02\x03",
-                    28));
+  write(out / "volume_mesher", "tetrahedron_free", tetrahedron_free);
+
+  // fuzz_surface_mesher: shape, options, size, then (closed shapes) corner moves and flips,
+  // then tags; zero where not given.
+  write(out / "surface_mesher", "cube", std::string("\x00\x00\x80", 3));
+  write(out / "surface_mesher", "cube_small", std::string("\x00\x00\x00", 3));
+  // Ridges at 150 degrees, corners at 20, no curvature bound.
+  write(out / "surface_mesher", "cube_angles", std::string("\x00\x17\x80", 3));
+  write(out / "surface_mesher", "cube_cavity", std::string("\x00\x20\xc0", 3));
+  // Corner i moved by (8i, -4i, 2i) / 256, triangles 0, 2 and 5 flipped, tags 1 and 2.
+  std::string moved("\x00\x00\x80", 3);
+  for (int corner = 0; corner < 8; ++corner) {
+    for (const int move : {8 * corner, -4 * corner, 2 * corner})
+      moved.push_back(static_cast<char>(move));
+  }
+  moved += std::string("\x25\x00", 2);
+  for (int t = 0; t < 12; ++t) moved.push_back(static_cast<char>(1 + t / 6));
+  write(out / "surface_mesher", "cube_moved_flipped_tags", moved);
+  // The octahedron, its two halves tagged 1 and 2 (a tag line round its equator).
+  std::string octahedron("\x01\x00\x60", 3);
+  octahedron += std::string(6 * 3 + 1, '\0');
+  for (int t = 0; t < 8; ++t) octahedron.push_back(static_cast<char>(1 + (t & 4) / 4));
+  write(out / "surface_mesher", "octahedron_tags", octahedron);
+  // Free triangles: the tetrahedron, and an open square of two triangles (a boundary line).
+  write(out / "surface_mesher", "tetrahedron_free", tetrahedron_free);
+  write(out / "surface_mesher", "square_free",
+        bytes({2, 0, 0x80, 0, 0, 0, 0, 0x20, 0, 0, 0x20, 0x20, 0, 0, 0x20, 0, 0, 1, 2, 0, 2, 3}));
   return 0;
 }
