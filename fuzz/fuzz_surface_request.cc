@@ -3,9 +3,10 @@
 // what the job does first with the assembled surface: the estimate that admits it
 // (estimate_surface_mesh, server/surface_step.h) and the surface mesher's first steps
 // (generate_surface_mesh: the parameters checked, the input cleaned, the size field made, the
-// discrete surface built, the features found, the curvature sizes), cut short by a Progress
-// that cancels at its fifth poll, after the curvature sizes: before the sides along the lines,
-// the first work that grows with the size asked.
+// discrete surface built, the features' lines found), cut short by a Progress that cancels at
+// its fourth poll, inside find_surface_features: well before the sides along the lines, the
+// first work that grows with the size asked. (The next poll, after the curvature sizes, is
+// skipped when the options turn the curvature bound off, so the budget stops short of it.)
 //
 // Input: up to 32 messages, each a 2-byte little-endian length and that many bytes of a
 // serialized afmesh.v1.MeshSurfaceRequest (a message that protobuf refuses to parse ends the
@@ -42,8 +43,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   afmesh::fuzz::require_usable(surface, "SurfaceInput::finish");
   const absl::StatusOr<afmesh::server::SurfaceEstimate> estimate =
       afmesh::server::estimate_surface_mesh(surface, params);
-  // Polls 1 to 4: after the input and after the discrete surface, two in find_surface_features.
-  afmesh::fuzz::BudgetProgress progress(4);
+  // Polls 1 to 3: after the input, after the discrete surface, the first in
+  // find_surface_features.
+  afmesh::fuzz::BudgetProgress progress(3);
   const absl::StatusOr<afmesh::SurfaceResult> result =
       afmesh::generate_surface_mesh(surface, params, progress);
   // Triage aid: AFMESH_FUZZ_VERBOSE=1 prints how far each assembled input went.
