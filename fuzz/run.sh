@@ -12,7 +12,8 @@ cd "$(dirname "$0")/.."
 seconds="${1:-30}"
 shift || true
 targets=("$@")
-[[ ${#targets[@]} -eq 0 ]] && targets=(stl obj msh medit medit_sol size_spec volume_request volume_mesher)
+[[ ${#targets[@]} -eq 0 ]] && targets=(stl obj msh medit medit_sol size_spec volume_request
+  volume_mesher surface_request surface_mesher)
 
 scripts/install-deps.sh --fuzz
 cmake --preset fuzz >/dev/null

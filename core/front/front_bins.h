@@ -152,7 +152,9 @@ bool FrontBins::find_item_near(const Box& box, Fn&& fn) const {
       for (std::int64_t i = r[0][0]; i <= r[0][1]; ++i) {
         const auto c = static_cast<std::size_t>(cell_index(i, j, k));
         if (item_cells_.empty(c)) continue;
-        const auto [q_lo, q_hi] = cell_words(ends, r, i, j, k);
+        // Not a structured binding: clang 14 (the fuzz preset) cannot capture one in a lambda.
+        const std::array<std::uint32_t, 2> words = cell_words(ends, r, i, j, k);
+        const std::uint32_t q_lo = words[0], q_hi = words[1];
         const std::uint32_t query_before = q_lo & ~kLanes;  // axes where the query starts before
         const std::uint32_t q_low_ends = q_lo & kLanes;
         const bool found = item_cells_.find_run(c, [&](const ItemEntry* run, std::size_t size) {

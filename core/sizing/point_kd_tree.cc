@@ -54,7 +54,9 @@ void PointKdTree::search(Index node_id, const Point& x, Index& best, double& bes
     for (Index i = node.begin; i < node.end; ++i) {
       const Index p = order_[i];
       const double d2 = squared_distance(points_[p], x);
-      if (d2 < best_d2 || (d2 == best_d2 && p < best)) {
+      // The first point seen is taken whatever its distance: one so far away that d2
+      // overflows to infinity is still the nearest when no point is nearer.
+      if (best == kInvalidIndex || d2 < best_d2 || (d2 == best_d2 && p < best)) {
         best = p;
         best_d2 = d2;
       }

@@ -19,7 +19,9 @@ class PointKdTree {
   explicit PointKdTree(std::vector<Point> points);
 
   // The index of the point nearest to x (Euclidean); among equally near points the smallest
-  // index, so the answer depends only on the points and x. kInvalidIndex when there are none.
+  // index, so the answer depends only on the points and x (also when x is so far from them
+  // that every squared distance overflows: then the smallest index). kInvalidIndex when there
+  // are none.
   Index nearest(const Point& x) const;
 
  private:

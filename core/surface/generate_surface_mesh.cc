@@ -142,6 +142,7 @@ absl::Status sides_along_lines(SurfaceMeshState& s, std::vector<std::vector<Side
     split_params.start_size = ends[l].start;
     split_params.end_size = ends[l].end;
     split_params.growth = s.growth;
+    if (line.closed) split_params.min_sides = 3;
     absl::StatusOr<LineSplit> split = split_line(polyline, s.field, split_params);
     if (!split.ok()) return split.status();
     std::vector<Index> ids(split->points.size());

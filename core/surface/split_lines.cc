@@ -30,9 +30,13 @@ absl::Status check_polyline(std::span<const Point> polyline, const SplitLinePara
     return absl::InvalidArgumentError(
         absl::StrFormat("split line: %d points; a line needs two", polyline.size()));
   }
-  if (params.samples_per_size < 1 || params.max_sides < 1) {
+  if (params.samples_per_size < 1 || params.max_sides < 1 || params.min_sides < 1) {
     return absl::InvalidArgumentError(
-        "split line: samples_per_size and max_sides must be at least 1");
+        "split line: samples_per_size, max_sides and min_sides must be at least 1");
+  }
+  if (params.min_sides > params.max_sides) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "split line: min_sides %d is over max_sides %d", params.min_sides, params.max_sides));
   }
   if (!(params.start_size > 0.0) || !(params.end_size > 0.0) || !(params.growth >= 1.0) ||
       !std::isfinite(params.growth)) {
@@ -133,7 +137,7 @@ absl::StatusOr<LineSplit> split_line(std::span<const Point> polyline, const Size
   absl::StatusOr<std::vector<Piece>> pieces =
       integrate(polyline, segment_start, sizes, params, total);
   if (!pieces.ok()) return pieces.status();
-  const double rounded = std::max(1.0, std::round(total));
+  const double rounded = std::max(static_cast<double>(params.min_sides), std::round(total));
   if (rounded > static_cast<double>(params.max_sides)) {
     return absl::ResourceExhaustedError(
         absl::StrFormat("split line: the size field asks for %g sides, over the limit of %d",

@@ -5,7 +5,8 @@
 // A line is a polyline of input points from corner to corner (features.h). Its sides follow the
 // wanted size h(x) of a SizeField (core/sizing/size_field.h): with s the arc length along the
 // polyline and I = ∫ ds / h(s) the line's length in units of the local size,
-//   n = max(1, round(I)) sides, and the end of side j at the s_j where ∫_0^{s_j} ds/h = j I / n,
+//   n = max(min_sides, round(I)) sides (params.min_sides: 1, or 3 for a closed loop, which
+// fewer sides cannot bound), and the end of side j at the s_j where ∫_0^{s_j} ds/h = j I / n,
 // so every side spans the same share of the size-scaled length (a side is about h long where h
 // varies slowly). The paper gives no rule for the count or the placement; these are ours. The
 // ends stay fixed at the corners (bit for bit: corners are shared by the lines and patches that
@@ -54,6 +55,10 @@ struct SplitLineParams {
   // Refuse (RESOURCE_EXHAUSTED) a line that would need more than this many sides: a size field
   // far too fine for the line is a mistake to report, not to allocate.
   Index max_sides = 10'000'000;
+  // At least this many sides (>= 1, at most max_sides), however coarse the size: 3 for a closed
+  // loop, whose one side would run from its corner to itself and whose two would enclose
+  // nothing.
+  Index min_sides = 1;
 };
 
 // The points that split a polyline into sides, n + 1 of them for n sides.
@@ -78,8 +83,9 @@ std::vector<LineEndSizes> line_end_sizes(const DiscreteSurface& surface,
 // Splits `polyline` (P×3, P >= 2; consecutive points may coincide, a closed loop repeats its
 // first point at the end) into sides following `sizes`, as above. INVALID_ARGUMENT for fewer
 // than two points, a non-finite coordinate, a polyline of zero length, a size that is not a
-// finite number > 0, or params out of range (samples_per_size or max_sides below 1, end sizes not
-// > 0, growth below 1); RESOURCE_EXHAUSTED past params.max_sides.
+// finite number > 0, or params out of range (samples_per_size, max_sides or min_sides below 1,
+// min_sides over max_sides, end sizes not > 0, growth below 1); RESOURCE_EXHAUSTED past
+// params.max_sides.
 absl::StatusOr<LineSplit> split_line(std::span<const Point> polyline, const SizeField& sizes,
                                      const SplitLineParams& params = {});
 

@@ -138,6 +138,14 @@ TEST(BackgroundGrid, OutsidePointsTakeTheNearestPointsSize) {
   EXPECT_GT(outside, 500);
 }
 
+// See Regression.Issue12PointsTooFarForSquaredDistancesStillHaveANearest: size_at read
+// sizes()[-1] at such a point.
+TEST(Regression, Issue12SizeAtAPointTooFarForSquaredDistancesIsAGridSize) {
+  const BackgroundGridSpec spec = kuhn_lattice(2, linear);
+  const BackgroundGrid grid = make_grid(spec);
+  EXPECT_EQ(grid.size_at({-3.1e231, 0.0, 0.0}), spec.sizes[0]);
+}
+
 TEST(BackgroundGrid, BoxGridIsFivePositiveTetsFillingTheBox) {
   const Box box{{-1, 0, 2}, {3, 1, 4.5}};
   const BackgroundGrid grid = BackgroundGrid::box_grid(box, 0.8);

@@ -48,5 +48,17 @@ TEST(PointKdTree, TiesGoToTheSmallestIndex) {
   EXPECT_EQ(PointKdTree().nearest({0, 0, 0}), kInvalidIndex);
 }
 
+// fuzz_surface_request: a MeshSurface input with a point at x = -3.1e231 and a streamed
+// background grid. Every squared distance to the grid's points overflowed to infinity, no point
+// was nearer than the initial infinity, and nearest() returned kInvalidIndex, which
+// BackgroundGrid::size_at used as an index.
+TEST(Regression, Issue12PointsTooFarForSquaredDistancesStillHaveANearest) {
+  std::vector<Point> points;
+  for (int i = 0; i < 20; ++i) points.push_back({double(i % 3), double(i / 3), 0.0});
+  const PointKdTree tree(points);
+  EXPECT_EQ(tree.nearest({-3.1e231, 0.0, 0.0}), 0);
+  EXPECT_EQ(tree.nearest({1e300, -1e300, 1e300}), 0);
+}
+
 }  // namespace
 }  // namespace afmesh

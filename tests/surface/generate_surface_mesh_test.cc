@@ -225,5 +225,31 @@ TEST(Regression, Issue11HopelessSideStopsAfterItsBackOffs) {
   EXPECT_NE(r.status().message().find("back-offs"), std::string::npos) << r.status();
 }
 
+// fuzz_surface_mesher: a single triangle whose boundary, at a corner angle of 180, is one
+// closed loop without corners, meshed at a size over the loop's length. The loop got one side
+// from its start to itself; the patch's front bins were made with cells of size 0
+// (UBSan: inf cast to an integer; in release a grid whose inverse cell is infinite). A closed
+// loop is now split into at least 3 sides, and the triangle comes back as one triangle.
+TEST(Regression, Issue12LoopShorterThanTheSizeGetsThreeSides) {
+  Mesh input;
+  input.points = {{-0.6875, 0.0, 0.09375}, {0.0, 0.0, -0.28125}, {0.0, -0.03125, -0.03125}};
+  input.triangles = {{0, 1, 2}};
+  SurfaceParams params;
+  params.size = 2.75;
+  params.growth = 1.2;
+  params.ridge_angle_deg = 150.0;
+  params.corner_angle_deg = 180.0;
+  params.curvature_angle_deg = 0.0;
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  ASSERT_TRUE(r.ok()) << r.status();
+  EXPECT_EQ(r->report.lines, 1);
+  EXPECT_EQ(r->report.corners, 1);
+  ASSERT_EQ(r->mesh.triangles.size(), 1u);
+  const Triangle& t = r->mesh.triangles[0];
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_GT(norm(sub(r->mesh.points[t[(k + 1) % 3]], r->mesh.points[t[k]])), 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace afmesh

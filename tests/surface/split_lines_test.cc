@@ -105,6 +105,22 @@ TEST(SplitLine, LineShorterThanTheSizeGetsOneSide) {
   expect_ends_and_shape(split, line);
 }
 
+// A closed loop shorter than the size: one side would run from its corner to itself.
+TEST(SplitLine, MinSidesSplitsALoopShorterThanTheSize) {
+  const std::vector<Point> loop = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 0}};
+  EXPECT_EQ(split_or_die(loop, UniformSize(10.0)).points.size(), 2u);
+  SplitLineParams params;
+  params.min_sides = 3;
+  const LineSplit split = split_or_die(loop, UniformSize(10.0), params);
+  ASSERT_EQ(split.points.size(), 4u);
+  expect_ends_and_shape(split, loop);
+  for (std::size_t j = 1; j < split.points.size(); ++j) {
+    EXPECT_NEAR(split.arc_length[j] - split.arc_length[j - 1], 4.0 / 3.0, 1e-12) << j;
+  }
+  // More sides than min_sides when the size asks for them.
+  EXPECT_EQ(split_or_die(loop, UniformSize(0.5), params).points.size(), 9u);
+}
+
 TEST(SplitLine, FieldOriginShiftsWhereTheSizeIsAsked) {
   const std::vector<Point> line = {{-0.5, 0, 0}, {0.5, 0, 0}};
   SplitLineParams params;
@@ -133,6 +149,14 @@ TEST(SplitLine, RefusesBadInput) {
   EXPECT_EQ(split_line(std::vector<Point>{{0, 0, 0}, {1, 0, 0}}, h, params).status().code(),
             absl::StatusCode::kInvalidArgument);
   params.start_size = std::numeric_limits<double>::infinity();
+  params.min_sides = 0;
+  EXPECT_EQ(split_line(std::vector<Point>{{0, 0, 0}, {1, 0, 0}}, h, params).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  params.min_sides = 3;
+  params.max_sides = 2;
+  EXPECT_EQ(split_line(std::vector<Point>{{0, 0, 0}, {1, 0, 0}}, h, params).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  params.min_sides = 1;
   params.max_sides = 100;
   EXPECT_EQ(split_line(std::vector<Point>{{0, 0, 0}, {1, 0, 0}}, UniformSize(1e-3), params)
                 .status()
