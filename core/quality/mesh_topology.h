@@ -117,6 +117,9 @@ struct EdgeNeighbours {
   std::vector<std::array<Index, 3>> across;  // M×3
   std::vector<std::array<bool, 3>> same_way;  // M×3
 };
-EdgeNeighbours triangle_edge_neighbours(const std::vector<Triangle>& triangles);
+// With `cancel`, it is looked at while the edges are sorted, and once it is stopped the result
+// is returned unfinished: a caller checks cancel->stopped().
+EdgeNeighbours triangle_edge_neighbours(const std::vector<Triangle>& triangles,
+                                        CancelCheck* cancel = nullptr);
 
 }  // namespace afmesh

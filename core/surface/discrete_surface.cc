@@ -75,7 +75,10 @@ struct Move {
 }  // namespace
 
 absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
-                                                       const DiscreteSurfaceParams& params) {
+                                                       const DiscreteSurfaceParams& params,
+                                                       Progress& progress) {
+  CancelCheck cancel(progress);
+  const auto cancelled = [] { return absl::CancelledError("surface model: cancelled"); };
   if (absl::Status status = check_input(mesh); !status.ok()) return status;
   DiscreteSurface s;
   s.params_ = params;
@@ -101,7 +104,9 @@ absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
       ++s.degenerate_faces_;
     }
   }
-  s.neighbours_ = triangle_edge_neighbours(s.triangles_);
+  if (cancel.look()) return cancelled();
+  s.neighbours_ = triangle_edge_neighbours(s.triangles_, &cancel);
+  if (cancel.stopped()) return cancelled();
 
   // Faces by vertex (a counting sort: ascending face ids in each bucket).
   s.face_offsets_.assign(s.points_.size() + 1, 0);
@@ -115,7 +120,9 @@ absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
     for (Index v : s.triangles_[f]) s.vertex_faces_[next[v]++] = f;
   }
 
+  if (cancel.look()) return cancelled();
   s.tree_ = AabbTree(triangle_boxes(s.points_, s.triangles_));
+  if (cancel.look()) return cancelled();
   return s;
 }
 

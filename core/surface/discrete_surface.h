@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "core/common/progress.h"
 #include "core/mesh/mesh.h"
 #include "core/quality/mesh_topology.h"
 #include "core/spatial/aabb_tree.h"
@@ -76,8 +77,11 @@ class DiscreteSurface {
   // with a non-finite coordinate, a triangle index out of range or repeated in a triangle, a
   // tag array of another length. Degenerate (zero-area) triangles are accepted: their normal
   // is the zero vector.
+  // CANCELLED soon after progress.cancelled() turns true (looked at between the steps and while
+  // the edges are sorted; the AABB tree's build is not interrupted).
   static absl::StatusOr<DiscreteSurface> build(const Mesh& mesh,
-                                               const DiscreteSurfaceParams& params = {});
+                                               const DiscreteSurfaceParams& params = {},
+                                               Progress& progress = no_progress());
 
   Index point_count() const { return static_cast<Index>(points_.size()); }
   Index face_count() const { return static_cast<Index>(triangles_.size()); }

@@ -98,7 +98,8 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
   // others' quadrilaterals are as the pass before found them.
   std::vector<bool> changed(triangles.size(), true);
   // Built once, then kept by each flip (flip()).
-  EdgeNeighbours neighbours = triangle_edge_neighbours(triangles);  // a sort: ~0.1 s per 400k
+  EdgeNeighbours neighbours = triangle_edge_neighbours(triangles, &cancel);
+  if (cancel.stopped()) return absl::CancelledError("edge flips: cancelled");
   for (int pass = 0; pass < params.max_passes; ++pass) {
     if (cancel.look()) return absl::CancelledError("edge flips: cancelled");
     std::vector<bool> touched(triangles.size(), false);

@@ -313,7 +313,8 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   if (!field.ok()) return field.status();
   clock.lap("input");
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
-  absl::StatusOr<DiscreteSurface> surface = DiscreteSurface::build(*clean);     // S2, S3
+  // S2, S3
+  absl::StatusOr<DiscreteSurface> surface = DiscreteSurface::build(*clean, {}, progress);
   if (!surface.ok()) return surface.status();
   clock.lap("surface");
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
@@ -377,7 +378,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   local.points = s.points;
   local.triangles = std::move(s.triangles);
   local.triangle_tags = std::move(s.triangle_tags);
-  absl::StatusOr<DiscreteSurface> output = DiscreteSurface::build(local);
+  absl::StatusOr<DiscreteSurface> output = DiscreteSurface::build(local, {}, progress);
   if (!output.ok()) return output.status();
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
   Mesh input_local;
