@@ -47,7 +47,8 @@ double squared_distance_to_box(const Point& x, const Box& box) {
 
 }  // namespace
 
-AabbTree::AabbTree(std::vector<Box> boxes, int leaf_size) : boxes_(std::move(boxes)) {
+AabbTree::AabbTree(std::vector<Box> boxes, int leaf_size, CancelCheck* cancel)
+    : boxes_(std::move(boxes)) {
   std::vector<Point> centres(boxes_.size());
   for (Index i = 0; i < size(); ++i) {
     if (is_empty(boxes_[i])) continue;
@@ -56,13 +57,18 @@ AabbTree::AabbTree(std::vector<Box> boxes, int leaf_size) : boxes_(std::move(box
   }
   if (order_.empty()) return;
   nodes_.reserve(2 * order_.size() / std::max(leaf_size, 1) + 1);
-  build(0, static_cast<Index>(order_.size()), centres, std::max(leaf_size, 1));
+  build(0, static_cast<Index>(order_.size()), centres, std::max(leaf_size, 1), cancel);
 }
 
 // Appends the subtree over order_[begin, end) in pre-order and returns its root's index.
-Index AabbTree::build(Index begin, Index end, const std::vector<Point>& centres, int leaf_size) {
+Index AabbTree::build(Index begin, Index end, const std::vector<Point>& centres, int leaf_size,
+                      CancelCheck* cancel) {
   const Index node = static_cast<Index>(nodes_.size());
   nodes_.push_back(Node{});
+  if (cancel != nullptr && cancel->due()) {  // stopped: an empty leaf
+    nodes_[node] = Node{empty_box(), begin, 0, kInvalidIndex};
+    return node;
+  }
   if (end - begin <= leaf_size) {
     std::sort(order_.begin() + begin, order_.begin() + end);
     Box box = empty_box();
@@ -79,8 +85,8 @@ Index AabbTree::build(Index begin, Index end, const std::vector<Point>& centres,
                      }
                      return a < b;
                    });
-  build(begin, mid, centres, leaf_size);
-  const Index right = build(mid, end, centres, leaf_size);
+  build(begin, mid, centres, leaf_size, cancel);
+  const Index right = build(mid, end, centres, leaf_size, cancel);
   nodes_[node].right = right;
   nodes_[node].box = nodes_[node + 1].box;  // inner boxes from the children, bottom-up
   enclose(nodes_[node].box, nodes_[right].box);

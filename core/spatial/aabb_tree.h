@@ -41,8 +41,11 @@ class AabbTree {
   AabbTree() = default;
 
   // Builds the tree over `boxes` (n boxes; box id i is boxes[i], n < 2^31). `leaf_size` >= 1 is
-  // the largest number of boxes a leaf holds.
-  explicit AabbTree(std::vector<Box> boxes, int leaf_size = kDefaultLeafSize);
+  // the largest number of boxes a leaf holds. With `cancel`, it is looked at while the tree is
+  // built; once it is stopped the rest of the tree is left as empty leaves (queries miss them),
+  // and the caller, which checks cancel->stopped(), drops the tree.
+  explicit AabbTree(std::vector<Box> boxes, int leaf_size = kDefaultLeafSize,
+                    CancelCheck* cancel = nullptr);
 
   // Number of boxes the tree was built from (empty boxes included).
   Index size() const { return static_cast<Index>(boxes_.size()); }
@@ -88,7 +91,8 @@ class AabbTree {
     Index right = kInvalidIndex;
   };
 
-  Index build(Index begin, Index end, const std::vector<Point>& centres, int leaf_size);
+  Index build(Index begin, Index end, const std::vector<Point>& centres, int leaf_size,
+              CancelCheck* cancel);
   void query(Index node, const Box& q, absl::FunctionRef<void(Index)> visit) const;
   void pairs_within(Index node, absl::FunctionRef<void(Index, Index)> visit,
                     CancelCheck* stop) const;

@@ -121,7 +121,8 @@ absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
   }
 
   if (cancel.look()) return cancelled();
-  s.tree_ = AabbTree(triangle_boxes(s.points_, s.triangles_));
+  s.tree_ =
+      AabbTree(triangle_boxes(s.points_, s.triangles_), AabbTree::kDefaultLeafSize, &cancel);
   if (cancel.look()) return cancelled();
   return s;
 }

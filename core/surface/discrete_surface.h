@@ -77,8 +77,8 @@ class DiscreteSurface {
   // with a non-finite coordinate, a triangle index out of range or repeated in a triangle, a
   // tag array of another length. Degenerate (zero-area) triangles are accepted: their normal
   // is the zero vector.
-  // CANCELLED soon after progress.cancelled() turns true (looked at between the steps and while
-  // the edges are sorted; the AABB tree's build is not interrupted).
+  // CANCELLED soon after progress.cancelled() turns true (looked at between the steps, while the
+  // edges are sorted and while the AABB tree is built).
   static absl::StatusOr<DiscreteSurface> build(const Mesh& mesh,
                                                const DiscreteSurfaceParams& params = {},
                                                Progress& progress = no_progress());
