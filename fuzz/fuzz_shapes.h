@@ -106,4 +106,18 @@ inline double largest_extent(const Mesh& m) {
   return extent;
 }
 
+// The fuzzed surface of the mesher targets: shape 0 a cube, 1 an octahedron (either with a
+// cube of half the size inside when `with_cavity`, then perturbed), 2 free triangles; then one
+// tag byte per triangle (%3). Reads its bytes from `in` in that order.
+inline Mesh shape_from_bytes(Bytes& in, int shape, bool with_cavity) {
+  Mesh m = shape == 0 ? cube(1.0) : shape == 1 ? octahedron() : free_triangles(in);
+  if (shape != 2) {
+    if (with_cavity) add_cavity(m, cube(0.5));
+    perturb(m, in);
+  }
+  m.triangle_tags.resize(m.triangles.size(), 0);
+  for (Index& tag : m.triangle_tags) tag = in.next() % 3;
+  return m;
+}
+
 }  // namespace afmesh::fuzz

@@ -40,15 +40,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::uint8_t options = in.next();
   const std::uint8_t size_byte = in.next();
 
-  afmesh::Mesh surface = shape == 0   ? afmesh::fuzz::cube(1.0)
-                         : shape == 1 ? afmesh::fuzz::octahedron()
-                                      : afmesh::fuzz::free_triangles(in);
-  if (shape != 2) {
-    if (options & 32) afmesh::fuzz::add_cavity(surface, afmesh::fuzz::cube(0.5));
-    afmesh::fuzz::perturb(surface, in);
-  }
-  surface.triangle_tags.resize(surface.triangles.size(), 0);
-  for (afmesh::Index& tag : surface.triangle_tags) tag = in.next() % 3;
+  afmesh::Mesh surface = afmesh::fuzz::shape_from_bytes(in, shape, (options & 32) != 0);
 
   const double extent = afmesh::fuzz::largest_extent(surface);
   if (!(extent > 0.0)) return 0;

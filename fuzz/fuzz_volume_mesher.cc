@@ -34,15 +34,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::uint8_t mode_byte = in.next();
   const std::uint8_t size_byte = in.next();
 
-  afmesh::Mesh front = shape == 0   ? afmesh::fuzz::cube(1.0)
-                       : shape == 1 ? afmesh::fuzz::octahedron()
-                                    : afmesh::fuzz::free_triangles(in);
-  if (shape != 2) {
-    if (mode_byte & 4) afmesh::fuzz::add_cavity(front, afmesh::fuzz::cube(0.5));
-    afmesh::fuzz::perturb(front, in);
-  }
-  front.triangle_tags.resize(front.triangles.size(), 0);
-  for (afmesh::Index& tag : front.triangle_tags) tag = in.next() % 3;
+  afmesh::Mesh front = afmesh::fuzz::shape_from_bytes(in, shape, (mode_byte & 4) != 0);
 
   const double extent = afmesh::fuzz::largest_extent(front);
   if (!(extent > 0.0)) return 0;
