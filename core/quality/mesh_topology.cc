@@ -18,8 +18,8 @@ struct HalfEdge {
 };
 
 // The half-edges ordered by (a, b, triangle, forward): bucketed by their lower point a (a
-// counting sort, O(M + N)), then each bucket, a point's few edges, sorted by the rest. The same
-// order as one comparison sort of them all, in a third of its time on 10^6 triangles.
+// counting sort, O(M + N)), then each bucket, a point's few edges, sorted by the rest: the same
+// order as one comparison sort of them all, without its O(M log M).
 std::vector<HalfEdge> sorted_half_edges(const std::vector<Triangle>& triangles,
                                         CancelCheck* cancel = nullptr) {
   const auto stop = [cancel] { return cancel != nullptr && cancel->due(); };

@@ -61,8 +61,8 @@ void repoint(EdgeNeighbours& neighbours, const std::vector<Triangle>& triangles,
 // outer edges keep their neighbours and orientation flags, moved to their new slots.
 void flip(std::vector<Triangle>& triangles, EdgeNeighbours& neighbours, Index t1, int k,
           Index t2, int j) {
-  const Index a = triangles[t1][k], b = triangles[t1][(k + 1) % 3], c = triangles[t1][(k + 2) % 3];
   const int k1 = (k + 1) % 3, k2 = (k + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+  const Index a = triangles[t1][k], b = triangles[t1][k1], c = triangles[t1][k2];
   const Index n_bc = neighbours.across[t1][k1], n_ca = neighbours.across[t1][k2];
   const Index n_ad = neighbours.across[t2][j1], n_db = neighbours.across[t2][j2];
   const bool w_bc = neighbours.same_way[t1][k1], w_ca = neighbours.same_way[t1][k2];

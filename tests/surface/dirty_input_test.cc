@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "core/quality/measures.h"
 #include "core/shapes/shapes.h"
 #include "core/surface/generate_surface_mesh.h"
 #include "gmock/gmock.h"
@@ -39,7 +40,7 @@ TEST(DirtyInput, AStopOnACleanInputAndOtherErrorsAreLeftAsTheyAre) {
 TEST(DirtyInput, MeshingBonesStopsNamingTheCrossings) {
   const Mesh bones = testing::corpus_mesh("cgal_bones.stl");
   SurfaceParams params;
-  params.size = 0.267444;  // the mean edge length
+  params.size = mean_edge_length(bones);
   const absl::StatusOr<SurfaceResult> result = generate_surface_mesh(bones, params);
   ASSERT_FALSE(result.ok()) << "bones closed: its crossings no longer stop a front";
   EXPECT_EQ(result.status().code(), absl::StatusCode::kFailedPrecondition);
