@@ -146,6 +146,9 @@ constexpr double kFacingCosine = 0.0;  // 90°: points and sides behind the side
 // tube, the far wall of a thin slot) makes a face standing across the gap, which the 2-D checks
 // in the side's plane cannot see.
 constexpr double kMinFaceCosine = 0.5;
+// A hole of three sides whose smallest angle is under this (degrees) is closed whichever way
+// round the plane of S6 sees it (PatchFront::closing_point; not in the paper).
+constexpr double kSliverHoleDeg = 10.0;
 
 // Relaxation of the acceptance rules for a side that has failed `attempts` times (not in the
 // paper; as the volume front's strictness_for): later attempts accept worse faces and new points
@@ -192,6 +195,12 @@ class PatchFront {
 
   // S2–S10 for side f; false when no face could be built on it now.
   bool delete_side(Index f);
+  // The third point of a hole of three sides that side v bounds, when nothing of the front
+  // lies inside it, else kInvalidIndex (not in the paper). Such a hole is closed by its own
+  // triangle, however thin: any other face on v would overlap the triangles around it, and
+  // where the hole is a sliver, the plane of S6 cannot tell (its corners' projections can turn
+  // the hole inside out on a curved surface, which then looks like open space).
+  Index closing_point(const Side& v, const SidePlane& plane);
   // S11, the end game: closes the small hole that side f bounds by ear clipping; false when
   // the hole is not a simple loop of at most kMaxHoleSides sides or cannot be cut into ears.
   bool fill_hole(Index f);
@@ -239,12 +248,20 @@ class PatchFront {
   void gather(const Side& v, const SidePlane& plane, const Point& best, double d,
               const SideRules& rules);
   bool new_point_is_clear(const Point& x, double d, const SideRules& rules, Index f) const;
-  bool face_crosses_front(Index f, const Side& v, Index p, const SidePlane& plane) const;
+  bool face_crosses_front(Index f, const Side& v, Index p, const SidePlane& plane,
+                          double clearance) const;
   void add_face(Index f, const Side& v, Index p);
   // Every triangle of the front goes through here: into s_ and into the incidence.
   void add_triangle(const Triangle& t);
-  // Whether a triangle of the front has directed edge (a, b) (has it on its left).
-  bool has_edge(Index a, Index b);
+  // Whether a triangle of the front has directed edge (a, b) (has it on its left), and, when
+  // c is given, is (a, b, c).
+  bool has_edge(Index a, Index b, Index c = kInvalidIndex);
+  // Whether a triangle built before has a new side of face (v, p) the way the face would have
+  // it: the two would lie over each other, wherever the plane of S6 puts their points (not
+  // in the paper; exact, from the incidence).
+  bool lies_over_a_triangle(const Side& v, Index p) {
+    return has_edge(v[1], p) || has_edge(p, v[0]);
+  }
   // Whether a triangle of `cavity` (sorted) shares a directed edge with a triangle outside it:
   // the two lie over each other (S6 let the front cross itself there).
   bool overlaps_outside(const std::vector<Index>& cavity);
@@ -352,19 +369,37 @@ bool segments_cross(const std::array<double, 2>& p, const std::array<double, 2>&
          (o4 == 0 && on(r, s, q));
 }
 
-bool PatchFront::face_crosses_front(Index f, const Side& v, Index p,
-                                    const SidePlane& plane) const {
+bool PatchFront::face_crosses_front(Index f, const Side& v, Index p, const SidePlane& plane,
+                                    double clearance) const {
   const std::array<double, 2> a = plane.at(s_.points[v[0]]), b = plane.at(s_.points[v[1]]),
                               c = plane.at(s_.points[p]);
   if (orient2d(a.data(), b.data(), c.data()) <= 0) return true;
+  // A new side that is already on the front the same way round has the patch's meshed part
+  // on the new face's side: the face would lie over a triangle built before. The crossing test
+  // below cannot see it (a front side sharing an end with a new side is not tested).
+  if (front_.find({v[0], p}) || front_.find({p, v[1]})) return true;
   Box box{s_.points[v[0]], s_.points[v[0]]};
   enclose(box, s_.points[v[1]]);
   enclose(box, s_.points[p]);
-  // A point strictly inside the new face, or on its two new sides, covers front space.
+  // A point strictly inside the new face, or on its two new sides, covers front space; one
+  // nearer than `clearance` to a new side would leave a sliver gap (not in the paper: a front
+  // point a rounding's width outside a new side, a line's middle point beside a face across
+  // both its sides, passes the exact test).
+  for (int k = 0; k < 3; ++k) box.lo[k] -= clearance, box.hi[k] += clearance;
+  const double clearance2 = clearance * clearance;
   bool covered = false;
   front_.bins().for_each_point_near(box, [&](Index q) {
-    if (covered || q == v[0] || q == v[1] || q == p || !faces_plane(q, plane)) return;
-    const std::array<double, 2> x = plane.at(s_.points[q]);
+    if (covered || q == v[0] || q == v[1] || q == p) return;
+    const Point& xq = s_.points[q];
+    if (squared_norm(sub(closest_point_on_segment(xq, s_.points[v[0]], s_.points[p]), xq)) <
+            clearance2 ||
+        squared_norm(sub(closest_point_on_segment(xq, s_.points[p], s_.points[v[1]]), xq)) <
+            clearance2) {
+      covered = true;
+      return;
+    }
+    if (!faces_plane(q, plane)) return;
+    const std::array<double, 2> x = plane.at(xq);
     covered = orient2d(a.data(), b.data(), x.data()) >= 0 &&
               orient2d(b.data(), c.data(), x.data()) >= 0 &&
               orient2d(c.data(), a.data(), x.data()) >= 0;
@@ -496,12 +531,50 @@ bool PatchFront::fill_hole(Index f) {
   return true;
 }
 
+Index PatchFront::closing_point(const Side& v, const SidePlane& plane) {
+  Index closing = kInvalidIndex;
+  front_.for_each_item_at(v[1], [&](Index g) {
+    const Side& w = front_.item(g).v;
+    if (closing == kInvalidIndex && w[0] == v[1] && w[1] != v[0] && front_.find({w[1], v[0]}))
+      closing = w[1];
+  });
+  if (closing == kInvalidIndex) return kInvalidIndex;
+  // The three sides may instead bound a meshed island (the seed triangle, whose sides face
+  // out): the loop then turns clockwise in the plane. A clockwise loop is taken for a hole only
+  // when it is a sliver the plane cannot judge and is not the reverse of a triangle there.
+  const std::array<double, 2> a = plane.at(s_.points[v[0]]), b = plane.at(s_.points[v[1]]),
+                              c = plane.at(s_.points[closing]);
+  const int turn = orient2d(a.data(), b.data(), c.data()) > 0 ? 1 : -1;
+  if (turn < 0 && (triangle_quality(s_.points[v[0]], s_.points[v[1]], s_.points[closing])
+                           .min_angle_deg >= kSliverHoleDeg ||
+                   has_edge(v[1], v[0], closing)))
+    return kInvalidIndex;
+  // An island of front inside the three sides (a hole of the patch smaller than the loop
+  // around it) keeps the loop open.
+  Box box{s_.points[v[0]], s_.points[v[0]]};
+  enclose(box, s_.points[v[1]]);
+  enclose(box, s_.points[closing]);
+  bool island = false;
+  front_.bins().for_each_point_near(box, [&](Index q) {
+    if (island || q == v[0] || q == v[1] || q == closing) return;
+    const std::array<double, 2> x = plane.at(s_.points[q]);
+    island = turn * orient2d(a.data(), b.data(), x.data()) > 0 &&
+             turn * orient2d(b.data(), c.data(), x.data()) > 0 &&
+             turn * orient2d(c.data(), a.data(), x.data()) > 0;
+  });
+  return island ? kInvalidIndex : closing;
+}
+
 bool PatchFront::delete_side(Index f) {
   const Side v = front_.item(f).v;
   const SideRules& rules = kRules[std::min<int>(front_.item(f).attempts, kRuleClasses - 1)];
   FaceId host;
   SidePlane plane;
   if (!plane_of(v, host, plane)) return false;
+  if (const Index y = closing_point(v, plane); y != kInvalidIndex) {
+    add_face(f, v, y);
+    return true;
+  }
   const double target = target_size(v);
   const double d = element_size(v, target);
   const double length = norm(sub(s_.points[v[1]], s_.points[v[0]]));
@@ -524,7 +597,8 @@ bool PatchFront::delete_side(Index f) {
         continue;
       }
     }
-    if (!face_crosses_front(f, v, p, plane)) {                               // S6
+    if (!face_crosses_front(f, v, p, plane, rules.side_clearance * d) &&   // S6
+        !lies_over_a_triangle(v, p)) {
       add_face(f, v, p);
       return true;
     }
@@ -566,13 +640,14 @@ void PatchFront::collect_cavity(const Side& seeds, const Point& x, double radius
   std::sort(cavity.begin(), cavity.end());
 }
 
-bool PatchFront::has_edge(Index a, Index b) {
+bool PatchFront::has_edge(Index a, Index b, Index c) {
   around_.clear();
   incidence_.elements_of(s_.triangles, a, around_);
   for (const Index t : around_) {
     const Triangle& k = s_.triangles[t];
     for (int e = 0; e < 3; ++e)
-      if (k[e] == a && k[(e + 1) % 3] == b) return true;
+      if (k[e] == a && k[(e + 1) % 3] == b && (c == kInvalidIndex || k[(e + 2) % 3] == c))
+        return true;
   }
   return false;
 }
