@@ -9,6 +9,7 @@
 
 #include "absl/container/flat_hash_map.h"
 #include "absl/container/flat_hash_set.h"
+#include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
@@ -228,6 +229,29 @@ constexpr double kMaxTrianglesOverExpected = 10.0;
 // plus one per this many of the triangles it should get.
 constexpr std::int64_t kMinBackOffs = 50;
 constexpr double kExpectedTrianglesPerBackOff = 100.0;
+// The patches together: an edge off the discrete lines is used by two triangles, once each way
+// (not in the paper; each patch is checked closed by mesh_patch, but two patches could still
+// cover the same place, where their lines leave a gap between corners). A fault is a
+// FAILED_PRECONDITION naming where, never a folded or open surface.
+absl::Status check_patches_meet_on_lines(const SurfaceMeshState& s) {
+  const TriangleTopology topology = analyze_triangle_topology(s.triangles);
+  for (const auto* groups :
+       {&topology.open_edges, &topology.nonmanifold_edges, &topology.misoriented_edges}) {
+    for (const EdgeGroup& g : *groups) {
+      if (s.line_sides.contains({std::min(g.a, g.b), std::max(g.a, g.b)})) continue;
+      const Point x = s.surface.to_global(s.points[g.a]);
+      std::string patches;
+      for (const Index t : g.triangles)
+        absl::StrAppend(&patches, patches.empty() ? "" : ", ", s.triangle_patch[t]);
+      return absl::FailedPreconditionError(absl::StrFormat(
+          "the surface fronts of the patches did not meet: edge (%d, %d) near (%g, %g, %g), off "
+          "the discrete lines, is used by %d triangles of patches %s",
+          g.a, g.b, x[0], x[1], x[2], g.triangles.size(), patches));
+    }
+  }
+  return absl::OkStatus();
+}
+
 std::vector<double> expected_patch_triangles(const SurfaceMeshState& s) {
   std::vector<double> expected(s.features.patches.size(), 0.0);
   const std::vector<Point>& p = s.surface.local_points();
@@ -367,6 +391,8 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
           "the surface has %d triangles after %d of its %d patches, over the limit of %d",
           s.triangles.size(), p + 1, features->patches.size(), params.max_triangles));
   }
+  if (absl::Status st = check_patches_meet_on_lines(s); !st.ok())
+    return explain_stuck(std::move(st), *clean, progress);
   clock.lap("front");
   if (absl::StatusOr<std::int64_t> flips =
           flip_edges(s.points, s.triangles, s.triangle_patch, s.line_sides, {}, progress);

@@ -201,6 +201,9 @@ class PatchFront {
   // where the hole is a sliver, the plane of S6 cannot tell (its corners' projections can turn
   // the hole inside out on a curved surface, which then looks like open space).
   Index closing_point(const Side& v, const SidePlane& plane);
+  // The live side leaving `at` that goes on the loop of a hole arriving at `at` from `from`
+  // (kInvalidIndex when none leaves it).
+  Index next_side_of_loop(Index at, Index from) const;
   // S11, the end game: closes the small hole that side f bounds by ear clipping; false when
   // the hole is not a simple loop of at most kMaxHoleSides sides or cannot be cut into ears.
   bool fill_hole(Index f);
@@ -442,18 +445,40 @@ void PatchFront::add_face(Index f, const Side& v, Index p) {
 // smallest angle) first, each checked in the hole's mean plane with exact tests.
 constexpr std::size_t kMaxHoleSides = 32;
 
+Index PatchFront::next_side_of_loop(Index at, Index from) const {
+  Index leaving = kInvalidIndex, count = 0;
+  front_.for_each_item_at(at, [&](Index g) {
+    if (front_.item(g).v[0] == at) leaving = g, ++count;
+  });
+  if (count <= 1) return leaving;
+  // Where the front touches itself at `at`, the loop of the hole goes on along the side that
+  // leaves the smallest angle, turning counter-clockwise about the patch's normal there, from
+  // it to the way back to `from`: the other sides at `at` belong to other loops.
+  const Point& n = s_.surface.normal(patch_hint(s_, patch_, at));
+  const Point back = sub(s_.points[from], s_.points[at]);
+  double smallest = std::numeric_limits<double>::infinity();
+  leaving = kInvalidIndex;
+  front_.for_each_item_at(at, [&](Index g) {
+    if (front_.item(g).v[0] != at) return;
+    const Point out = sub(s_.points[front_.item(g).v[1]], s_.points[at]);
+    double angle = std::atan2(dot(cross(out, back), n), dot(out, back));
+    if (angle <= 0) angle += 2 * M_PI;
+    if (angle < smallest) smallest = angle, leaving = g;
+  });
+  return leaving;
+}
+
 bool PatchFront::fill_hole(Index f) {
   // The loop: from each side's end, the one live side leaving it.
   std::vector<Index> loop = {f};
   std::vector<Index> corners = {front_.item(f).v[0]};
   Index at = front_.item(f).v[1];
   while (at != corners[0]) {
-    Index leaving = kInvalidIndex;
-    int count = 0;
-    front_.for_each_item_at(at, [&](Index g) {
-      if (front_.item(g).v[0] == at) leaving = g, ++count;
-    });
-    if (count != 1 || loop.size() >= kMaxHoleSides) return false;
+    const Index leaving = next_side_of_loop(at, corners.back());
+    // A loop through a point twice is two holes touching there, which ears cannot cut.
+    if (leaving == kInvalidIndex || loop.size() >= kMaxHoleSides ||
+        std::find(corners.begin(), corners.end(), at) != corners.end())
+      return false;
     loop.push_back(leaving);
     corners.push_back(at);
     at = front_.item(leaving).v[1];
@@ -539,16 +564,22 @@ Index PatchFront::closing_point(const Side& v, const SidePlane& plane) {
       closing = w[1];
   });
   if (closing == kInvalidIndex) return kInvalidIndex;
-  // The three sides may instead bound a meshed island (the seed triangle, whose sides face
-  // out): the loop then turns clockwise in the plane. A clockwise loop is taken for a hole only
-  // when it is a sliver the plane cannot judge and is not the reverse of a triangle there.
+  // The three sides may instead bound an island: the seed triangle, whose sides face out, or
+  // another patch inside this one, whose lines give this patch sides that face out. The loop
+  // then turns clockwise in the plane. A clockwise loop is taken for a hole only when it is a
+  // sliver the plane cannot judge, not the reverse of a triangle there, and either the whole
+  // front or made of sides the front built (a line's sides say on which side the patch is).
   const std::array<double, 2> a = plane.at(s_.points[v[0]]), b = plane.at(s_.points[v[1]]),
                               c = plane.at(s_.points[closing]);
   const int turn = orient2d(a.data(), b.data(), c.data()) > 0 ? 1 : -1;
-  if (turn < 0 && (triangle_quality(s_.points[v[0]], s_.points[v[1]], s_.points[closing])
-                           .min_angle_deg >= kSliverHoleDeg ||
-                   has_edge(v[1], v[0], closing)))
-    return kInvalidIndex;
+  if (turn < 0) {
+    const bool built = !initial_.contains({v[0], v[1]}) && !initial_.contains({v[1], closing}) &&
+                       !initial_.contains({closing, v[0]});
+    if (triangle_quality(s_.points[v[0]], s_.points[v[1]], s_.points[closing]).min_angle_deg >=
+            kSliverHoleDeg ||
+        has_edge(v[1], v[0], closing) || !(built || front_.size() == 3))
+      return kInvalidIndex;
+  }
   // An island of front inside the three sides (a hole of the patch smaller than the loop
   // around it) keeps the loop open.
   Box box{s_.points[v[0]], s_.points[v[0]]};
@@ -734,6 +765,41 @@ absl::Status PatchFront::stuck(Index f, std::string_view why, std::int64_t trian
       static_cast<std::int64_t>(s_.triangles.size()) - triangles_before, front_.size()));
 }
 
+// The patch's triangles from `first` on are a closed cover of the region its initial sides
+// bound: every directed edge used once, and its reverse too unless it is an initial side, which
+// every one is (not in the paper: a check of the result, so that a fault of the front is a
+// FAILED_PRECONDITION naming where, never a surface with a hole or a fold). O(N log N).
+absl::Status check_patch_closed(const SurfaceMeshState& s, PatchId patch,
+                                const std::vector<Side>& sides, std::size_t first) {
+  std::vector<Side> edges;
+  edges.reserve(3 * (s.triangles.size() - first));
+  for (std::size_t t = first; t < s.triangles.size(); ++t)
+    for (int e = 0; e < 3; ++e) edges.push_back({s.triangles[t][e], s.triangles[t][(e + 1) % 3]});
+  std::sort(edges.begin(), edges.end());
+  std::vector<Side> initial = sides;
+  std::sort(initial.begin(), initial.end());
+  const auto fault = [&](const Side& e, std::string_view what) {
+    const Point x = s.surface.to_global(s.points[e[0]]);
+    return absl::FailedPreconditionError(absl::StrFormat(
+        "the surface front of patch %d (input tag %d) did not close it: edge (%d, %d) near (%g, "
+        "%g, %g) %s",
+        index_of(patch), s.features.patches[index_of(patch)].tag, e[0], e[1], x[0], x[1], x[2],
+        what));
+  };
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const Side& e = edges[i];
+    if (i + 1 < edges.size() && edges[i + 1] == e)
+      return fault(e, "is used the same way by two triangles (they overlap)");
+    if (!std::binary_search(edges.begin(), edges.end(), Side{e[1], e[0]}) &&
+        !std::binary_search(initial.begin(), initial.end(), e))
+      return fault(e, "has a triangle on one side only (a hole)");
+  }
+  for (const Side& v : initial)
+    if (!std::binary_search(edges.begin(), edges.end(), v))
+      return fault(v, "is a side of the patch's lines with no triangle on it");
+  return absl::OkStatus();
+}
+
 }  // namespace
 
 absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Side>& sides,
@@ -773,7 +839,7 @@ absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Si
                     triangles_before, back_offs);
   }
   s.compact_patch(points_before, static_cast<std::size_t>(triangles_before));
-  return absl::OkStatus();
+  return check_patch_closed(s, patch, sides, static_cast<std::size_t>(triangles_before));
 }
 
 }  // namespace afmesh
