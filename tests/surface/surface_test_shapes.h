@@ -50,7 +50,7 @@ Mesh jittered(Mesh mesh, const std::function<double(const Point&)>& amplitude, u
 // A scan-like unit sphere around the origin of very uneven triangles: sphere_surface at
 // `largest`, refined by grade_surface to sizes from `smallest` at x = -1 to `largest` at x = 1,
 // then every point moved by a random vector (seeded) of length up to `noise` times the size
-// there (0.2 gives triangles down to 8°; 0.3 makes the surface cross itself).
+// there (0.2 gives triangles down to 8°; a third makes the surface cross itself).
 Mesh graded_noisy_sphere(double smallest, double largest, double noise, unsigned seed);
 
 // `mesh` with `count` of its triangles, chosen at random (seeded), turned the other way round
