@@ -12,7 +12,17 @@ refused = the input was refused before meshing (INVALID_ARGUMENT), stopped = the
 triangles with smallest angle >= 30 degrees, Hausdorff / bounding-box diagonal, and the first line
 of the message when the run did not succeed.
 
+With --volume, every file whose surface came out valid and closed is also filled with tets: the
+bench writes the surface (--out, Medit .mesh: shortest round-trip doubles), `afmesh volume` meshes
+it (its private server; default size: the surface's mean edge length, about the bench's size),
+and the independent checker ../shared/tools/check_volume.py (Debian's python3 with meshio and
+numpy) judges the tets against that surface. Four columns go before the message: the checker's
+verdict (valid, invalid, unchecked when it gave none; or the CLI's exit code, or timeout), the
+checker's tets and smallest dihedral angle, and the volume run's wall seconds (CLI and server);
+files not filled show "-". --keep DIR keeps the files. Without --volume the output is as before.
+
   bench/surface/run_corpus.py [--bench PATH] [--corpus DIR] [--timeout SEC] [--only a,b] [--json]
+                              [--volume [--cli PATH] [--check PATH] [--keep DIR]]
 """
 
 import argparse
@@ -21,12 +31,15 @@ import os
 import resource
 import subprocess
 import sys
+import tempfile
 import time
 
 SURFACE_DIR = os.path.dirname(os.path.abspath(__file__))
 REPO_DIR = os.path.dirname(os.path.dirname(SURFACE_DIR))
 DEFAULT_BENCH = os.path.join(REPO_DIR, "build", "release", "bench", "afmesh-bench-surface")
 DEFAULT_CORPUS = os.path.join(REPO_DIR, "..", "shared", "corpus")
+DEFAULT_CLI = os.path.join(REPO_DIR, "build", "release", "client", "afmesh")
+DEFAULT_CHECK = os.path.join(REPO_DIR, "..", "shared", "tools", "check_volume.py")
 
 
 def closed_files(corpus):
@@ -80,6 +93,46 @@ def judge(name, closed, rc, out, err):
     return outcome, {}, message
 
 
+def run_cli_volume(cli, surface, mesh, timeout, extra=()):
+    """`afmesh volume SURFACE -o MESH --json --quiet` (plus `extra` flags): a dict with outcome
+    (ok, exit N, timeout), cpu and wall s, and when ok the CLI's tets, boundary triangles, min
+    dihedral and % of tets under 20 degrees; otherwise the last line of its message."""
+    argv = [cli, "volume", surface, "-o", mesh, "--json", "--quiet", *extra]
+    rc, out, err, cpu, wall = run_timed(argv, timeout)
+    if rc is None:
+        return {"outcome": "timeout", "cpu": cpu, "wall": wall}
+    if rc != 0:
+        message = err.strip().splitlines()[-1] if err.strip() else ""
+        return {"outcome": f"exit {rc}", "message": message, "cpu": cpu, "wall": wall}
+    summary = json.loads(out)
+    quality = summary.get("quality", {})
+    return {"outcome": "ok", "tets": int(summary.get("tetCount", 0)),
+            "triangles": int(summary.get("triangleCount", 0)),
+            "min_dihedral": quality.get("minDihedralDeg", 0.0),
+            "below_20": 100.0 * quality.get("shareBelow20Deg", 0.0), "cpu": cpu, "wall": wall}
+
+
+def volume_of(args, surface, mesh):
+    """--volume for one file: its surface (written by the bench) filled by the CLI into `mesh`
+    and judged by the checker. A dict: outcome (valid, invalid, unchecked, exit N, timeout), cpu
+    and wall s of the volume run and, when the checker ran, its tets, min dihedral and the
+    checks that failed (message)."""
+    v = run_cli_volume(args.cli, surface, mesh, args.timeout)
+    if v["outcome"] != "ok":
+        return v
+    rc, out, err, _, _ = run_timed(
+        ["/usr/bin/python3", args.check, mesh, surface, "--json"], args.timeout)
+    try:
+        c = json.loads(out)
+    except ValueError:
+        return {**v, "outcome": "unchecked",
+                "message": (err.strip().splitlines() or ["checker exit %s" % rc])[-1]}
+    failed = [k for k in ("positive", "conform", "boundary", "volume") if not c[k]["pass"]]
+    return {**v, "outcome": "valid" if c["pass"] else "invalid", "tets": c["tets"],
+            "min_dihedral": c["quality"]["min_dihedral_deg"],
+            "message": "checks failed: " + ",".join(failed) if failed else ""}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--bench", default=DEFAULT_BENCH)
@@ -87,7 +140,17 @@ def main():
     ap.add_argument("--timeout", type=float, default=90.0)
     ap.add_argument("--only", default="", help="comma-separated file stems")
     ap.add_argument("--json", action="store_true", help="one JSON object per file")
+    ap.add_argument("--volume", action="store_true",
+                    help="also fill each valid closed output with tets and check them")
+    ap.add_argument("--cli", default=DEFAULT_CLI, help="afmesh CLI for --volume")
+    ap.add_argument("--check", default=DEFAULT_CHECK, help="check_volume.py for --volume")
+    ap.add_argument("--keep", default="",
+                    help="with --volume: keep the surfaces and volume meshes in DIR")
     args = ap.parse_args()
+    if args.keep:
+        os.makedirs(args.keep, exist_ok=True)
+    scratch = None if args.keep or not args.volume else tempfile.TemporaryDirectory()
+    work = args.keep or (scratch.name if scratch else "")
 
     corpus = os.path.abspath(args.corpus)
     closed = closed_files(corpus)
@@ -96,32 +159,59 @@ def main():
         wanted = set(args.only.split(","))
         names = [n for n in names if n[:-4] in wanted]
     counts = {}
+    volume_counts = {}
     total_cpu = 0.0
     if not args.json:
-        print("%-24s %-8s %8s %7s %7s %6s %6s %9s  %s" % (
-            "file", "outcome", "tris", "cpu s", "wall s", "min", "%>=30", "H/diag", "message"))
+        volume_header = "%-9s %8s %7s %7s " % ("volume", "tets", "min dih", "vol s")
+        print("%-24s %-8s %8s %7s %7s %6s %6s %9s %s %s" % (
+            "file", "outcome", "tris", "cpu s", "wall s", "min", "%>=30", "H/diag",
+            volume_header if args.volume else "", "message"))
     for name in names:
-        rc, out, err, cpu, wall = run_timed(
-            [args.bench, "--input", os.path.join(corpus, name), "--json"], args.timeout)
+        argv = [args.bench, "--input", os.path.join(corpus, name), "--json"]
+        surface = os.path.join(work, name[:-4] + ".surface.mesh")
+        if args.volume:
+            argv += ["--out", surface]
+        rc, out, err, cpu, wall = run_timed(argv, args.timeout)
         outcome, r, message = judge(name, closed, rc, out, err)
         counts[outcome] = counts.get(outcome, 0) + 1
         total_cpu += cpu
+        v = {}
+        # Closed: the bench's checks all passed ("closed" is the one it lets an open output fail).
+        if args.volume and outcome == "valid" and not r.get("failed_checks"):
+            v = volume_of(args, surface, os.path.join(work, name[:-4] + ".volume.msh"))
+            volume_counts[v["outcome"]] = volume_counts.get(v["outcome"], 0) + 1
         if args.json:
-            print(json.dumps({"file": name, "outcome": outcome, "cpu_seconds": cpu,
-                              "wall_seconds": wall, "message": message, "bench": r}))
+            line = {"file": name, "outcome": outcome, "cpu_seconds": cpu,
+                    "wall_seconds": wall, "message": message, "bench": r}
+            if args.volume:
+                line["volume"] = v
+            print(json.dumps(line))
         else:
             def cell(key, fmt, scale=1.0):
                 return fmt % (r[key] * scale) if key in r else "-"
             # The message names the file and size first; keep what follows.
             short = message.split(": ", 2)[-1] if message.startswith("/") else message
-            print("%-24s %-8s %8s %7.2f %7.2f %6s %6s %9s  %s" % (
+            volume_cells = ""
+            if args.volume:
+                volume_cells = "%-9s %8s %7s %7s " % (
+                    v.get("outcome", "-"), "%d" % v["tets"] if "tets" in v else "-",
+                    "%.2f" % v["min_dihedral"] if "min_dihedral" in v else "-",
+                    "%.2f" % v["wall"] if "wall" in v else "-")
+                short = v.get("message") or short
+            print("%-24s %-8s %8s %7.2f %7.2f %6s %6s %9s %s %s" % (
                 name[:-4], outcome, cell("triangles", "%d"), cpu, wall,
                 cell("min_angle", "%.1f"), cell("share_at_least_30", "%.1f", 100.0),
-                cell("hausdorff_over_diagonal", "%.2e"), short[:160]))
+                cell("hausdorff_over_diagonal", "%.2e"), volume_cells, short[:160]))
         sys.stdout.flush()
     summary = ", ".join("%s %d" % (k, counts.get(k, 0))
                         for k in ("valid", "open", "refused", "stopped", "timeout"))
     print("summary: %d files: %s; %.1f cpu s" % (len(names), summary, total_cpu))
+    if args.volume:
+        meshed = ", ".join("%s %d" % kv for kv in sorted(volume_counts.items()))
+        print("volume: %d valid closed surfaces filled: %s" % (
+            sum(volume_counts.values()), meshed or "none"))
+    if scratch:
+        scratch.cleanup()
 
 
 if __name__ == "__main__":

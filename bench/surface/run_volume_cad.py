@@ -13,14 +13,12 @@ cpu s (user + system of the CLI and its server) and wall s.
 """
 
 import argparse
-import json
 import os
 import sys
 import tempfile
 
-from run_corpus import DEFAULT_CORPUS, REPO_DIR, closed_files, run_timed
+from run_corpus import DEFAULT_CLI, DEFAULT_CORPUS, closed_files, run_cli_volume
 
-DEFAULT_CLI = os.path.join(REPO_DIR, "build", "release", "client", "afmesh")
 # The corpus's CAD tessellations (corpus README: CAD parts, not scans or terrain).
 CAD = ["cgal_pinion", "cgal_rotor", "cgal_couplingdown", "gmsh_lever", "netgen_hinge",
        "netgen_part1", "simbody_UR10_Wrist2", "of_simpleCar", "plb_obstacle"]
@@ -28,21 +26,8 @@ CAD = ["cgal_pinion", "cgal_rotor", "cgal_couplingdown", "gmsh_lever", "netgen_h
 
 def row(cli, path, remesh, timeout):
     with tempfile.TemporaryDirectory() as tmp:
-        argv = [cli, "volume", path, "-o", os.path.join(tmp, "out.msh"), "--json", "--quiet"]
-        if remesh:
-            argv.append("--remesh-surface")
-        rc, out, err, cpu, wall = run_timed(argv, timeout)
-    if rc is None:
-        return {"outcome": "timeout", "cpu": cpu, "wall": wall}
-    if rc != 0:
-        message = err.strip().splitlines()[-1] if err.strip() else ""
-        return {"outcome": f"exit {rc}", "message": message, "cpu": cpu, "wall": wall}
-    summary = json.loads(out)
-    quality = summary.get("quality", {})
-    return {"outcome": "ok", "tets": int(summary.get("tetCount", 0)),
-            "triangles": int(summary.get("triangleCount", 0)),
-            "min_dihedral": quality.get("minDihedralDeg", 0.0),
-            "below_20": 100.0 * quality.get("shareBelow20Deg", 0.0), "cpu": cpu, "wall": wall}
+        return run_cli_volume(cli, path, os.path.join(tmp, "out.msh"), timeout,
+                              ["--remesh-surface"] if remesh else [])
 
 
 def main():

@@ -41,21 +41,6 @@ double scan_squared_distance(const DiscreteSurface& s, const Point& x) {
   return best;
 }
 
-// A random unit vector.
-Point random_direction(std::mt19937& rng) {
-  std::normal_distribution<double> gauss(0.0, 1.0);
-  const Point v{gauss(rng), gauss(rng), gauss(rng)};
-  return scale(v, 1.0 / norm(v));
-}
-
-// `mesh` with every point moved by a random vector of length up to `amplitude` (a scan's noise).
-Mesh jittered(Mesh mesh, double amplitude, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  for (Point& p : mesh.points) p = add(p, scale(random_direction(rng), amplitude * unit(rng)));
-  return mesh;
-}
-
 TEST(DiscreteSurface, BuildRefusesBadInput) {
   Mesh mesh;
   mesh.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
@@ -151,8 +136,8 @@ WalkFigures compare_walk_and_tree(const DiscreteSurface& s, int queries, double 
     Point on = s.local_points()[t[0]];
     on = add(on, scale(sub(s.local_points()[t[1]], on), u));
     on = add(on, scale(sub(s.local_points()[t[2]], s.local_points()[t[0]]), v));
-    const Point x = add(on, scale(random_direction(rng), band * unit(rng)));
-    const Point from = add(on, scale(random_direction(rng), hint_distance));
+    const Point x = add(on, scale(testing::random_direction(rng), band * unit(rng)));
+    const Point from = add(on, scale(testing::random_direction(rng), hint_distance));
     const FaceId hint = s.nearest_face(from).face;
     const Located walked = s.locate(x, hint);
     const Located tree = s.nearest_face(x);
@@ -201,7 +186,8 @@ TEST(DiscreteSurface, WalkAgreesWithTheTreeNearATorus) {
 // A scan-like sphere: points jittered by a third of the edge length, so neighbouring normals
 // differ by tens of degrees and the distance to the surface is bumpy at the scale of a face.
 TEST(DiscreteSurface, WalkAgreesWithTheTreeNearANoisyScanLikeSphere) {
-  const DiscreteSurface s = build_or_die(jittered(sphere_surface({0, 0, 0}, 1.0, 0.04), 0.013, 5));
+  const DiscreteSurface s =
+      build_or_die(testing::jittered(sphere_surface({0, 0, 0}, 1.0, 0.04), 0.013, 5));
   const WalkFigures f = compare_walk_and_tree(s, 2000, 0.01, 0.12, 3);
   print("noisy sphere", s, f);
   EXPECT_EQ(f.same_distance, f.queries);

@@ -2,12 +2,20 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <numeric>
 #include <utility>
+#include <vector>
 
+#include "core/geometry/vec.h"
 #include "core/io/mesh_io.h"
+#include "core/shapes/graded_surface.h"
+#include "core/shapes/shapes.h"
+#include "core/sizing/size_field.h"
 
 namespace afmesh::testing {
 namespace {
@@ -144,6 +152,135 @@ Mesh three_sheet_t(int n) {
       for (int i = 0; i < n; ++i)
         add_quad(mesh, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
     }
+  }
+  return mesh;
+}
+
+Point random_direction(std::mt19937& rng) {
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  const Point v{gauss(rng), gauss(rng), gauss(rng)};
+  return scale(v, 1.0 / norm(v));
+}
+
+Mesh jittered(Mesh mesh, const std::function<double(const Point&)>& amplitude, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (Point& p : mesh.points) p = add(p, scale(random_direction(rng), amplitude(p) * unit(rng)));
+  return mesh;
+}
+
+Mesh jittered(Mesh mesh, double amplitude, unsigned seed) {
+  return jittered(std::move(mesh), [amplitude](const Point&) { return amplitude; }, seed);
+}
+
+namespace {
+
+// From `smallest` at x = -1 to `largest` at x = 1, linearly.
+class SizeAlongX final : public SizeField {
+ public:
+  SizeAlongX(double smallest, double largest) : smallest_(smallest), largest_(largest) {}
+  double size_at(const Point& x) const override {
+    const double t = std::clamp(0.5 * (x[0] + 1.0), 0.0, 1.0);
+    return smallest_ + t * (largest_ - smallest_);
+  }
+
+ private:
+  double smallest_, largest_;
+};
+
+}  // namespace
+
+Mesh graded_noisy_sphere(double smallest, double largest, double noise, unsigned seed) {
+  const SizeAlongX size(smallest, largest);
+  absl::StatusOr<Mesh> graded = grade_surface(sphere_surface({0, 0, 0}, 1.0, largest), size);
+  EXPECT_TRUE(graded.ok()) << graded.status();
+  if (!graded.ok()) return {};
+  return jittered(
+      *std::move(graded), [&](const Point& x) { return noise * size.size_at(x); }, seed);
+}
+
+Mesh with_flipped_triangles(Mesh mesh, std::int64_t count, unsigned seed) {
+  std::vector<std::size_t> order(mesh.triangles.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::shuffle(order.begin(), order.end(), std::mt19937(seed));
+  for (std::int64_t k = 0; k < count; ++k) {
+    Triangle& t = mesh.triangles[order[k]];
+    std::swap(t[1], t[2]);
+  }
+  return mesh;
+}
+
+namespace {
+
+// The x of `n` points inside (0, length), spaced geometrically (each gap 1.15 times the one
+// before it), dense at x = 0, or at x = length when `dense_at_end`.
+std::vector<double> geometric_stations(double length, int n, bool dense_at_end) {
+  std::vector<double> x;
+  double gap = 1.0, sum = 0.0;
+  for (int i = 0; i <= n; ++i, gap *= 1.15) sum += gap;
+  double at = 0.0;
+  gap = length / sum;
+  for (int i = 0; i < n; ++i, gap *= 1.15) x.push_back(at += gap);
+  if (dense_at_end)
+    for (double& v : x) v = length - v;
+  std::sort(x.begin(), x.end());
+  return x;
+}
+
+// Appends the strip zipped between the point rows `a` and `b` (each sorted by x, from x = 0 to
+// x = length, corners included), each triangle turned to face along `outward`: at each step the
+// row whose next point is nearer in x advances, as a CAD exporter zips a ruled face.
+void add_zipped_strip(Mesh& mesh, const std::vector<Index>& a, const std::vector<Index>& b,
+                      const Point& outward) {
+  std::size_t i = 0, j = 0;
+  while (i + 1 < a.size() || j + 1 < b.size()) {
+    const bool advance_a =
+        j + 1 == b.size() ||
+        (i + 1 < a.size() && mesh.points[a[i + 1]][0] <= mesh.points[b[j + 1]][0]);
+    Triangle t = advance_a ? Triangle{a[i], a[i + 1], b[j]} : Triangle{a[i], b[j + 1], b[j]};
+    (advance_a ? i : j) += 1;
+    const Point n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]),
+                          sub(mesh.points[t[2]], mesh.points[t[0]]));
+    if (dot(n, outward) < 0) std::swap(t[1], t[2]);
+    add_triangle(mesh, t[0], t[1], t[2]);
+  }
+}
+
+}  // namespace
+
+Mesh sliver_box(double length, double width, double height, int points_per_edge) {
+  Mesh mesh;
+  // The four edges along x, going round the x axis: (y, z) = (0, 0), (w, 0), (w, h), (0, h).
+  const std::array<std::array<double, 2>, 4> yz = {
+      {{0.0, 0.0}, {width, 0.0}, {width, height}, {0.0, height}}};
+  std::array<std::vector<Index>, 4> rows;
+  for (int e = 0; e < 4; ++e) {
+    std::vector<double> x = geometric_stations(length, points_per_edge, e % 2 == 1);
+    x.insert(x.begin(), 0.0);
+    x.push_back(length);
+    for (const double v : x) {
+      rows[e].push_back(static_cast<Index>(mesh.points.size()));
+      mesh.points.push_back({v, yz[e][0], yz[e][1]});
+    }
+  }
+  // The long faces, between edges e and e + 1: z = 0, y = w, z = h, y = 0.
+  const std::array<Point, 4> outward = {{{0, 0, -1}, {0, 1, 0}, {0, 0, 1}, {0, -1, 0}}};
+  for (int e = 0; e < 4; ++e) add_zipped_strip(mesh, rows[e], rows[(e + 1) % 4], outward[e]);
+  // The end faces x = 0 (normal -x: 0, 3, 2, 1 round it) and x = length (+x: 0, 1, 2, 3).
+  add_quad(mesh, rows[0].front(), rows[3].front(), rows[2].front(), rows[1].front());
+  add_quad(mesh, rows[0].back(), rows[1].back(), rows[2].back(), rows[3].back());
+  return mesh;
+}
+
+Mesh sliver_cylinder(double radius, double height, int around) {
+  Mesh mesh;
+  add_circle(mesh, 0, 0, radius, around, [](double, double) { return 0.0; });
+  add_circle(mesh, 0, 0, radius, around, [height](double, double) { return height; });
+  const auto at = [&](int i, int j) { return i * around + (j % around); };
+  for (int j = 0; j < around; ++j) add_quad(mesh, at(0, j), at(0, j + 1), at(1, j + 1), at(1, j));
+  for (int j = 1; j + 1 < around; ++j) {
+    add_triangle(mesh, at(0, 0), at(0, j + 1), at(0, j));
+    add_triangle(mesh, at(1, 0), at(1, j), at(1, j + 1));
   }
   return mesh;
 }

@@ -3,7 +3,9 @@
 // and the surface model with its features built in one call.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <random>
 #include <string>
 
 #include "core/mesh/mesh.h"
@@ -35,6 +37,39 @@ Mesh terrain_grid(double x0, double y0, double width, double depth, int n,
 // x < 0 and x > 0 of the plane z = 0 and the wall x = 0, z > 0), each an n×n grid of squares
 // split in two; the shared segment's edges have three faces.
 Mesh three_sheet_t(int n);
+
+// A random unit vector.
+Point random_direction(std::mt19937& rng);
+
+// `mesh` with every point moved by a random vector (seeded) of length up to `amplitude` (a scan's
+// noise; a third of the edge length makes neighbouring normals differ by tens of degrees), or up
+// to amplitude(point) for each point.
+Mesh jittered(Mesh mesh, double amplitude, unsigned seed);
+Mesh jittered(Mesh mesh, const std::function<double(const Point&)>& amplitude, unsigned seed);
+
+// A scan-like unit sphere around the origin of very uneven triangles: sphere_surface at
+// `largest`, refined by grade_surface to sizes from `smallest` at x = -1 to `largest` at x = 1,
+// then every point moved by a random vector (seeded) of length up to `noise` times the size
+// there (0.2 gives triangles down to 8°; a third makes the surface cross itself).
+Mesh graded_noisy_sphere(double smallest, double largest, double noise, unsigned seed);
+
+// `mesh` with `count` of its triangles, chosen at random (seeded), turned the other way round
+// (a surface of random winding, as STL files of some exporters are); count <= the triangles.
+Mesh with_flipped_triangles(Mesh mesh, std::int64_t count, unsigned seed);
+
+// A closed box [0, length] × [0, width] × [0, height] tessellated as CAD exporters do: only the
+// four edges along x carry points (spaced geometrically, dense at x = 0 on two opposite edges
+// and at x = length on the other two), each long face is one strip zipped between its two
+// edges, the end faces are two triangles each. The strips' triangles are fans of slivers: with
+// length 4, width 1, height 0.5 and 40 points per edge, angles well under 1° beside triangles
+// spanning half the part. Outward, 6 patches (tags 0), 12 ridges, 8 corners.
+Mesh sliver_box(double length, double width, double height, int points_per_edge);
+
+// A closed cylinder around the z axis, radius r, z in [0, height], tessellated as CAD exporters
+// do: `around` points per rim, the side one band of quads (two slivers each, the full height
+// long), each cap a fan from one of its rim points; every triangle has an angle of 180° / around.
+// Outward.
+Mesh sliver_cylinder(double radius, double height, int around);
 
 // The mesh of `name` in ../shared/corpus (real files from Debian packages; CI has ../shared
 // beside the checkout); a read failure is a test failure (and gives an empty mesh).
