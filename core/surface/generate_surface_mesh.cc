@@ -5,7 +5,6 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
-#include <numbers>
 
 #include "absl/container/flat_hash_map.h"
 #include "absl/container/flat_hash_set.h"
@@ -182,30 +181,6 @@ absl::Status sides_along_lines(SurfaceMeshState& s, std::vector<std::vector<Side
   return absl::OkStatus();
 }
 
-// A patch without lines (a closed smooth surface: a sphere, a torus) has no front to start
-// from: a seed triangle of the wanted size is laid on its first face, and its sides, turned
-// outward, are the front (not in the paper, which meshes patches bounded by lines).
-void seed_patch(SurfaceMeshState& s, PatchId patch, std::vector<Side>& sides) {
-  const FaceId face = s.features.patches[index_of(patch)].first_face;
-  const Triangle& t = s.surface.triangle(face);
-  const std::vector<Point>& p = s.surface.local_points();
-  const Point c = scale(add(p[t[0]], add(p[t[1]], p[t[2]])), 1.0 / 3.0);
-  const double h = s.field_size(c);
-  const Point& n = s.surface.normal(face);
-  Point e = sub(p[t[1]], p[t[0]]);
-  e = scale(e, 1.0 / norm(e));
-  const Point f = cross(n, e);
-  Index ids[3];
-  for (int k = 0; k < 3; ++k) {
-    const double angle = 2.0 * std::numbers::pi * k / 3.0;
-    const Point x = add(c, scale(add(scale(e, std::cos(angle)), scale(f, std::sin(angle))),
-                                 h / std::sqrt(3.0)));
-    const Located on = locate_in_patch(s.surface, s.features, patch, x, face);
-    ids[k] = s.add_point(on.closest, h, on.face, kInvalidIndex);
-  }
-  s.add_triangle({ids[0], ids[1], ids[2]}, patch);
-  sides = {{ids[1], ids[0]}, {ids[2], ids[1]}, {ids[0], ids[2]}};
-}
 
 // The boxes of the patches (their input faces), padded by 1% of their extent.
 std::vector<Box> patch_boxes(const DiscreteSurface& surface, const SurfaceFeatures& features) {
@@ -377,7 +352,6 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   const std::vector<double> expected = expected_patch_triangles(s);
   for (std::size_t p = 0; p < features->patches.size(); ++p) {
     const PatchId patch{static_cast<Index>(p)};
-    if (patch_sides[p].empty()) seed_patch(s, patch, patch_sides[p]);
     PatchFrontParams front_params;
     front_params.max_triangles = static_cast<std::int64_t>(
         kMaxTrianglesOverExpected * expected[p] + 4.0 * patch_sides[p].size() + 1000.0);

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <optional>
 #include <string_view>
 
 #include "absl/strings/str_format.h"
@@ -190,6 +192,8 @@ class PatchFront {
     front_.add(v, queue_key(v));
     initial_.insert({v[0], v[1]});
   }
+  // The seed triangle of a patch without lines (lay_seed), before its sides.
+  void add_seed(const Triangle& t) { add_triangle(t); }
   void defer(Index f) { front_.defer(f, queue_key(front_.item(f).v)); }
   AdvancingFront<2>& front() { return front_; }
 
@@ -260,10 +264,17 @@ class PatchFront {
   // c is given, is (a, b, c).
   bool has_edge(Index a, Index b, Index c = kInvalidIndex);
   // Whether a triangle built before has a new side of face (v, p) the way the face would have
-  // it: the two would lie over each other, wherever the plane of S6 puts their points (not
-  // in the paper; exact, from the incidence).
+  // it, so that the two would lie over each other, or a new side is a side of a discrete line
+  // the face would be on the wrong side of (the line's other patch is there): wherever the
+  // plane of S6 puts their points, which near a sharp corner can fold a face over a ridge (not
+  // in the paper; exact, from the incidence and the lines).
   bool lies_over_a_triangle(const Side& v, Index p) {
-    return has_edge(v[1], p) || has_edge(p, v[0]);
+    return has_edge(v[1], p) || has_edge(p, v[0]) || off_its_patch(v[1], p) ||
+           off_its_patch(p, v[0]);
+  }
+  // Whether edge (a, b) of a triangle of the patch is a line's side with the patch on its right.
+  bool off_its_patch(Index a, Index b) const {
+    return s_.line_sides.contains({std::min(a, b), std::max(a, b)}) && !initial_.contains({a, b});
   }
   // Whether a triangle of `cavity` (sorted) shares a directed edge with a triangle outside it:
   // the two lie over each other (S6 let the front cross itself there).
@@ -800,22 +811,53 @@ absl::Status check_patch_closed(const SurfaceMeshState& s, PatchId patch,
   return absl::OkStatus();
 }
 
+// A patch without lines (a closed smooth surface: a sphere, a torus) has no front to start
+// from: a seed triangle of the wanted size is laid on its first face, and its sides, turned
+// outward, are the front (not in the paper, which meshes patches bounded by lines).
+Triangle lay_seed(SurfaceMeshState& s, PatchId patch, std::vector<Side>& sides) {
+  const FaceId face = s.features.patches[index_of(patch)].first_face;
+  const Triangle& t = s.surface.triangle(face);
+  const std::vector<Point>& p = s.surface.local_points();
+  const Point c = scale(add(p[t[0]], add(p[t[1]], p[t[2]])), 1.0 / 3.0);
+  const double h = s.field_size(c);
+  const Point& n = s.surface.normal(face);
+  Point e = sub(p[t[1]], p[t[0]]);
+  e = scale(e, 1.0 / norm(e));
+  const Point f = cross(n, e);
+  Index ids[3];
+  for (int k = 0; k < 3; ++k) {
+    const double angle = 2.0 * std::numbers::pi * k / 3.0;
+    const Point x = add(c, scale(add(scale(e, std::cos(angle)), scale(f, std::sin(angle))),
+                                 h / std::sqrt(3.0)));
+    const Located on = locate_in_patch(s.surface, s.features, patch, x, face);
+    ids[k] = s.add_point(on.closest, h, on.face, kInvalidIndex);
+  }
+  sides = {{ids[1], ids[0]}, {ids[2], ids[1]}, {ids[0], ids[2]}};
+  return {ids[0], ids[1], ids[2]};
+}
+
 }  // namespace
 
 absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Side>& sides,
                         const Box& domain, const PatchFrontParams& params, Progress& progress) {
-  if (sides.empty()) return absl::OkStatus();
-  double cell = std::numeric_limits<double>::infinity();
-  for (const Side& v : sides)
-    cell = std::min(cell, std::max(s.point_size[v[0]], norm(sub(s.points[v[1]], s.points[v[0]]))));
-  PatchFront pf(s, patch, domain, cell);
-  for (const Side& v : sides) pf.add_initial_side(v);
   const std::int64_t triangles_before = static_cast<std::int64_t>(s.triangles.size());
   const Index points_before = static_cast<Index>(s.points.size());
+  // A patch without lines starts from a seed, which is the patch's own triangle: the checks
+  // and the back-offs see it as every other.
+  std::vector<Side> seed_sides;
+  const std::optional<Triangle> seed =
+      sides.empty() ? std::optional<Triangle>(lay_seed(s, patch, seed_sides)) : std::nullopt;
+  const std::vector<Side>& initial = seed ? seed_sides : sides;
+  double cell = std::numeric_limits<double>::infinity();
+  for (const Side& v : initial)
+    cell = std::min(cell, std::max(s.point_size[v[0]], norm(sub(s.points[v[1]], s.points[v[0]]))));
+  PatchFront pf(s, patch, domain, cell);
+  if (seed) pf.add_seed(*seed);
+  for (const Side& v : initial) pf.add_initial_side(v);
   std::int64_t steps = 0, back_offs = 0;
   while (std::optional<Index> f = pf.front().pop()) {                         // S1, S11
     const std::int64_t built = static_cast<std::int64_t>(s.triangles.size()) - triangles_before;
-    if (++steps > params.steps_per_item * (built + static_cast<std::int64_t>(sides.size())) +
+    if (++steps > params.steps_per_item * (built + static_cast<std::int64_t>(initial.size())) +
                       params.step_slack)
       return pf.stuck(*f, "too many steps", triangles_before, back_offs);
     if (built > params.max_triangles)
@@ -839,7 +881,7 @@ absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Si
                     triangles_before, back_offs);
   }
   s.compact_patch(points_before, static_cast<std::size_t>(triangles_before));
-  return check_patch_closed(s, patch, sides, static_cast<std::size_t>(triangles_before));
+  return check_patch_closed(s, patch, initial, static_cast<std::size_t>(triangles_before));
 }
 
 }  // namespace afmesh

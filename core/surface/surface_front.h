@@ -111,10 +111,12 @@ struct PatchFrontParams {
 };
 
 // S1–S11 for `patch` from its initial sides (each oriented with the patch on its left; corners
-// and line points already in s.points). `domain` bounds the patch (its bins' box). Appends the
+// and line points already in s.points), or, when there are none (a patch without lines), from a
+// seed triangle laid on its first face. `domain` bounds the patch (its bins' box). Appends the
 // patch's triangles (tag: the patch's input tag) and its new points to s (those a back-off left
 // unused are dropped, compact_patch). CANCELLED once progress is cancelled; FAILED_PRECONDITION
-// when a side cannot be closed even after the back-offs allowed, naming where.
+// when a side cannot be closed even after the back-offs allowed, or when the result is not a
+// closed cover of the patch, naming where.
 absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Side>& sides,
                         const Box& domain, const PatchFrontParams& params, Progress& progress);
 
