@@ -159,7 +159,7 @@ TEST(GenerateSurfaceMesh, OpenTerrainFarFromTheOrigin) {
 // degrees apart; and one graded from 0.015 to 0.12 across x, jittered by a fifth of the size
 // (triangles down to 8°, sizes 1 to 8). The output is closed, on the input, within three
 // noise amplitudes of it, of the quality of a smooth input's, and fills with tets.
-// At the default angles the first stops: Regression.DISABLED_Issue11NoisySphereAtDefaultAngles.
+// At the default angles the first is Regression.Issue11NoisySphereAtDefaultAngles.
 TEST(GenerateSurfaceMesh, NoisyScanLikeSpheresAreClosedAndFill) {
   struct Case {
     const char* name;
