@@ -91,6 +91,15 @@ SurfaceResult mesh_at(const Mesh& input, double size) {
   return r.ok() ? *std::move(r) : SurfaceResult{};
 }
 
+// A corpus file (testing::corpus_mesh) meshed at its mean edge length, as run_corpus.py does.
+absl::StatusOr<SurfaceResult> mesh_corpus_at_mean_edge(const std::string& name) {
+  const Mesh input = testing::corpus_mesh(name);
+  if (input.triangles.empty()) return absl::NotFoundError("no corpus file " + name);
+  SurfaceParams params;
+  params.size = mean_edge_length(input);
+  return generate_surface_mesh(input, params);
+}
+
 void print(const char* name, const SurfaceResult& r) {
   const Figures f = figures_of(r.mesh);
   std::printf("%s: %zu triangles, min angle %.2f, >=30: %.4f, mean edge %.4f, hausdorff %.2e "
@@ -307,11 +316,7 @@ TEST(GenerateSurfaceMesh, StopsWithCancelledAtEveryLook) {
 // wanted 1.03, 8 sides left); the front now backs off (re-opens the triangles around the side
 // and meshes the cavity again) and the surface closes. Back-offs leave no unused point.
 TEST(Regression, Issue11StuckFrontBacksOffAndCloses) {
-  const Mesh input = testing::corpus_mesh("netgen_part1.stl");
-  ASSERT_FALSE(input.triangles.empty());
-  SurfaceParams params;
-  params.size = mean_edge_length(input);
-  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge("netgen_part1.stl");
   ASSERT_TRUE(r.ok()) << r.status();
   expect_closed_valid(r->mesh);
   EXPECT_LT(r->report.hausdorff, 0.05 * r->report.model_size);
@@ -353,11 +358,7 @@ TEST(Regression, Issue11NoisySphereAtDefaultAngles) {
 // patch is closed, but together they use edges four times. The job stops naming the edge and
 // the patches, and says that the input crosses itself, rather than returning the fold.
 TEST(Regression, Issue11PatchesOverlappingOnADirtyInputStopTheJob) {
-  const Mesh input = testing::corpus_mesh("of_cyclone.stl");
-  ASSERT_FALSE(input.triangles.empty());
-  SurfaceParams params;
-  params.size = mean_edge_length(input);
-  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge("of_cyclone.stl");
   ASSERT_EQ(r.status().code(), absl::StatusCode::kFailedPrecondition) << r.status();
   EXPECT_NE(r.status().message().find("did not meet"), std::string::npos) << r.status();
   EXPECT_NE(r.status().message().find("intersects itself"), std::string::npos) << r.status();
@@ -402,14 +403,10 @@ double total_area(const Mesh& m) {
 // is now closed by its own triangle, and no face may repeat a triangle's directed edge. The
 // output covers the input once.
 TEST(Regression, Issue11SliverHoleOnAKnotIsClosedNotCoveredAgain) {
-  const Mesh input = testing::corpus_mesh("cgal_knot1.stl");
-  ASSERT_FALSE(input.triangles.empty());
-  SurfaceParams params;
-  params.size = mean_edge_length(input);
-  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge("cgal_knot1.stl");
   ASSERT_TRUE(r.ok()) << r.status();
   expect_closed_valid(r->mesh);
-  EXPECT_NEAR(total_area(r->mesh) / total_area(input), 1.0, 0.01);
+  EXPECT_NEAR(total_area(r->mesh) / total_area(testing::corpus_mesh("cgal_knot1.stl")), 1.0, 0.01);
   EXPECT_GE(figures_of(r->mesh).min_angle, 15.0);
 }
 
@@ -419,11 +416,7 @@ TEST(Regression, Issue11SliverHoleOnAKnotIsClosedNotCoveredAgain) {
 // its mean edge stopped ("no face, and no back-off left") with the exact edge check alone, and
 // closes with the clearance.
 TEST(Regression, Issue11FacePassingAFrontPointAtARoundingsWidthIsRefused) {
-  const Mesh input = testing::corpus_mesh("simbody_UR10_Wrist2.stl");
-  ASSERT_FALSE(input.triangles.empty());
-  SurfaceParams params;
-  params.size = mean_edge_length(input);
-  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge("simbody_UR10_Wrist2.stl");
   ASSERT_TRUE(r.ok()) << r.status();
   expect_closed_valid(r->mesh);
   // The file holds most of its triangles twice (corpus README: 8313 non-manifold edges), so
