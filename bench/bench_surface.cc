@@ -80,19 +80,22 @@ int run(const std::string& input, double size, double ridge_angle, double curvat
         .add("under_15", under_15).add("mean_edge_over_h", edges / (3 * n) / params.size)
         .add("hausdorff_over_diagonal", r.hausdorff / r.model_size)
         .add("patches", r.patches).add("lines", r.lines).add("corners", r.corners)
+        .add("short_ridges_dropped", r.short_ridges_dropped)
         .add("valid", valid).add("failed_checks", failed);
     std::printf("%s\n", j.str().c_str());
   } else {
     std::printf(
         "%s: size %g: %.0f triangles in %.3f s (%.0f/s), %.0f bytes/triangle peak; min angle "
         "%.2f, >= 30: %.2f%%, < 15: %lld; mean edge / h %.3f; Hausdorff %.2e of the diagonal; "
-        "%lld patches, %lld lines, %lld corners; dropped %lld degenerate, %lld duplicate, "
+        "%lld patches, %lld lines, %lld corners (%lld short free ridges dropped); dropped %lld "
+        "degenerate, %lld duplicate, "
         "reoriented %lld; %s\n",
         input.c_str(), params.size, n, seconds, n / seconds,
         static_cast<double>(memory.growth_bytes()) / n, min_angle, 100.0 * at_least_30 / n,
         static_cast<long long>(under_15), edges / (3 * n) / params.size,
         r.hausdorff / r.model_size, static_cast<long long>(r.patches),
         static_cast<long long>(r.lines), static_cast<long long>(r.corners),
+        static_cast<long long>(r.short_ridges_dropped),
         static_cast<long long>(r.degenerate_triangles_dropped),
         static_cast<long long>(r.duplicate_triangles_dropped),
         static_cast<long long>(r.triangles_reoriented),

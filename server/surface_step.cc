@@ -41,6 +41,9 @@ void add_repair_notes(const SurfaceReport& report, std::vector<std::string>& not
   note(report.unused_points_dropped, "points of the input on no triangle were dropped");
   note(report.triangles_reoriented,
        "triangles of the input were turned to agree with their component's orientation");
+  note(report.short_ridges_dropped,
+       "ridges of the input that end freely and are shorter than twice the size were not kept as "
+       "lines");
 }
 
 }  // namespace
@@ -168,6 +171,7 @@ void fill_surface_summary(const SurfaceOutcome& outcome, v1::SurfaceSummary& sum
   features.set_patches(count(report.patches));
   features.set_lines(count(report.lines));
   features.set_corners(count(report.corners));
+  features.set_short_ridges_dropped(count(report.short_ridges_dropped));
 
   v1::SurfaceDistance& distance = *summary.mutable_distance();
   distance.set_hausdorff(report.hausdorff);

@@ -49,6 +49,8 @@ std::uint8_t two_face_edge_kinds(const DiscreteSurface& s, double cos_ridge, Ind
   return kinds;
 }
 
+void index_line_graph(Index point_count, LineGraph& graph);
+
 // Step 1: every line edge, ascending by (a, b), with its incidence by vertex.
 LineGraph collect_line_edges(const DiscreteSurface& s, double cos_ridge) {
   LineGraph graph;
@@ -72,7 +74,13 @@ LineGraph collect_line_edges(const DiscreteSurface& s, double cos_ridge) {
   std::sort(graph.edges.begin(), graph.edges.end(), [](const LineEdge& x, const LineEdge& y) {
     return std::tie(x.a, x.b) < std::tie(y.a, y.b);
   });
-  graph.offsets.assign(s.point_count() + 1, 0);
+  index_line_graph(s.point_count(), graph);
+  return graph;
+}
+
+// The incidence of graph.edges by vertex.
+void index_line_graph(Index point_count, LineGraph& graph) {
+  graph.offsets.assign(point_count + 1, 0);
   for (const LineEdge& e : graph.edges) {
     ++graph.offsets[e.a + 1];
     ++graph.offsets[e.b + 1];
@@ -84,7 +92,61 @@ LineGraph collect_line_edges(const DiscreteSurface& s, double cos_ridge) {
     graph.incident[next[graph.edges[e].a]++] = e;
     graph.incident[next[graph.edges[e].b]++] = e;
   }
-  return graph;
+}
+
+// Step 1, last: drops the short free ridges (FeatureParams::short_ridge_sizes) from `graph`.
+// Each chain is walked from its free end once per time that end is reached: O(E).
+void drop_short_free_ridges(const DiscreteSurface& s, const FeatureParams& params,
+                            LineGraph& graph, SurfaceFeatures& out) {
+  if (params.sizes == nullptr) return;
+  std::vector<Index> degree(s.point_count());
+  for (Index v = 0; v < s.point_count(); ++v) degree[v] = graph.degree(v);
+  std::vector<bool> dropped(graph.edges.size(), false);
+  const auto live_edge_other_than = [&](Index v, Index edge) {
+    for (Index i = graph.offsets[v]; i < graph.offsets[v + 1]; ++i)
+      if (const Index e = graph.incident[i]; e != edge && !dropped[e]) return e;
+    return kInvalidIndex;
+  };
+  std::vector<Index> free_ends, chain_edges, chain_vertices;
+  for (Index v = 0; v < s.point_count(); ++v)
+    if (degree[v] == 1) free_ends.push_back(v);
+  while (!free_ends.empty()) {
+    const Index start = free_ends.back();
+    free_ends.pop_back();
+    if (degree[start] != 1) continue;
+    chain_edges.clear();
+    chain_vertices.assign(1, start);
+    double length = 0.0;
+    bool ridge_only = true;
+    Index at = start, edge = kInvalidIndex;
+    do {
+      edge = live_edge_other_than(at, edge);
+      ridge_only = ridge_only && graph.edges[edge].kinds == kRidgeEdge;
+      const Index next = graph.other(edge, at);
+      length += norm(sub(s.local_points()[next], s.local_points()[at]));
+      chain_edges.push_back(edge);
+      chain_vertices.push_back(next);
+      at = next;
+    } while (degree[at] == 2 && at != start);
+    const Point middle = s.local_points()[chain_vertices[chain_vertices.size() / 2]];
+    if (!ridge_only ||
+        !(length < params.short_ridge_sizes * params.sizes->size_at(s.to_global(middle))))
+      continue;
+    for (const Index e : chain_edges) {
+      dropped[e] = true;
+      --degree[graph.edges[e].a];
+      --degree[graph.edges[e].b];
+    }
+    ++out.short_ridges_dropped;
+    out.short_ridge_edges_dropped += static_cast<std::int64_t>(chain_edges.size());
+    if (degree[at] == 1) free_ends.push_back(at);
+  }
+  if (out.short_ridge_edges_dropped == 0) return;
+  std::vector<LineEdge> kept;
+  for (std::size_t e = 0; e < graph.edges.size(); ++e)
+    if (!dropped[e]) kept.push_back(std::move(graph.edges[e]));
+  graph.edges = std::move(kept);
+  index_line_graph(s.point_count(), graph);
 }
 
 // Step 2: the CornerKind bits of every vertex (0: not a corner).
@@ -172,12 +234,13 @@ absl::StatusOr<SurfaceFeatures> find_surface_features(const DiscreteSurface& sur
                                                       Progress& progress) {
   if (absl::Status status = check_params(params); !status.ok()) return status;
   const double cos_ridge = cos_degrees(params.ridge_angle_deg);
-  const LineGraph graph = collect_line_edges(surface, cos_ridge);
+  LineGraph graph = collect_line_edges(surface, cos_ridge);
+  SurfaceFeatures out;
+  drop_short_free_ridges(surface, params, graph, out);
   if (progress.cancelled()) return absl::CancelledError("surface features: cancelled");
   std::vector<std::uint8_t> corner =
       corner_kinds(surface, graph, cos_degrees(params.corner_angle_deg));
 
-  SurfaceFeatures out;
   out.line_edge_count = static_cast<std::int64_t>(graph.edges.size());
   std::vector<bool> used(graph.edges.size(), false);
   std::vector<std::vector<Index>> edges_of_line;

@@ -17,6 +17,7 @@
 //     - a tag edge: two faces with different input tags (Medit references, Gmsh physical tags).
 //     An edge next to a degenerate face (zero normal) is a ridge only for the other reasons (our
 //     choice: such a face has no direction to compare).
+//     Short free ridges are dropped (FeatureParams::short_ridge_sizes; not in the paper).
 //  2. Corners: input vertices where a line ends (one line edge), where more than two line edges
 //     meet (the paper's definition), or where a line turns by more than corner_angle_deg (these
 //     two are ours: a line must keep its end, and a rim's sharp turn must not be cut by sides).
@@ -38,6 +39,7 @@
 #include "absl/status/statusor.h"
 #include "core/common/progress.h"
 #include "core/mesh/mesh.h"
+#include "core/sizing/size_field.h"
 #include "core/surface/discrete_surface.h"
 
 namespace afmesh {
@@ -73,6 +75,15 @@ struct FeatureParams {
   // 60° is netgen's STL default (edgecornerangle): the corners of a square plate (90°) split its
   // rim, a circle of 7 or more segments (turns <= 51.4°) stays one line. 180 never splits.
   double corner_angle_deg = 60.0;
+  // Short free ridges (not in the paper): a chain of ridge edges only, from a vertex where it
+  // ends freely (one line edge) to its next corner, shorter than short_ridge_sizes times the
+  // size at its middle vertex, is not a line. Scans have many (noise across a few facets, 173
+  // free ends on cgal_hand at 30°), and a ridge shorter than two elements cannot be followed by
+  // sides anyway; its short sides stop the front. Dropping a chain that ends freely never splits
+  // or joins patches. Chains are dropped repeatedly, so a tree of short branches goes. No size
+  // field keeps every ridge.
+  const SizeField* sizes = nullptr;  // in the surface's global frame
+  double short_ridge_sizes = 2.0;
 };
 
 struct Corner {
@@ -102,6 +113,10 @@ struct SurfaceFeatures {
   std::vector<Patch> patches;        // ascending by first_face
   std::vector<PatchId> face_patch;   // M: the patch of every face
   std::int64_t line_edge_count = 0;  // input edges on lines
+  // The short free ridges that are not lines (FeatureParams::short_ridge_sizes): chains and
+  // their input edges.
+  std::int64_t short_ridges_dropped = 0;
+  std::int64_t short_ridge_edges_dropped = 0;
 };
 
 // The features of `surface` (steps 1–4 above). INVALID_ARGUMENT for angles out of range,

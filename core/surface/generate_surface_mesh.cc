@@ -320,6 +320,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   FeatureParams feature_params;
   feature_params.ridge_angle_deg = params.ridge_angle_deg;
   feature_params.corner_angle_deg = params.corner_angle_deg;
+  feature_params.sizes = field->get();
   absl::StatusOr<SurfaceFeatures> features =
       find_surface_features(*surface, feature_params, progress);
   if (!features.ok()) return features.status();
@@ -327,6 +328,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   result.report.patches = static_cast<std::int64_t>(features->patches.size());
   result.report.lines = static_cast<std::int64_t>(features->lines.size());
   result.report.corners = static_cast<std::int64_t>(features->corners.size());
+  result.report.short_ridges_dropped = features->short_ridges_dropped;
   clock.lap("features");
 
   const double growth = std::max(params.spec ? params.spec->growth : params.growth,

@@ -62,6 +62,9 @@ struct SurfaceReport {
   std::int64_t patches = 0;
   std::int64_t lines = 0;
   std::int64_t corners = 0;
+  // Ridges that end freely and are shorter than twice the size: not kept as lines
+  // (FeatureParams::short_ridge_sizes).
+  std::int64_t short_ridges_dropped = 0;
   // Two-sided Hausdorff distance between output and input (sampled: vertices, edge midpoints
   // and centroids of each), and the largest distance of an output vertex from the input.
   double hausdorff = 0.0;

@@ -67,6 +67,7 @@ SurfaceResult result_with(Mesh mesh) {
                    .patches = 4,
                    .lines = 6,
                    .corners = 4,
+                   .short_ridges_dropped = 5,
                    .hausdorff = 0.125,
                    .max_vertex_distance = 0.0625,
                    .model_size = 1.75};
@@ -281,9 +282,10 @@ TEST_F(MeshSurfaceServiceTest, WarningsComeBeforeTheSlicesAndTheSummaryLast) {
       warnings.push_back(response.warning().message());
     }
   }
-  ASSERT_EQ(warnings.size(), 4u);  // the four repair counts of result_with
+  ASSERT_EQ(warnings.size(), 5u);  // the four repair counts of result_with, the short ridges
   EXPECT_THAT(warnings[0], HasSubstr("1 duplicate triangles"));
   EXPECT_THAT(warnings[3], HasSubstr("4 triangles of the input were turned"));
+  EXPECT_THAT(warnings[4], HasSubstr("5 ridges of the input that end freely"));
 }
 
 TEST_F(MeshSurfaceServiceTest, SummaryCarriesCountsQualityRepairFeaturesDistanceAndTimings) {
@@ -307,6 +309,7 @@ TEST_F(MeshSurfaceServiceTest, SummaryCarriesCountsQualityRepairFeaturesDistance
   EXPECT_EQ(summary.features().patches(), 4u);
   EXPECT_EQ(summary.features().lines(), 6u);
   EXPECT_EQ(summary.features().corners(), 4u);
+  EXPECT_EQ(summary.features().short_ridges_dropped(), 5u);
   EXPECT_EQ(summary.distance().hausdorff(), 0.125);
   EXPECT_EQ(summary.distance().max_vertex_distance(), 0.0625);
   EXPECT_EQ(summary.distance().model_size(), 1.75);

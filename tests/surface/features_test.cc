@@ -10,7 +10,9 @@
 #include <string>
 #include <utility>
 
+#include "core/quality/measures.h"
 #include "core/shapes/shapes.h"
+#include "core/sizing/size_field.h"
 #include "tests/surface/surface_test_shapes.h"
 
 namespace afmesh {
@@ -256,6 +258,42 @@ TEST(SurfaceFeatures, ResultDependsOnlyOnTheInput) {
     EXPECT_EQ(a.features.lines[i].vertices, b.features.lines[i].vertices);
   }
   EXPECT_EQ(a.features.face_patch, b.features.face_patch);
+}
+
+// Short free ridges (FeatureParams::short_ridge_sizes) at a size of the mean edge: a terrain
+// scan and a hand scan lose some of their ridges, each chain of them ending freely, and a CAD
+// part whose ridges all run corner to corner loses none. The results stay consistent (faces
+// either side of a dropped edge share their patch), the patches are those found with every
+// ridge, and the counts add up.
+TEST(SurfaceFeatures, ShortFreeRidgesGoAndThePatchesStay) {
+  for (const std::string name : {"cgal_three_peaks.stl", "cgal_hand.stl", "netgen_part1.stl"}) {
+    SCOPED_TRACE(name);
+    const Mesh mesh = testing::corpus_mesh(name);
+    ASSERT_FALSE(mesh.triangles.empty());
+    const Model all = surface_model(mesh);
+    const UniformSize size(mean_edge_length(mesh));
+    FeatureParams params;
+    params.sizes = &size;
+    const Model pruned = surface_model(mesh, params);
+    expect_consistent(pruned);
+    const SurfaceFeatures& f = pruned.features;
+    std::printf("%s: %lld of %lld line edges dropped in %lld short free ridges; lines %zu -> "
+                "%zu, corners %zu -> %zu, patches %zu\n",
+                name.c_str(), static_cast<long long>(f.short_ridge_edges_dropped),
+                static_cast<long long>(all.features.line_edge_count),
+                static_cast<long long>(f.short_ridges_dropped), all.features.lines.size(),
+                f.lines.size(), all.features.corners.size(), f.corners.size(),
+                f.patches.size());
+    EXPECT_EQ(all.features.short_ridges_dropped, 0);
+    EXPECT_EQ(f.line_edge_count + f.short_ridge_edges_dropped, all.features.line_edge_count);
+    EXPECT_EQ(f.face_patch, all.features.face_patch);
+    if (name == "netgen_part1.stl") {
+      EXPECT_EQ(f.short_ridges_dropped, 0);
+    } else {
+      EXPECT_GT(f.short_ridges_dropped, 0);
+      EXPECT_LT(f.lines.size(), all.features.lines.size());
+    }
+  }
 }
 
 }  // namespace
