@@ -240,15 +240,26 @@ class PatchFront {
     return scale(add(s_.points[v[0]], s_.points[v[1]]), 0.5);
   }
   bool plane_of(const Side& v, FaceId& host, SidePlane& plane) const;
-  // Whether point q's side of the patch faces the plane's way (its normal within 90° of the
-  // plane's): the 2-D checks of S6 see only such points and sides. Where the patch curves
-  // round by more (a small cylinder meshed with few sides), the points behind would project
-  // onto the plane over the points in front (not in the paper; Figure 6's problem carried on).
+  // The plane of face (v, p) itself, through the side's midpoint. S6 is checked in it too (not
+  // in the paper): where the patch creases (a scan's fold, sharper than the ridge angle but
+  // along a ridge that ends inside the patch) the face can rise far out of the host's plane,
+  // and a front side it covers there can pass beside it in the host's plane.
+  SidePlane face_plane(const Side& v, Index p) const {
+    const Point along = sub(s_.points[v[1]], s_.points[v[0]]);
+    Point n = cross(along, sub(s_.points[p], s_.points[v[0]]));
+    n = scale(n, 1.0 / norm(n));
+    const Point t = scale(along, 1.0 / norm(along));
+    return {midpoint(v), t, cross(n, t), n};
+  }
   // Whether face (v, x) lies within kMinFaceCosine of the plane (its normal near n).
   bool lies_along(const Side& v, const Point& x, const SidePlane& plane) const {
     const Point normal = cross(sub(s_.points[v[1]], s_.points[v[0]]), sub(x, s_.points[v[0]]));
     return dot(normal, plane.n) >= kMinFaceCosine * norm(normal);
   }
+  // Whether point q's side of the patch faces the plane's way (its normal within 90° of the
+  // plane's): the 2-D checks of S6 see only such points and sides. Where the patch curves
+  // round by more (a small cylinder meshed with few sides), the points behind would project
+  // onto the plane over the points in front (not in the paper; Figure 6's problem carried on).
   bool faces_plane(Index q, const SidePlane& plane) const {
     return dot(s_.surface.normal(patch_hint(s_, patch_, q)), plane.n) > kFacingCosine;
   }
@@ -640,6 +651,7 @@ bool PatchFront::delete_side(Index f) {
       }
     }
     if (!face_crosses_front(f, v, p, plane, rules.side_clearance * d) &&   // S6
+        !face_crosses_front(f, v, p, face_plane(v, p), rules.side_clearance * d) &&
         !lies_over_a_triangle(v, p)) {
       add_face(f, v, p);
       return true;

@@ -439,5 +439,15 @@ TEST(Regression, Issue11ShortFreeRidgesOfATerrainAreNotLines) {
   EXPECT_LT(r->report.hausdorff, 0.01 * r->report.model_size);
 }
 
+// inv_coil (a CAD coil) at its mean edge stopped with "far more triangles than the size asks"
+// where faces rose far out of the plane of their side's host face. S6 now checks a face in its
+// own plane too, and the coil closes.
+TEST(Regression, Issue11FaceIsCheckedInItsOwnPlaneToo) {
+  const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge("inv_coil.stl");
+  ASSERT_TRUE(r.ok()) << r.status();
+  expect_closed_valid(r->mesh);
+  EXPECT_LT(r->report.hausdorff, 0.01 * r->report.model_size);
+}
+
 }  // namespace
 }  // namespace afmesh
