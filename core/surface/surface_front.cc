@@ -151,6 +151,9 @@ constexpr double kMinFaceCosine = 0.5;
 // A hole of three sides whose smallest angle is under this (degrees) is closed whichever way
 // round the plane of S6 sees it (PatchFront::closing_point; not in the paper).
 constexpr double kSliverHoleDeg = 10.0;
+// Two triangles sharing an edge inside a patch whose normals differ by more than 120° fold over
+// each other (PatchFront::folds_over_a_neighbour; not in the paper).
+constexpr double kFoldCosine = -0.5;
 
 // Relaxation of the acceptance rules for a side that has failed `attempts` times (not in the
 // paper; as the volume front's strictness_for): later attempts accept worse faces and new points
@@ -260,9 +263,36 @@ class PatchFront {
   // plane's): the 2-D checks of S6 see only such points and sides. Where the patch curves
   // round by more (a small cylinder meshed with few sides), the points behind would project
   // onto the plane over the points in front (not in the paper; Figure 6's problem carried on).
-  bool faces_plane(Index q, const SidePlane& plane) const {
-    return dot(s_.surface.normal(patch_hint(s_, patch_, q)), plane.n) > kFacingCosine;
+  Point triangle_normal(const Triangle& t) const {
+    const Point m =
+        cross(sub(s_.points[t[1]], s_.points[t[0]]), sub(s_.points[t[2]], s_.points[t[0]]));
+    const double length = norm(m);
+    return length > 0 ? scale(m, 1.0 / length) : m;
   }
+  // A line point that the patch lies on both sides of (a crease that ends inside the patch)
+  // faces the plane when a face of the patch around it does: its host may be on either side.
+  bool faces_plane(Index q, const SidePlane& plane) const {
+    if (dot(s_.surface.normal(patch_hint(s_, patch_, q)), plane.n) > kFacingCosine) return true;
+    if (s_.anchor[q] == kInvalidIndex) return false;
+    for (const Index g : s_.surface.faces_at(s_.anchor[q]))
+      if (in_patch(s_.features, patch_, g) &&
+          dot(s_.surface.normal(FaceId{g}), plane.n) > kFacingCosine)
+        return true;
+    return false;
+  }
+  // The plane of the surface at front point a: through a, normal to the mean of the unit
+  // normals of the patch's triangles at a and of a's host face. Where the surface turns fast
+  // round a (a cone's apex, a scan's spike) this is the axis the fan of triangles turns about,
+  // which the side's plane can be far from.
+  SidePlane vertex_plane(Index a, const Point& along) const;
+  // Whether new face (v, p) fits the gaps the front leaves at the side's two ends: at v[0],
+  // ray v[0]→p lies within the unmeshed angle from v[0]→v[1] round (counter-clockwise) to the
+  // front side arriving at v[0]; at v[1] likewise, from the side leaving v[1] round to
+  // v[1]→v[0]. Checked in the vertex planes with exact orientation tests (not in the paper: the
+  // angle check of the classical advancing front; the crossing checks of S6 work in the side's
+  // plane, which can fold a fan over itself at an apex of the surface).
+  bool fits_the_gaps(const Side& v, Index p) const;
+  bool fits_the_gap_at(Index apex, Index from, Index p, bool at_start) const;
   void gather(const Side& v, const SidePlane& plane, const Point& best, double d,
               const SideRules& rules);
   bool new_point_is_clear(const Point& x, double d, const SideRules& rules, Index f) const;
@@ -283,6 +313,12 @@ class PatchFront {
     return has_edge(v[1], p) || has_edge(p, v[0]) || off_its_patch(v[1], p) ||
            off_its_patch(p, v[0]);
   }
+  // Whether triangle t would fold over a triangle of the patch across one of its edges that is
+  // not a line's side: their normals more than kFoldDeg apart (not in the paper: the input
+  // turns by less than the ridge angle there, and a face laid back onto its neighbour — the
+  // two sides of a crease, a pinch of the front — lies over it, which the checks in one
+  // plane cannot see; exact on the topology, the angle measured on the two triangles).
+  bool folds_over_a_neighbour(const Triangle& t);
   // Whether edge (a, b) of a triangle of the patch is a line's side with the patch on its right.
   bool off_its_patch(Index a, Index b) const {
     return s_.line_sides.contains({std::min(a, b), std::max(a, b)}) && !initial_.contains({a, b});
@@ -308,7 +344,8 @@ class PatchFront {
   RepairCounts repairs_;
   std::vector<Side> edges_;
   std::vector<Candidate> candidates_;
-  std::vector<Index> cavity_, cavity_points_, around_;
+  std::vector<Index> cavity_, cavity_points_;
+  mutable std::vector<Index> around_;
   mutable std::vector<Index> near_;
 };
 
@@ -327,6 +364,64 @@ bool PatchFront::plane_of(const Side& v, FaceId& host, SidePlane& plane) const {
   plane.u = cross(n, plane.t);
   plane.n = n;
   return true;
+}
+
+SidePlane PatchFront::vertex_plane(Index a, const Point& along) const {
+  Point n = s_.surface.normal(patch_hint(s_, patch_, a));
+  around_.clear();
+  incidence_.elements_of(s_.triangles, a, around_);
+  for (const Index t : around_) {
+    const Triangle& k = s_.triangles[t];
+    const Point m = cross(sub(s_.points[k[1]], s_.points[k[0]]), sub(s_.points[k[2]], s_.points[k[0]]));
+    if (const double length = norm(m); length > 0) n = add(n, scale(m, 1.0 / length));
+  }
+  SidePlane plane{s_.points[a], {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  const double length = norm(n);
+  if (!(length > 0)) return plane;
+  plane.n = scale(n, 1.0 / length);
+  const Point tangent = sub(along, scale(plane.n, dot(along, plane.n)));
+  if (!(norm(tangent) > 0)) return plane;
+  plane.t = scale(tangent, 1.0 / norm(tangent));
+  plane.u = cross(plane.n, plane.t);
+  return plane;
+}
+
+bool PatchFront::fits_the_gap_at(Index apex, Index from, Index p, bool at_start) const {
+  // The front side that bounds the gap at `apex` on the far side from `from`: arriving at the
+  // apex when it is the side's start, leaving it when it is the side's end; where the front
+  // touches itself at the apex, the one met first turning from `from` into the unmeshed side.
+  const SidePlane plane = vertex_plane(apex, sub(s_.points[from], s_.points[apex]));
+  if (!(squared_norm(plane.t) > 0)) return true;  // no plane to judge in
+  const std::array<double, 2> o{0.0, 0.0}, f = plane.at(s_.points[from]);
+  const auto turn = [&](Index q) {  // angle from `from` to q about the apex, into the gap
+    const std::array<double, 2> x = plane.at(s_.points[q]);
+    double angle = std::atan2(x[1], x[0]);  // plane.t points at `from`
+    if (!at_start) angle = -angle;
+    return angle <= 0 ? angle + 2 * std::numbers::pi : angle;
+  };
+  Index bound = kInvalidIndex;
+  double smallest = std::numeric_limits<double>::infinity();
+  front_.for_each_item_at(apex, [&](Index g) {
+    const Side& w = front_.item(g).v;
+    const Index q = at_start ? (w[1] == apex ? w[0] : kInvalidIndex)
+                             : (w[0] == apex ? w[1] : kInvalidIndex);
+    if (q == kInvalidIndex || q == from) return;
+    if (const double angle = turn(q); angle < smallest) smallest = angle, bound = q;
+  });
+  if (bound == kInvalidIndex || bound == p) return true;  // p closes the gap
+  // Within the wedge from `from` to `bound` (counter-clockwise at the start, clockwise at the
+  // end), strictly.
+  std::array<double, 2> first = f, last = plane.at(s_.points[bound]);
+  if (!at_start) std::swap(first, last);
+  const std::array<double, 2> x = plane.at(s_.points[p]);
+  const int after_first = orient2d(o.data(), first.data(), x.data());
+  const int before_last = orient2d(o.data(), x.data(), last.data());
+  if (orient2d(o.data(), first.data(), last.data()) > 0) return after_first > 0 && before_last > 0;
+  return after_first > 0 || before_last > 0;  // a gap wider than a half turn
+}
+
+bool PatchFront::fits_the_gaps(const Side& v, Index p) const {
+  return fits_the_gap_at(v[0], v[1], p, true) && fits_the_gap_at(v[1], v[0], p, false);
 }
 
 void PatchFront::gather(const Side& v, const SidePlane& plane, const Point& best, double d,
@@ -624,7 +719,8 @@ bool PatchFront::delete_side(Index f) {
   FaceId host;
   SidePlane plane;
   if (!plane_of(v, host, plane)) return false;
-  if (const Index y = closing_point(v, plane); y != kInvalidIndex) {
+  if (const Index y = closing_point(v, plane);
+      y != kInvalidIndex && !folds_over_a_neighbour({v[0], v[1], y})) {
     add_face(f, v, y);
     return true;
   }
@@ -652,7 +748,8 @@ bool PatchFront::delete_side(Index f) {
     }
     if (!face_crosses_front(f, v, p, plane, rules.side_clearance * d) &&   // S6
         !face_crosses_front(f, v, p, face_plane(v, p), rules.side_clearance * d) &&
-        !lies_over_a_triangle(v, p)) {
+        !lies_over_a_triangle(v, p) && fits_the_gaps(v, p) &&
+        !folds_over_a_neighbour({v[0], v[1], p})) {
       add_face(f, v, p);
       return true;
     }
@@ -702,6 +799,23 @@ bool PatchFront::has_edge(Index a, Index b, Index c) {
     for (int e = 0; e < 3; ++e)
       if (k[e] == a && k[(e + 1) % 3] == b && (c == kInvalidIndex || k[(e + 2) % 3] == c))
         return true;
+  }
+  return false;
+}
+
+bool PatchFront::folds_over_a_neighbour(const Triangle& t) {
+  const Point n = triangle_normal(t);
+  for (int e = 0; e < 3; ++e) {
+    const Index a = t[e], b = t[(e + 1) % 3];
+    if (s_.line_sides.contains({std::min(a, b), std::max(a, b)})) continue;
+    around_.clear();
+    incidence_.elements_of(s_.triangles, b, around_);
+    for (const Index u : around_) {
+      const Triangle& k = s_.triangles[u];
+      for (int g = 0; g < 3; ++g)
+        if (k[g] == b && k[(g + 1) % 3] == a && dot(n, triangle_normal(k)) < kFoldCosine)
+          return true;
+    }
   }
   return false;
 }
