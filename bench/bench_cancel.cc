@@ -1,6 +1,6 @@
 // afmesh-bench-cancel: how long the server's MeshVolume job (server/default_volume_job.h: the
 // front, compaction, optimisation, then quality and validation) or its MeshSurface job
-// (generate_surface_mesh: input, surface, features, curvature, lines, front, flips, distance)
+// (generate_surface_mesh: input, surface, features, curvature, lines, front, flips, smoothing, distance)
 // runs on after its call is cancelled, stage by stage (issue 12: a cancelled call frees its
 // worker within 100 ms).
 //

@@ -10,8 +10,12 @@
 //     corners, patches; the size bounded by the input's curvature (curvature_sizes.h, eq. 20–22).
 //  4. Sides along every line (split_lines.h, F3), shared by the patches on both sides.
 //  5. Each patch meshed in turn from its sides by the surface front, S1–S11.
-//  6. The result assembled (corners and line points shared), checked, and its distance to the
-//     input measured (two-sided Hausdorff, sampled at vertices, edge midpoints and centroids).
+//  6. The result assembled (corners and line points shared) and checked.
+//  7. Edge flips inside the patches (flip_edges.h), then the points inside them smoothed on the
+//     input (smooth_points.h): neither is in the paper, both keep every point on the input and
+//     every line as meshed.
+//  8. Its distance to the input measured (two-sided Hausdorff, sampled at vertices, edge
+//     midpoints and centroids).
 #pragma once
 
 #include <cstdint>

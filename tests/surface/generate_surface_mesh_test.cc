@@ -286,8 +286,9 @@ class CancelAfter final : public Progress {
 };
 
 // Issue 12: every step of the surface job looks at its Progress (features, curvature, lines,
-// each patch's front, the flips, the distance), and a cancel seen at any look ends the job
-// with CANCELLED; a job never cancelled gives the same surface as without a Progress.
+// each patch's front, the flips, the smoothing, the distance), and a cancel seen at any look
+// ends the job with CANCELLED; a job never cancelled gives the same surface as without a
+// Progress.
 TEST(GenerateSurfaceMesh, StopsWithCancelledAtEveryLook) {
   const Mesh input = testing::closed_cylinder(1.0, 2.0, 48, 12);
   SurfaceParams params;

@@ -1,0 +1,93 @@
+#include "core/surface/smooth_points.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "core/geometry/vec.h"
+#include "core/mesh/simplex_incidence.h"
+#include "core/quality/measures.h"
+
+namespace afmesh {
+namespace {
+
+Point unit_normal(const Point& a, const Point& b, const Point& c) {
+  const Point n = cross(sub(b, a), sub(c, a));
+  const double length = norm(n);
+  return length > 0 ? scale(n, 1.0 / length) : n;
+}
+
+// The fan of point q with q at `x`: its smallest angle, and whether every triangle's normal
+// stays within `min_cosine` of `before` (its normal with q where it was).
+struct Fan {
+  double min_angle = 180.0;
+  bool turned = false;
+};
+
+Fan fan_at(const SurfaceMeshState& s, Index q, const Point& x, const std::vector<Index>& fan,
+           const std::vector<Point>& before, double min_cosine) {
+  Fan out;
+  for (std::size_t i = 0; i < fan.size(); ++i) {
+    const Triangle& t = s.triangles[fan[i]];
+    const auto at = [&](Index k) -> const Point& { return k == q ? x : s.points[k]; };
+    out.min_angle = std::min(out.min_angle, triangle_quality(at(t[0]), at(t[1]), at(t[2])).min_angle_deg);
+    if (!before.empty() && dot(unit_normal(at(t[0]), at(t[1]), at(t[2])), before[i]) < min_cosine)
+      out.turned = true;
+  }
+  return out;
+}
+
+}  // namespace
+
+absl::StatusOr<std::int64_t> smooth_points(SurfaceMeshState& s, const SmoothParams& params,
+                                           Progress& progress) {
+  SimplexIncidence<3> incidence;
+  for (Index t = 0; t < static_cast<Index>(s.triangles.size()); ++t) incidence.add(s.triangles, t);
+  const double min_cosine = std::cos(params.max_normal_turn_deg * std::numbers::pi / 180.0);
+  CancelCheck cancel(progress, 1024);  // each point a walk and a few fans
+  std::vector<Index> fan;
+  std::vector<Point> before;
+  // A point is looked at in a pass when it or a neighbour moved in the one before.
+  std::vector<char> due(s.points.size(), 1), next(s.points.size(), 0);
+  std::int64_t moves = 0;
+  for (int pass = 0; pass < params.max_passes; ++pass) {
+    std::int64_t moved = 0;
+    for (Index q = 0; q < static_cast<Index>(s.points.size()); ++q) {
+      if (cancel.due()) return absl::CancelledError("surface meshing cancelled");
+      if (!due[q] || s.anchor[q] != kInvalidIndex) continue;  // a corner or a line point
+      fan.clear();
+      incidence.elements_of(s.triangles, q, fan);
+      if (fan.size() < 3) continue;
+      const double now = fan_at(s, q, s.points[q], fan, {}, min_cosine).min_angle;
+      if (now >= params.good_fan_deg) continue;
+      // The mean of the fan's other corners, in the patch's tangent plane after projection.
+      Point mean{0, 0, 0};
+      before.clear();
+      for (const Index t : fan) {
+        const Triangle& k = s.triangles[t];
+        for (const Index r : k)
+          if (r != q) mean = add(mean, s.points[r]);
+        before.push_back(unit_normal(s.points[k[0]], s.points[k[1]], s.points[k[2]]));
+      }
+      mean = scale(mean, 1.0 / (2.0 * static_cast<double>(fan.size())));
+      const PatchId patch{s.triangle_patch[fan[0]]};
+      const Located on =                                                         // S8
+          locate_in_patch(s.surface, s.features, patch, mean, patch_hint(s, patch, q));
+      const Fan moved_fan = fan_at(s, q, on.closest, fan, before, min_cosine);
+      if (moved_fan.turned || !(moved_fan.min_angle >= now + params.min_gain_deg)) continue;
+      s.points[q] = on.closest;
+      s.host[q] = on.face;
+      ++moved;
+      for (const Index t : fan)
+        for (const Index r : s.triangles[t]) next[r] = 1;
+    }
+    moves += moved;
+    if (moved == 0) break;
+    due.swap(next);
+    std::fill(next.begin(), next.end(), 0);
+  }
+  return moves;
+}
+
+}  // namespace afmesh
