@@ -6,19 +6,23 @@
 
 namespace afmesh::server {
 
-SurfaceAngles angles_of(const v1::SurfaceOptions& options) {
-  SurfaceAngles angles{.ridge_deg = options.ridge_angle_deg(),
-                       .corner_deg = options.corner_angle_deg()};
+namespace {
+
+// SurfaceOptions and VolumeOptions carry the same three angle fields.
+template <typename Options>
+SurfaceAngles angles_in(const Options& options) {
+  SurfaceAngles angles;
+  angles.ridge_deg = options.ridge_angle_deg();
+  angles.corner_deg = options.corner_angle_deg();
   if (options.has_curvature_angle_deg()) angles.curvature_deg = options.curvature_angle_deg();
   return angles;
 }
 
-SurfaceAngles angles_of(const v1::VolumeOptions& options) {
-  SurfaceAngles angles{.ridge_deg = options.ridge_angle_deg(),
-                       .corner_deg = options.corner_angle_deg()};
-  if (options.has_curvature_angle_deg()) angles.curvature_deg = options.curvature_angle_deg();
-  return angles;
-}
+}  // namespace
+
+SurfaceAngles angles_of(const v1::SurfaceOptions& options) { return angles_in(options); }
+
+SurfaceAngles angles_of(const v1::VolumeOptions& options) { return angles_in(options); }
 
 bool any_angle_given(const SurfaceAngles& angles) {
   return angles.ridge_deg != 0.0 || angles.corner_deg != 0.0 || angles.curvature_deg.has_value();
