@@ -19,8 +19,7 @@ std::pair<Index, Index> edge_key(Index a, Index b) { return {std::min(a, b), std
 }  // namespace
 
 std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
-                                          const SurfaceFeatures& features, double alpha_p_deg,
-                                          double growth) {
+                                          const SurfaceFeatures& features, double alpha_p_deg) {
   const std::vector<Point>& p = surface.local_points();
   const std::vector<Triangle>& t = surface.triangles();
   std::vector<double> size(p.size(), std::numeric_limits<double>::infinity());
@@ -53,7 +52,13 @@ std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
       size[b] = std::min(size[b], l_p);
     }
   }
-  // Grading: the smallest delta_i + (c_i - 1) |x_j - x_i| over the surface's edges (Dijkstra).
+  return size;
+}
+
+void grade_point_sizes(const DiscreteSurface& surface, double growth, std::vector<double>& size) {
+  const std::vector<Point>& p = surface.local_points();
+  const std::vector<Triangle>& t = surface.triangles();
+  // The smallest delta_i + (c_i - 1) |x_j - x_i| over the surface's edges (Dijkstra).
   const double rate = std::max(growth, 1.0) - 1.0;
   using Item = std::pair<double, Index>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
@@ -74,7 +79,6 @@ std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
       }
     }
   }
-  return size;
 }
 
 double CurvatureLimitedSize::size_at(const Point& x) const {

@@ -6,10 +6,10 @@
 //   l_p = l_g tan(alpha_p / 2) / tan(alpha_g / 2)
 // long, and the points of the edge take delta_i = min(delta_i, l_p) (eq. 22). Edges on discrete
 // lines (ridges, boundaries, tag changes) are features, not curvature, and are left out. The
-// sizes are then graded by the growth factor c_i: delta_j <= delta_i + (c_i - 1) |x_j - x_i|
-// along the surface's edges (the continuous form of eq. 15; not in the paper's §4.4, which
-// grades through the background grid), so a small hole does not put a size jump into its
-// surroundings. The paper iterates this with remeshing through an adapted background grid
+// sizes attached to the input's points (these and the gaps of gap_sizes.h) are then graded by
+// the growth factor c_i: delta_j <= delta_i + (c_i - 1) |x_j - x_i| along the surface's edges
+// (the continuous form of eq. 15; not in the paper's §4.4, which grades through the background
+// grid), so a small hole does not put a size jump into its surroundings. The paper iterates this with remeshing through an adapted background grid
 // (AdaptBackground); MeshSurface applies it once, on the input.
 #pragma once
 
@@ -24,13 +24,17 @@
 namespace afmesh {
 
 // delta_i for every input point of `surface` (N values; +infinity where the surface is flat or
-// only meets lines). `alpha_p_deg` in (0, 180); growth >= 1.
+// only meets lines), not graded. `alpha_p_deg` in (0, 180).
 std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
-                                          const SurfaceFeatures& features, double alpha_p_deg,
-                                          double growth);
+                                          const SurfaceFeatures& features, double alpha_p_deg);
 
-// min(base(x), the curvature size at x): the smallest delta_i of the corners of the input face
-// nearest to x (x in global coordinates, as every SizeField).
+// Grades point sizes (N values, +infinity for none) in place: each becomes the smallest
+// delta_i + (c_i - 1) |x_j - x_i| over paths along the surface's edges (Dijkstra, O(N log N)).
+// growth >= 1.
+void grade_point_sizes(const DiscreteSurface& surface, double growth, std::vector<double>& size);
+
+// min(base(x), the size attached to the input's points at x): the smallest delta_i of the
+// corners of the input face nearest to x (x in global coordinates, as every SizeField).
 class CurvatureLimitedSize final : public SizeField {
  public:
   CurvatureLimitedSize(const SizeField& base, const DiscreteSurface& surface,

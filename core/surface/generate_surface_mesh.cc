@@ -21,6 +21,7 @@
 #include "core/surface/discrete_surface.h"
 #include "core/surface/features.h"
 #include "core/surface/flip_edges.h"
+#include "core/surface/gap_sizes.h"
 #include "core/surface/smooth_points.h"
 #include "core/surface/split_lines.h"
 #include "core/surface/surface_front.h"
@@ -334,17 +335,28 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
 
   const double growth = std::max(params.spec ? params.spec->growth : params.growth,
                                  kMinAttachedGrowth);
-  // Eq. 20–22: the size bounded where the input curves.
+  // Sizes attached to the input's points (§4.2, §4.4): bounded where the input curves (eq.
+  // 20–22) and across the gaps between lines narrower than the size (gap_sizes.h), graded.
   const SizeField* sizes = field->get();
   std::unique_ptr<CurvatureLimitedSize> limited;
-  if (params.curvature_angle_deg > 0) {
-    limited = std::make_unique<CurvatureLimitedSize>(
-        **field, *surface,
-        curvature_point_sizes(*surface, *features, params.curvature_angle_deg, growth));
-    sizes = limited.get();
-    clock.lap("curvature");
-    if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
+  std::vector<double> point_sizes =
+      params.curvature_angle_deg > 0
+          ? curvature_point_sizes(*surface, *features, params.curvature_angle_deg)
+          : std::vector<double>(surface->local_points().size(),
+                                std::numeric_limits<double>::infinity());
+  const std::vector<double> gaps = line_gap_sizes(*surface, *features, **field);
+  bool attached = false;
+  for (std::size_t v = 0; v < point_sizes.size(); ++v) {
+    point_sizes[v] = std::min(point_sizes[v], gaps[v]);
+    attached = attached || std::isfinite(point_sizes[v]);
   }
+  if (attached) {
+    grade_point_sizes(*surface, growth, point_sizes);
+    limited = std::make_unique<CurvatureLimitedSize>(**field, *surface, std::move(point_sizes));
+    sizes = limited.get();
+  }
+  clock.lap("curvature");
+  if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
   SurfaceMeshState s(*surface, *features, *sizes, growth);
   std::vector<std::vector<Side>> patch_sides(features->patches.size());
   if (absl::Status st = sides_along_lines(s, patch_sides); !st.ok()) return st;
