@@ -365,6 +365,16 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
 
   const std::vector<Box> boxes = patch_boxes(*surface, *features);
   const std::vector<double> expected = expected_patch_triangles(s);
+  // The sizes attached to the geometry (curvature, gaps) can ask for far more triangles than
+  // the server's estimate from the size field alone: refused here, before the front runs, as
+  // the server refuses its own estimate.
+  double expected_total = 0.0;
+  for (const double e : expected) expected_total += e;
+  if (expected_total > static_cast<double>(params.max_triangles))
+    return absl::ResourceExhaustedError(absl::StrFormat(
+        "the sizes attached to the surface (its curvature and the gaps between its lines, with "
+        "the size field) ask for about %.3g triangles, over the limit of %d",
+        expected_total, params.max_triangles));
   for (std::size_t p = 0; p < features->patches.size(); ++p) {
     const PatchId patch{static_cast<Index>(p)};
     PatchFrontParams front_params;

@@ -74,5 +74,17 @@ TEST(GapSizes, AThinSlabIsReTriangulatedWithoutSlivers) {
   EXPECT_LE(static_cast<double>(under_30), 0.01 * static_cast<double>(r->mesh.triangles.size()));
 }
 
+// The gaps ask for ~10 times the triangles the size alone would (1,374 against ~130): a limit
+// between the two refuses the job before the front runs, naming the estimate.
+TEST(GapSizes, ASurfaceWhoseAttachedSizesAskForTooManyTrianglesIsRefusedFirst) {
+  SurfaceParams params;
+  params.size = 0.2;
+  params.max_triangles = 500;
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(thin_slab(), params);
+  ASSERT_EQ(r.status().code(), absl::StatusCode::kResourceExhausted) << r.status();
+  EXPECT_NE(r.status().message().find("sizes attached to the surface"), std::string::npos)
+      << r.status();
+}
+
 }  // namespace
 }  // namespace afmesh
