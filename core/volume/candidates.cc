@@ -55,6 +55,43 @@ Box cube_around(const Point& x, double r) {
   return Box{{x[0] - r, x[1] - r, x[2] - r}, {x[0] + r, x[1] + r, x[2] + r}};
 }
 
+bool has_candidate(const MesherState& s, Index q) {
+  for (const Candidate& c : s.candidates)
+    if (c.point == q) return true;
+  return false;
+}
+
+// Not in the paper: the far corner of each front face across an edge of the sliver face `face`
+// (the face on that edge the other way round), when it forms a positive element, ranked before
+// every other candidate, the better shaped (relative to `best`, best_element_quality) first. The
+// element on a sliver face is a sliver whatever its fourth point; built on a neighbour's corner
+// it closes that neighbour too, and the front keeps the faces the boundary gave, split at the
+// sliver's corner, instead of gaining slivers of its own. It is the ear across a cap's long edge
+// where a CAD tessellation splits a ridge on one side only, and along a fan of coplanar caps, the
+// one point the first of them took, shared by the rest through the faces it left.
+void neighbour_apex_candidates(MesherState& s, Index face, double best) {
+  const Triangle v = s.front.item(face).v;
+  const Index env = s.front.item(face).env;
+  const Point& a = s.points[v[0]];
+  const Point& b = s.points[v[1]];
+  const Point& c = s.points[v[2]];
+  for (int e = 0; e < 3; ++e) {
+    const Index from = v[e], to = v[(e + 1) % 3];
+    s.front.for_each_item_at(from, [&](Index g) {
+      if (g == face) return;
+      const Triangle& w = s.front.item(g).v;
+      int k = 0;  // w holds the edge the other way round: w[k] = to, w[k + 1] = from
+      while (k < 3 && w[k] != to) ++k;
+      if (k == 3 || w[(k + 1) % 3] != from) return;
+      const Index q = w[(k + 2) % 3];
+      if (q == v[0] || q == v[1] || q == v[2] || !point_visible(s, env, q)) return;
+      const Point& x = s.points[q];
+      if (orient3d(a, b, c, x) <= 0 || has_candidate(s, q)) return;
+      s.candidates.push_back({q, x, -1.0 - tet_shape_quality(a, b, c, x) / best});
+    });
+  }
+}
+
 }  // namespace
 
 bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictness& rules,
@@ -127,9 +164,22 @@ double element_size_for_face(const MesherState& s, const Triangle& v) {
   return element_size_for_target(s, v, target_size_for_face(s, v));
 }
 
+bool is_sliver_face(const MesherState& s, double best) {
+  return s.point_env.empty() && best < kSliverFaceQuality;
+}
+
+double best_element_quality(const MesherState& s, const Triangle& v) {
+  const Point& a = s.points[v[0]];
+  const Point& b = s.points[v[1]];
+  const Point& c = s.points[v[2]];
+  return tet_shape_quality(a, b, c, ideal_point(s, v, mean_edge(a, b, c)));
+}
+
 double queue_size_for_face(const MesherState& s, const Triangle& v) {
   const double target = target_size_for_face(s, v);
-  return queue_key_for_element(target, element_size_for_target(s, v, target));
+  const double key = queue_key_for_element(target, element_size_for_target(s, v, target));
+  const double best = best_element_quality(s, v);
+  return is_sliver_face(s, best) ? key * std::max(best, 0.0) / kSliverFaceQuality : key;
 }
 
 Point ideal_point(const MesherState& s, const Triangle& v, double d) {
@@ -152,6 +202,12 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
   const Point& b = s.points[v[1]];
   const Point& c = s.points[v[2]];
   s.candidates.clear();
+  // Not in the paper: on a sliver face no element reaches the shapes asked of the others; it
+  // is asked the same share of the best it can have.
+  const double best = best_element_quality(s, v);
+  const bool sliver = is_sliver_face(s, best);
+  const double min_quality = sliver ? rules.min_quality * best : rules.min_quality;
+  if (sliver) neighbour_apex_candidates(s, face, best);
 
   // Existing front points near the ideal point that form a positive, well-shaped element.
   const double reach = rules.reach * d;
@@ -159,9 +215,9 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
     if (q == v[0] || q == v[1] || q == v[2] || !point_visible(s, env, q)) return;
     const Point& x = s.points[q];
     const double dist = norm(sub(x, ideal));
-    if (dist > reach || orient3d(a, b, c, x) <= 0) return;
+    if (dist > reach || orient3d(a, b, c, x) <= 0 || (sliver && has_candidate(s, q))) return;
     const double quality = tet_shape_quality(a, b, c, x);
-    if (quality < rules.min_quality) return;
+    if (quality < min_quality) return;
     s.candidates.push_back({q, x, dist / d + 0.5 * (1.0 - quality)});
   });
 
@@ -171,7 +227,7 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
   static constexpr double kRanks[] = {0.6, 2.0, 2.1};
   for (int i = 0; i < 3; ++i) {
     const Point x = add(centroid, scale(sub(ideal, centroid), kHeights[i]));
-    if (tet_shape_quality(a, b, c, x) < rules.min_quality) continue;
+    if (tet_shape_quality(a, b, c, x) < min_quality) continue;
     // Its clearance from the front is checked only if the loop gets to it (most faces take
     // the first candidate).
     s.candidates.push_back({kInvalidIndex, x, kRanks[i], d * kHeights[i]});

@@ -49,8 +49,23 @@ double element_size_for_target(const MesherState& s, const Triangle& v, double t
 // element_size_for_target(s, v, target_size_for_face(s, v)).
 double element_size_for_face(const MesherState& s, const Triangle& v);
 
+// Not in the paper: the shape (tet_shape_quality) of the best element on face v, the one with
+// its best point (ideal_point) for an element as large as the face's mean edge. About 1 for a
+// well-shaped face; under kSliverFaceQuality for a sliver (a cap with an angle over ~165
+// degrees, a needle with one under ~5), on which every element is a sliver too.
+double best_element_quality(const MesherState& s, const Triangle& v);
+inline constexpr double kSliverFaceQuality = 0.15;
+// True when a face of best_element_quality `best` is treated as a sliver (queue_size_for_face,
+// gather_candidates): under kSliverFaceQuality, on a front without crossing environments. With
+// environments (paper §2) the rules for slivers left the crossing plates of other shapes stuck
+// (ThinVolume.CrossingPlatesOfOtherShapesMeshValid): thin regions keep the rules they had.
+bool is_sliver_face(const MesherState& s, double best);
+
 // F6: the queue key of face v: queue_key_for_element (core/front/front_sizes.h) of its target
-// and element sizes.
+// and element sizes; for a sliver face (is_sliver_face), that key scaled down by its best
+// quality over kSliverFaceQuality, so that slivers are deleted first, the worst first (not in
+// the paper: like the faces of crossing environments, §2, the troublesome faces go first,
+// while the faces beside them are still on the front to be closed with them).
 double queue_size_for_face(const MesherState& s, const Triangle& v);
 
 // F7.1: the 'best point' for face v and element size d: above the centroid, along the face
@@ -59,8 +74,10 @@ Point ideal_point(const MesherState& s, const Triangle& v, double d);
 
 // F7.2: the candidates for the face, best first: front points near the ideal point that form a
 // positive element of acceptable shape, and the new point itself, followed by new points closer
-// to the face. Fills s.candidates. A new point's clearance (new_point_is_clear) is left to the
-// caller, to be checked only when the candidate is reached.
+// to the face. For a sliver face (is_sliver_face) the acceptable shape is relative to the best
+// its elements can have, and the far corners of the front faces across its edges come first
+// (neighbour_apex_candidates in candidates.cc). Fills s.candidates. A new point's clearance
+// (new_point_is_clear) is left to the caller, to be checked only when the candidate is reached.
 void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
                        const Strictness& rules);
 
