@@ -24,6 +24,16 @@ class CancelledProgress final : public Progress {
   bool cancelled() const override { return true; }
 };
 
+// Puts `mesh` into s as the front's result in patch 0: each point moved onto the input (its
+// host the face it lands on, no anchor), the triangles as they are.
+void add_on_the_input(const Mesh& mesh, SurfaceMeshState& s) {
+  for (const Point& x : mesh.points) {
+    const Located on = s.surface.nearest_face(s.surface.to_local(x));
+    s.add_point(on.closest, 0.2, on.face, kInvalidIndex);
+  }
+  for (const Triangle& t : mesh.triangles) s.add_triangle(t, PatchId{0});
+}
+
 double smallest_angle(const SurfaceMeshState& s) {
   double smallest = 180.0;
   for (const Triangle& t : s.triangles)
@@ -41,13 +51,8 @@ TEST(SmoothPoints, RaisesTheSmallestAngleAndKeepsEveryPointOnTheInput) {
   ASSERT_EQ(model.features.patches.size(), 1u);
   const UniformSize field(0.2);
   SurfaceMeshState s(model.surface, model.features, field, 1.2);
-  // A coarse sphere, jittered by a third of its edges, each point put back on the input.
-  const Mesh coarse = testing::jittered(sphere_surface({0, 0, 0}, 1.0, 0.2), 0.06, 7);
-  for (const Point& x : coarse.points) {
-    const Located on = model.surface.nearest_face(model.surface.to_local(x));
-    s.add_point(on.closest, 0.2, on.face, kInvalidIndex);
-  }
-  for (const Triangle& t : coarse.triangles) s.add_triangle(t, PatchId{0});
+  // A coarse sphere, jittered by a third of its edges.
+  add_on_the_input(testing::jittered(sphere_surface({0, 0, 0}, 1.0, 0.2), 0.06, 7), s);
   // Three points anchored, as line points are: they must not move.
   for (const Index q : {0, 10, 20}) s.anchor[q] = model.surface.triangle(s.host[q])[0];
   const std::vector<Point> before = s.points;
@@ -76,12 +81,7 @@ TEST(SmoothPoints, StopsWithCancelled) {
   const testing::SurfaceModel model = testing::surface_model(sphere_surface({0, 0, 0}, 1.0, 0.1));
   const UniformSize field(0.2);
   SurfaceMeshState s(model.surface, model.features, field, 1.2);
-  const Mesh coarse = testing::jittered(sphere_surface({0, 0, 0}, 1.0, 0.05), 0.01, 3);
-  for (const Point& x : coarse.points) {
-    const Located on = model.surface.nearest_face(model.surface.to_local(x));
-    s.add_point(on.closest, 0.2, on.face, kInvalidIndex);
-  }
-  for (const Triangle& t : coarse.triangles) s.add_triangle(t, PatchId{0});
+  add_on_the_input(testing::jittered(sphere_surface({0, 0, 0}, 1.0, 0.05), 0.01, 3), s);
   CancelledProgress cancelled;
   EXPECT_EQ(smooth_points(s, {}, cancelled).status().code(), absl::StatusCode::kCancelled);
 }
