@@ -71,6 +71,14 @@ int run(const std::string& input, double size, double ridge_angle, double curvat
     if (absl::Status st = write_mesh(m, out); !st.ok())
       std::fprintf(stderr, "afmesh-bench-surface: %s\n", st.ToString().c_str());
   }
+  // The core's own stage times (generate_surface_mesh's StageClock laps), in order.
+  std::string stages_json, stages_text;
+  for (const StageTiming& t : result->timings) {
+    absl::StrAppend(&stages_json, stages_json.empty() ? "" : ", ", json_string(t.stage), ": ",
+                    absl::StrFormat("%.4f", t.seconds));
+    absl::StrAppend(&stages_text, stages_text.empty() ? "" : " ",
+                    absl::StrFormat("%s %.3f", t.stage, t.seconds));
+  }
   if (json) {
     JsonLine j;
     j.add("input", input).add("size", params.size).add("triangles", static_cast<std::int64_t>(n))
@@ -81,7 +89,8 @@ int run(const std::string& input, double size, double ridge_angle, double curvat
         .add("hausdorff_over_diagonal", r.hausdorff / r.model_size)
         .add("patches", r.patches).add("lines", r.lines).add("corners", r.corners)
         .add("short_ridges_dropped", r.short_ridges_dropped)
-        .add("valid", valid).add("failed_checks", failed);
+        .add("valid", valid).add("failed_checks", failed)
+        .add_raw("stage_seconds", "{" + stages_json + "}");
     std::printf("%s\n", j.str().c_str());
   } else {
     std::printf(
@@ -89,7 +98,7 @@ int run(const std::string& input, double size, double ridge_angle, double curvat
         "%.2f, >= 30: %.2f%%, < 15: %lld; mean edge / h %.3f; Hausdorff %.2e of the diagonal; "
         "%lld patches, %lld lines, %lld corners (%lld short free ridges dropped); dropped %lld "
         "degenerate, %lld duplicate, "
-        "reoriented %lld; %s\n",
+        "reoriented %lld; %s\n  stages (s): %s\n",
         input.c_str(), params.size, n, seconds, n / seconds,
         static_cast<double>(memory.growth_bytes()) / n, min_angle, 100.0 * at_least_30 / n,
         static_cast<long long>(under_15), edges / (3 * n) / params.size,
@@ -99,7 +108,8 @@ int run(const std::string& input, double size, double ridge_angle, double curvat
         static_cast<long long>(r.degenerate_triangles_dropped),
         static_cast<long long>(r.duplicate_triangles_dropped),
         static_cast<long long>(r.triangles_reoriented),
-        valid ? (failed.empty() ? "valid" : "valid, open") : ("INVALID: " + failed).c_str());
+        valid ? (failed.empty() ? "valid" : "valid, open") : ("INVALID: " + failed).c_str(),
+        stages_text.c_str());
   }
   return valid ? 0 : 4;
 }

@@ -200,6 +200,24 @@ TetQuality tet_quality(const std::vector<Point>& points, const Tet& tet) {
 
 // Corner angles from the edge vectors at each corner; ratio = 16 A^2 / (perimeter · abc), which
 // is 2 r_in / r_circ with r_in = 2A / perimeter and r_circ = abc / (4A).
+namespace {
+
+// The smallest corner angle, degrees, of the triangle with edge vectors ab, bc, ca (all of
+// non-zero length).
+double smallest_corner_angle_deg(const Vec& ab, const Vec& bc, const Vec& ca) {
+  return degrees(
+      std::min({angle_between(ab, -ca), angle_between(bc, -ab), angle_between(ca, -bc)}));
+}
+
+}  // namespace
+
+double triangle_min_angle_deg(const Point& a, const Point& b, const Point& c) {
+  const Vec pa = vec(a), pb = vec(b), pc = vec(c);
+  const Vec ab = pb - pa, bc = pc - pb, ca = pa - pc;
+  if (bc.norm() == 0.0 || ca.norm() == 0.0 || ab.norm() == 0.0) return 0.0;
+  return smallest_corner_angle_deg(ab, bc, ca);
+}
+
 TriangleQuality triangle_quality(const Point& a, const Point& b, const Point& c) {
   const Vec pa = vec(a), pb = vec(b), pc = vec(c);
   const Vec ab = pb - pa, bc = pc - pb, ca = pa - pc;
@@ -207,8 +225,7 @@ TriangleQuality triangle_quality(const Point& a, const Point& b, const Point& c)
   q.area = 0.5 * ab.cross(-ca).norm();
   const double la = bc.norm(), lb = ca.norm(), lc = ab.norm();
   if (la == 0.0 || lb == 0.0 || lc == 0.0) return q;
-  q.min_angle_deg = degrees(std::min(
-      {angle_between(ab, -ca), angle_between(bc, -ab), angle_between(ca, -bc)}));
+  q.min_angle_deg = smallest_corner_angle_deg(ab, bc, ca);
   const double denominator = (la + lb + lc) * la * lb * lc;
   q.radius_ratio = denominator > 0.0 ? 16.0 * q.area * q.area / denominator : 0.0;
   return q;

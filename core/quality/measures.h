@@ -52,6 +52,9 @@ TetQuality tet_quality(const std::vector<Point>& points, const Tet& tet);
 // Quality of triangle (a, b, c). A triangle with coincident points has min angle 0.
 TriangleQuality triangle_quality(const Point& a, const Point& b, const Point& c);
 
+// triangle_quality(a, b, c).min_angle_deg, bit for bit, without the area and radius ratio.
+double triangle_min_angle_deg(const Point& a, const Point& b, const Point& c);
+
 // Quality of `triangle` of `points` (N×3). Indices must be in range.
 TriangleQuality triangle_quality(const std::vector<Point>& points, const Triangle& triangle);
 

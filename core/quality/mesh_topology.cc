@@ -104,53 +104,58 @@ Index corner_of(const std::vector<Triangle>& triangles, Index t, Index vertex) {
 void classify_edge(const std::vector<Triangle>& triangles, const std::vector<HalfEdge>& half_edges,
                    std::size_t first, std::size_t last, CornerSets& corners,
                    TriangleTopology& topology) {
-  EdgeGroup group{half_edges[first].a, half_edges[first].b, {}};
-  for (std::size_t i = first; i < last; ++i) group.triangles.push_back(half_edges[i].triangle);
-  for (Index t : group.triangles) {
-    corners.join(corner_of(triangles, group.triangles[0], group.a),
-                 corner_of(triangles, t, group.a));
-    corners.join(corner_of(triangles, group.triangles[0], group.b),
-                 corner_of(triangles, t, group.b));
+  const Index a = half_edges[first].a, b = half_edges[first].b;
+  const Index t0 = half_edges[first].triangle;
+  for (std::size_t i = first; i < last; ++i) {
+    corners.join(corner_of(triangles, t0, a), corner_of(triangles, half_edges[i].triangle, a));
+    corners.join(corner_of(triangles, t0, b), corner_of(triangles, half_edges[i].triangle, b));
   }
   ++topology.edge_count;
+  // Only the edges kept get their group (most edges are manifold: no allocation for them).
+  const auto group = [&] {
+    EdgeGroup g{a, b, {}};
+    for (std::size_t i = first; i < last; ++i) g.triangles.push_back(half_edges[i].triangle);
+    return g;
+  };
   const std::size_t uses = last - first;
   if (uses == 1) {
-    topology.open_edges.push_back(std::move(group));
+    topology.open_edges.push_back(group());
   } else if (uses > 2) {
-    topology.nonmanifold_edges.push_back(std::move(group));
+    topology.nonmanifold_edges.push_back(group());
   } else if (half_edges[first].forward == half_edges[first + 1].forward) {
-    topology.misoriented_edges.push_back(std::move(group));
+    topology.misoriented_edges.push_back(group());
   }
 }
 
-// Vertices whose corners fall into two or more fans.
+// Vertices whose corners fall into two or more fans. The corners are bucketed by vertex (a
+// counting sort, O(M + N)), each bucket in ascending triangle order, and a bucket's fans are
+// counted among its few corners: the same result as sorting all corners by (vertex, fan,
+// triangle), without its O(M log M).
 std::vector<VertexFans> split_vertices(const std::vector<Triangle>& triangles,
                                        CornerSets& corners) {
-  struct CornerFan {
-    Index vertex, fan, triangle;
-  };
-  std::vector<CornerFan> fans;
-  fans.reserve(3 * triangles.size());
-  for (Index t = 0; t < static_cast<Index>(triangles.size()); ++t) {
-    for (int k = 0; k < 3; ++k) fans.push_back({triangles[t][k], corners.find(3 * t + k), t});
-  }
-  std::sort(fans.begin(), fans.end(), [](const CornerFan& x, const CornerFan& y) {
-    return std::tie(x.vertex, x.fan, x.triangle) < std::tie(y.vertex, y.fan, y.triangle);
-  });
+  Index points = 0;
+  for (const Triangle& t : triangles)
+    for (const Index v : t) points = std::max(points, v + 1);
+  std::vector<std::size_t> start(static_cast<std::size_t>(points) + 1, 0);
+  for (const Triangle& t : triangles)
+    for (const Index v : t) ++start[v + 1];
+  for (std::size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
+  std::vector<Index> corner_at(3 * triangles.size());  // corner ids 3 t + k, by vertex
+  std::vector<std::size_t> next(start.begin(), start.end() - 1);
+  for (Index t = 0; t < static_cast<Index>(triangles.size()); ++t)
+    for (int k = 0; k < 3; ++k) corner_at[next[triangles[t][k]]++] = 3 * t + k;
   std::vector<VertexFans> result;
-  for (std::size_t first = 0; first < fans.size();) {
-    std::size_t last = first;
-    int fan_count = 0;
-    for (; last < fans.size() && fans[last].vertex == fans[first].vertex; ++last) {
-      if (last == first || fans[last].fan != fans[last - 1].fan) ++fan_count;
-    }
-    if (fan_count >= 2) {
-      VertexFans v{fans[first].vertex, fan_count, {}};
-      for (std::size_t i = first; i < last; ++i) v.triangles.push_back(fans[i].triangle);
-      std::sort(v.triangles.begin(), v.triangles.end());
-      result.push_back(std::move(v));
-    }
-    first = last;
+  std::vector<Index> fans;
+  for (Index v = 0; v < points; ++v) {
+    fans.clear();
+    for (std::size_t i = start[v]; i < start[v + 1]; ++i) fans.push_back(corners.find(corner_at[i]));
+    std::sort(fans.begin(), fans.end());
+    const int fan_count =
+        static_cast<int>(std::unique(fans.begin(), fans.end()) - fans.begin());
+    if (fan_count < 2) continue;
+    VertexFans fan{v, fan_count, {}};
+    for (std::size_t i = start[v]; i < start[v + 1]; ++i) fan.triangles.push_back(corner_at[i] / 3);
+    result.push_back(std::move(fan));
   }
   return result;
 }

@@ -144,6 +144,12 @@ double DiscreteSurface::squared_distance_to(const Point& x, FaceId f, Point& clo
   return squared_distance(x, closest);
 }
 
+double DiscreteSurface::squared_distance_to_face(const Point& x, FaceId f) const {
+  Point closest;
+  Located unused;
+  return squared_distance_to(x, f, closest, unused);
+}
+
 Located DiscreteSurface::nearest_face(const Point& x) const {
   Located at;
   const AabbTree::Nearest found = tree_.nearest(x, [&](Index f) {

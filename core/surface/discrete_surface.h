@@ -109,6 +109,10 @@ class DiscreteSurface {
   const Point& normal(FaceId f) const { return normals_[index_of(f)]; }
   Index degenerate_face_count() const { return degenerate_faces_; }
 
+  // |x - the closest point of face f to x|^2 (x in the local frame): the distance the walk and
+  // the tree compare, bit for bit.
+  double squared_distance_to_face(const Point& x, FaceId f) const;
+
   // The face nearest to x (local frame) by the AABB tree, ties to the smaller face id.
   // O(log M) for x near the surface.
   Located nearest_face(const Point& x) const;

@@ -22,7 +22,7 @@ Point unit_normal(const std::vector<Point>& p, Index a, Index b, Index c) {
 }
 
 double min_angle(const std::vector<Point>& p, Index a, Index b, Index c) {
-  return triangle_quality(p[a], p[b], p[c]).min_angle_deg;
+  return triangle_min_angle_deg(p[a], p[b], p[c]);
 }
 
 // orient2d of (a, b, c) in the plane with unit normal n.
@@ -94,6 +94,15 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
     for (int k = 0; k < 3; ++k) edges.insert(edge_key(t[k], t[(k + 1) % 3]));
   }
   std::int64_t flips = 0;
+  // The smallest angle of each triangle, computed when first needed (negative: not yet) and kept
+  // until a flip changes the triangle: each triangle is looked at from its three edges, and the
+  // angles (three atan2 each) are most of the cost.
+  std::vector<double> smallest_angle(triangles.size(), -1.0);
+  const auto angle_of = [&](Index t) {
+    if (smallest_angle[t] < 0)
+      smallest_angle[t] = min_angle(points, triangles[t][0], triangles[t][1], triangles[t][2]);
+    return smallest_angle[t];
+  };
   // After the first pass only the edges of triangles a flip changed can gain from a flip: the
   // others' quadrilaterals are as the pass before found them.
   std::vector<bool> changed(triangles.size(), true);
@@ -119,9 +128,13 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
         if (j == 3) continue;
         const Index d = triangles[t2][(j + 2) % 3];
         if (d == c || edges.contains(edge_key(c, d))) continue;
-        const double before = std::min(min_angle(points, a, b, c), min_angle(points, b, a, d));
-        const double after = std::min(min_angle(points, a, d, c), min_angle(points, d, b, c));
-        if (!(after > before + params.min_gain_deg)) continue;
+        // The smaller minimum angle must rise by min_gain_deg: the second new triangle is only
+        // measured when the first passes.
+        const double wanted = std::min(angle_of(t1), angle_of(t2)) + params.min_gain_deg;
+        const double first = min_angle(points, a, d, c);
+        if (!(first > wanted)) continue;
+        const double second = min_angle(points, d, b, c);
+        if (!(std::min(first, second) > wanted)) continue;
         Point n = add(unit_normal(points, a, b, c), unit_normal(points, b, a, d));
         if (!(norm(n) > 0)) continue;
         n = scale(n, 1.0 / norm(n));
@@ -131,6 +144,8 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
             dot(unit_normal(points, d, b, c), n) < min_cosine)
           continue;
         flip(triangles, neighbours, t1, k, t2, j);
+        smallest_angle[t1] = first;  // (a, d, c)
+        smallest_angle[t2] = second;  // (d, b, c)
         edges.erase(edge_key(a, b));
         edges.insert(edge_key(c, d));
         touched[t1] = touched[t2] = true;

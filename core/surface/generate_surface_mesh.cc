@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <initializer_list>
+#include <limits>
 #include <memory>
 
 #include "absl/container/flat_hash_map.h"
@@ -243,28 +245,47 @@ std::vector<double> expected_patch_triangles(const SurfaceMeshState& s) {
 }
 
 // Step 6: the largest distance from samples of `from` (vertices, edge midpoints, centroids) to
-// `to`. Both in the same frame. CANCELLED soon after progress.cancelled() turns true.
-// With `hosts` (a face of `to` near each point of `from`), a sample is first located by the
-// surface's walk from its corner's host (S2), a few steps where the tree's query costs several
-// times that. The walk's face gives an upper bound of the sample's distance: at or below the
-// largest distance so far it cannot raise the maximum, and only a sample above it is asked of
-// the tree. The maximum is the tree's, exactly (not in the paper).
+// `to`, or `floor` when that is larger. Both in the same frame. CANCELLED soon after
+// progress.cancelled() turns true.
+// With `hosts` (a face of `to` near each point of `from`; they are moved nearer), a sample's distance to the host of a
+// corner it lies between is an upper bound of its distance to `to`: at or below the largest
+// distance so far (or the floor) it cannot raise the maximum, and the sample needs nothing more.
+// Above, the sample is located by the surface's walk from the nearest of those hosts (S2), a few
+// steps where the tree's query costs several times that, and the walk's face gives a nearer
+// bound; only a sample still above is asked of the tree (a walk that did not settle has asked the
+// tree already). The maximum is the tree's, exactly (not in the paper).
 absl::StatusOr<double> sampled_distance(const Mesh& from, const DiscreteSurface& to,
-                                        const std::vector<FaceId>* hosts, double* vertex_max,
-                                        Progress& progress) {
-  CancelCheck cancel(progress, 1024);  // each sample a nearest-face query
-  // The squared distance of x from `to`, or a bound of it at or below `worst2`.
-  auto at = [&](const Point& x, Index near, double worst2) {
+                                        std::vector<FaceId>* hosts, double floor,
+                                        double* vertex_max, Progress& progress) {
+  CancelCheck cancel(progress, 1024);  // each sample a nearest-face query at most
+  // The squared distance of x from `to`, or a bound of it at or below `worst2`; x lies between
+  // the points `corners` of `from`. A vertex sample (one corner, x itself) that had to be
+  // located leaves its face as its host: a nearer start for the samples round it.
+  auto at = [&](const Point& x, std::initializer_list<Index> corners, double worst2) {
     if (hosts != nullptr) {
-      const double bound = to.locate(x, (*hosts)[near]).squared_distance;
-      if (bound <= worst2) return bound;
+      FaceId nearest = kNoFace;
+      double bound = std::numeric_limits<double>::infinity();
+      for (const Index q : corners) {
+        const FaceId host = (*hosts)[q];
+        if (host == kNoFace || host == nearest) continue;
+        const double d = to.squared_distance_to_face(x, host);
+        if (d <= worst2) return d;
+        if (d < bound) bound = d, nearest = host;
+      }
+      if (nearest != kNoFace) {
+        const Located walked = to.locate(x, nearest);
+        if (corners.size() == 1) (*hosts)[*corners.begin()] = walked.face;
+        if (walked.used_tree || walked.squared_distance <= worst2) return walked.squared_distance;
+      }
     }
-    return to.nearest_face(x).squared_distance;
+    const Located found = to.nearest_face(x);
+    if (hosts != nullptr && corners.size() == 1) (*hosts)[*corners.begin()] = found.face;
+    return found.squared_distance;
   };
-  double worst2 = 0;
+  double worst2 = floor * floor;
   for (Index v = 0; v < static_cast<Index>(from.points.size()); ++v) {
     if (cancel.due()) return absl::CancelledError("surface distance: cancelled");
-    worst2 = std::max(worst2, at(from.points[v], v, worst2));
+    worst2 = std::max(worst2, at(from.points[v], {v}, worst2));
   }
   if (vertex_max != nullptr) *vertex_max = std::sqrt(worst2);
   for (const Triangle& t : from.triangles) {
@@ -272,13 +293,43 @@ absl::StatusOr<double> sampled_distance(const Mesh& from, const DiscreteSurface&
     const Point& a = from.points[t[0]];
     const Point& b = from.points[t[1]];
     const Point& c = from.points[t[2]];
-    const std::pair<Point, Index> samples[] = {{scale(add(a, add(b, c)), 1.0 / 3.0), t[0]},
-                                               {scale(add(a, b), 0.5), t[0]},
-                                               {scale(add(b, c), 0.5), t[1]},
-                                               {scale(add(c, a), 0.5), t[2]}};
-    for (const auto& [x, near] : samples) worst2 = std::max(worst2, at(x, near, worst2));
+    worst2 = std::max(worst2, at(scale(add(a, add(b, c)), 1.0 / 3.0), {t[0], t[1], t[2]}, worst2));
+    worst2 = std::max(worst2, at(scale(add(a, b), 0.5), {t[0], t[1]}, worst2));
+    worst2 = std::max(worst2, at(scale(add(b, c), 0.5), {t[1], t[2]}, worst2));
+    worst2 = std::max(worst2, at(scale(add(c, a), 0.5), {t[2], t[0]}, worst2));
   }
-  return std::sqrt(worst2);
+  return std::max(floor, std::sqrt(worst2));
+}
+
+// A face of `output` near each point of `input` (N values, kNoFace where none is reachable), for
+// sampled_distance's walk from input to output: each output point p lies on its host input face
+// host[p] (S2), so the corners of that face get a face of `output` at p; the other input points
+// take the hint of the nearest hinted point by input edges (a breadth-first search from all the
+// hinted points at once). O(N + M) for M input faces; a hint only starts a walk, so its quality
+// costs time, never accuracy (not in the paper).
+std::vector<FaceId> output_faces_near_input_points(const DiscreteSurface& input,
+                                                   const DiscreteSurface& output,
+                                                   const std::vector<FaceId>& host) {
+  std::vector<FaceId> hint(static_cast<std::size_t>(input.point_count()), kNoFace);
+  std::vector<Index> queue;
+  for (Index p = 0; p < output.point_count(); ++p) {
+    if (output.faces_at(p).empty()) continue;
+    for (const Index v : input.triangle(host[p])) {
+      if (hint[v] != kNoFace) continue;
+      hint[v] = FaceId{output.faces_at(p)[0]};
+      queue.push_back(v);
+    }
+  }
+  for (std::size_t next = 0; next < queue.size(); ++next) {
+    const Index v = queue[next];
+    for (const Index f : input.faces_at(v))
+      for (const Index w : input.triangles()[f]) {
+        if (hint[w] != kNoFace) continue;
+        hint[w] = hint[v];
+        queue.push_back(w);
+      }
+  }
+  return hint;
 }
 
 }  // namespace
@@ -414,13 +465,17 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   Mesh input_local;
   input_local.points = surface->local_points();
   input_local.triangles = surface->triangles();
-  const absl::StatusOr<double> out_to_in =
-      sampled_distance(local, *surface, &s.host, &result.report.max_vertex_distance, progress);
+  std::vector<FaceId> output_hosts = s.host;
+  const absl::StatusOr<double> out_to_in = sampled_distance(
+      local, *surface, &output_hosts, 0.0, &result.report.max_vertex_distance, progress);
   if (!out_to_in.ok()) return out_to_in.status();
-  const absl::StatusOr<double> in_to_out =
-      sampled_distance(input_local, *output, nullptr, nullptr, progress);
-  if (!in_to_out.ok()) return in_to_out.status();
-  result.report.hausdorff = std::max(*out_to_in, *in_to_out);
+  std::vector<FaceId> input_hints = output_faces_near_input_points(*surface, *output, s.host);
+  // Only the larger of the two directions is reported: input samples no farther than the output's
+  // largest distance need no exact distance of their own.
+  const absl::StatusOr<double> hausdorff =
+      sampled_distance(input_local, *output, &input_hints, *out_to_in, nullptr, progress);
+  if (!hausdorff.ok()) return hausdorff.status();
+  result.report.hausdorff = *hausdorff;
   clock.lap("distance");
 
   result.mesh = std::move(local);
