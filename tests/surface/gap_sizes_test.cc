@@ -40,7 +40,9 @@ TEST(GapSizes, TheRidgesOfAThinSlabTakeItsThicknessAsTheirSize) {
   // Off the lines nothing is attached; the slab's faces are 1 wide, over the size.
   for (Index v = 0; v < static_cast<Index>(sizes.size()); ++v) {
     const Point x = model.surface.to_global(p[v]);
-    if (x[0] > 0 && x[0] < 1 && x[1] > 0 && x[1] < 1) EXPECT_TRUE(std::isinf(sizes[v]));
+    if (x[0] > 0 && x[0] < 1 && x[1] > 0 && x[1] < 1) {
+      EXPECT_TRUE(std::isinf(sizes[v])) << "vertex " << v;
+    }
   }
 }
 
