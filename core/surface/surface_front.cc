@@ -259,16 +259,17 @@ class PatchFront {
     const Point normal = cross(sub(s_.points[v[1]], s_.points[v[0]]), sub(x, s_.points[v[0]]));
     return dot(normal, plane.n) >= kMinFaceCosine * norm(normal);
   }
-  // Whether point q's side of the patch faces the plane's way (its normal within 90° of the
-  // plane's): the 2-D checks of S6 see only such points and sides. Where the patch curves
-  // round by more (a small cylinder meshed with few sides), the points behind would project
-  // onto the plane over the points in front (not in the paper; Figure 6's problem carried on).
+  // The unit normal of triangle t of s_.points (zero for a degenerate one).
   Point triangle_normal(const Triangle& t) const {
     const Point m =
         cross(sub(s_.points[t[1]], s_.points[t[0]]), sub(s_.points[t[2]], s_.points[t[0]]));
     const double length = norm(m);
     return length > 0 ? scale(m, 1.0 / length) : m;
   }
+  // Whether point q's side of the patch faces the plane's way (its normal within 90° of the
+  // plane's): the 2-D checks of S6 see only such points and sides. Where the patch curves
+  // round by more (a small cylinder meshed with few sides), the points behind would project
+  // onto the plane over the points in front (not in the paper; Figure 6's problem carried on).
   // A line point that the patch lies on both sides of (a crease that ends inside the patch)
   // faces the plane when a face of the patch around it does: its host may be on either side.
   bool faces_plane(Index q, const SidePlane& plane) const {
@@ -314,7 +315,7 @@ class PatchFront {
            off_its_patch(p, v[0]);
   }
   // Whether triangle t would fold over a triangle of the patch across one of its edges that is
-  // not a line's side: their normals more than kFoldDeg apart (not in the paper: the input
+  // not a line's side: their normals more than 120° apart (kFoldCosine) (not in the paper: the input
   // turns by less than the ridge angle there, and a face laid back onto its neighbour — the
   // two sides of a crease, a pinch of the front — lies over it, which the checks in one
   // plane cannot see; exact on the topology, the angle measured on the two triangles).
@@ -370,11 +371,7 @@ SidePlane PatchFront::vertex_plane(Index a, const Point& along) const {
   Point n = s_.surface.normal(patch_hint(s_, patch_, a));
   around_.clear();
   incidence_.elements_of(s_.triangles, a, around_);
-  for (const Index t : around_) {
-    const Triangle& k = s_.triangles[t];
-    const Point m = cross(sub(s_.points[k[1]], s_.points[k[0]]), sub(s_.points[k[2]], s_.points[k[0]]));
-    if (const double length = norm(m); length > 0) n = add(n, scale(m, 1.0 / length));
-  }
+  for (const Index t : around_) n = add(n, triangle_normal(s_.triangles[t]));
   SidePlane plane{s_.points[a], {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
   const double length = norm(n);
   if (!(length > 0)) return plane;
