@@ -120,12 +120,35 @@ void faces_at_edge(const DiscreteSurface& surface, Index a, Index b,
   }
 }
 
+// For every line, whether another open line runs between the same two corners and this one has
+// more than one segment. Split into one side each, two such lines would give the same chord: a
+// patch between them (a lens, or one input face with ridges on all three edges of which two
+// meet at a point that is not a corner, as in gmsh_t13_data at curvature angle 0) would be
+// bounded by a side and its own reverse, and the front cannot close it. Such a line gets at least
+// two sides, its middle point on its own polyline, off the other line's chord. Not in the paper.
+std::vector<bool> lines_sharing_their_corners(const SurfaceFeatures& features) {
+  absl::flat_hash_map<std::pair<Index, Index>, int> lines_between;
+  const auto ends = [](const DiscreteLine& line) {
+    const Index a = line.vertices.front(), b = line.vertices.back();
+    return std::pair<Index, Index>{std::min(a, b), std::max(a, b)};
+  };
+  for (const DiscreteLine& line : features.lines)
+    if (!line.closed) ++lines_between[ends(line)];
+  std::vector<bool> sharing(features.lines.size(), false);
+  for (std::size_t l = 0; l < features.lines.size(); ++l) {
+    const DiscreteLine& line = features.lines[l];
+    sharing[l] = !line.closed && line.vertices.size() > 2 && lines_between[ends(line)] > 1;
+  }
+  return sharing;
+}
+
 // Step 4 (F3): the sides along every line, shared by the patches on both sides; fills
 // patch_sides with each patch's initial front, oriented with the patch on the left.
 absl::Status sides_along_lines(SurfaceMeshState& s, std::vector<std::vector<Side>>& patch_sides) {
   const DiscreteSurface& surface = s.surface;
   const SurfaceFeatures& features = s.features;
   const std::vector<LineEndSizes> ends = line_end_sizes(surface, features);
+  const std::vector<bool> sharing = lines_sharing_their_corners(features);
   absl::flat_hash_map<Index, Index> corner_point;  // input vertex -> output point
   auto corner = [&](Index vertex) {
     auto [it, fresh] = corner_point.try_emplace(vertex, kInvalidIndex);
@@ -147,6 +170,7 @@ absl::Status sides_along_lines(SurfaceMeshState& s, std::vector<std::vector<Side
     split_params.end_size = ends[l].end;
     split_params.growth = s.growth;
     if (line.closed) split_params.min_sides = 3;
+    if (sharing[l]) split_params.min_sides = 2;
     absl::StatusOr<LineSplit> split = split_line(polyline, s.field, split_params);
     if (!split.ok()) return split.status();
     std::vector<Index> ids(split->points.size());

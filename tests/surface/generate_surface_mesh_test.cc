@@ -466,5 +466,22 @@ TEST(Regression, Issue11FacesFitTheGapsRoundASpikeOfAScan) {
   EXPECT_LT(r->report.hausdorff, 0.01 * r->report.model_size);
 }
 
+// gmsh_t13_data with no curvature bound: one input face, ridges on all three edges, is a patch
+// of its own, and two of its ridges meet at a point that is not a corner. Its two lines run
+// between the same two corners; split into one side each they gave the same chord, so the
+// patch was bounded by a side and its reverse and the front stopped ("no face"). A line that
+// shares its corners with another now gets two sides.
+TEST(Regression, Issue11TwoLinesBetweenTheSameCornersGiveDifferentSides) {
+  const Mesh input = testing::corpus_mesh("gmsh_t13_data.stl");
+  ASSERT_FALSE(input.triangles.empty());
+  SurfaceParams params;
+  params.size = mean_edge_length(input);
+  params.curvature_angle_deg = 0.0;
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  ASSERT_TRUE(r.ok()) << r.status();
+  expect_closed_valid(r->mesh);
+  EXPECT_LT(r->report.hausdorff, 0.01 * r->report.model_size);
+}
+
 }  // namespace
 }  // namespace afmesh
