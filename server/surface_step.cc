@@ -46,6 +46,12 @@ void add_repair_notes(const SurfaceReport& report, std::vector<std::string>& not
        "lines");
 }
 
+// Memory for a job with `input_triangles` in and `triangles` out (surface_step.h's figures).
+double surface_bytes(std::size_t input_triangles, double triangles) {
+  return kSurfaceBytesPerInputTriangle * static_cast<double>(input_triangles) +
+         kSurfaceBytesPerTriangle * triangles;
+}
+
 }  // namespace
 
 SurfaceQualityFigures surface_quality(const Mesh& surface) {
@@ -103,8 +109,7 @@ absl::StatusOr<SurfaceEstimate> estimate_surface_mesh(const Mesh& input,
   }
   return SurfaceEstimate{
       .triangles = triangles,
-      .bytes = kSurfaceBytesPerInputTriangle * static_cast<double>(input.triangles.size()) +
-               kSurfaceBytesPerTriangle * triangles};
+      .bytes = surface_bytes(input.triangles.size(), triangles)};
 }
 
 absl::StatusOr<SurfaceOutcome> run_surface_step(const SurfaceJob& job, const Mesh& input,
@@ -132,6 +137,15 @@ absl::StatusOr<SurfaceOutcome> run_surface_step(const SurfaceJob& job, const Mes
     return absl::CancelledError("the call was stopped before meshing the surface");
   }
   params.max_triangles = max_elements;
+  // The sizes attached to the surface can ask for many more triangles than the estimate above:
+  // the job is admitted again, by the core's count, before its front runs.
+  params.admit_expected = [&](double expected) {
+    if (!(expected > estimate->triangles)) return absl::OkStatus();
+    return context.admit_estimate(
+        expected, "surface triangles",
+        "the sizes attached to the surface: its curvature and the gaps between its lines",
+        "surface", surface_bytes(input.triangles.size(), expected), max_elements);
+  };
   absl::StatusOr<SurfaceResult> result = run_guarded(
       "meshing the surface", [&] { return job(input, params, context.progress()); });
   if (!result.ok()) return result.status();

@@ -450,6 +450,9 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
         "the sizes attached to the surface (its curvature and the gaps between its lines, with "
         "the size field) ask for about %.3g triangles, over the limit of %d",
         expected_total, params.max_triangles));
+  if (params.admit_expected)
+    if (absl::Status admitted = params.admit_expected(expected_total); !admitted.ok())
+      return admitted;
   for (std::size_t p = 0; p < features->patches.size(); ++p) {
     const PatchId patch{static_cast<Index>(p)};
     PatchFrontParams front_params;

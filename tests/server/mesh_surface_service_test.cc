@@ -519,6 +519,34 @@ TEST_F(MeshSurfaceServiceTest, AJobNeedingMoreThanTheWholeMemoryBudgetIsRefused)
                   {"surface triangles", "--memory-budget-mb"});
 }
 
+// The estimate before meshing sees the size field only; the sizes attached to the surface
+// (curvature, gaps) can ask for ten times more (of_bullet: 40k estimated, 427k made). The core
+// hands its own count to params.admit_expected, and the server admits the job again by it.
+SurfaceJob job_whose_attached_sizes_ask_for(double triangles) {
+  return [triangles](const Mesh&, const SurfaceParams& params,
+                     Progress&) -> absl::StatusOr<SurfaceResult> {
+    if (!params.admit_expected) return absl::InternalError("no admit_expected");
+    if (absl::Status admitted = params.admit_expected(triangles); !admitted.ok()) return admitted;
+    return result_with(tetrahedron_front());
+  };
+}
+
+TEST_F(MeshSurfaceServiceTest, AJobWhoseAttachedSizesNeedMoreThanTheBudgetIsRefusedBeforeItsFront) {
+  ServerOptions options;
+  options.service.memory_budget_bytes = 1 << 20;
+  start(job_whose_attached_sizes_ask_for(1e5), options);
+  expect_rejected(tetrahedron_requests(0.5), grpc::StatusCode::RESOURCE_EXHAUSTED,
+                  {"1e+05 surface triangles", "--memory-budget-mb"});
+}
+
+TEST_F(MeshSurfaceServiceTest, AJobWhoseAttachedSizesFitTheBudgetRuns) {
+  ServerOptions options;
+  options.service.memory_budget_bytes = 1 << 20;
+  start(job_whose_attached_sizes_ask_for(100), options);
+  const Outcome outcome = call(tetrahedron_requests(0.5));
+  EXPECT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+}
+
 TEST_F(MeshSurfaceServiceTest, EstimateFollowsTheSizeFieldOfASpec) {
   SurfaceParams uniform;
   uniform.size = 0.5;

@@ -88,5 +88,21 @@ TEST(GapSizes, ASurfaceWhoseAttachedSizesAskForTooManyTrianglesIsRefusedFirst) {
       << r.status();
 }
 
+// The same count goes to params.admit_expected (the server's memory admission), and a refusal
+// there ends the job with the refusal's own status.
+TEST(GapSizes, TheCountTheAttachedSizesAskForIsHandedToTheAdmission) {
+  SurfaceParams params;
+  params.size = 0.2;
+  double admitted = 0.0;
+  params.admit_expected = [&](double expected) {
+    admitted = expected;
+    return absl::ResourceExhaustedError("budget held");
+  };
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(thin_slab(), params);
+  EXPECT_EQ(r.status(), absl::ResourceExhaustedError("budget held"));
+  EXPECT_GT(admitted, 500.0);
+  EXPECT_LT(admitted, 5000.0);
+}
+
 }  // namespace
 }  // namespace afmesh
