@@ -30,6 +30,14 @@ inline double squared_distance(const Point& a, const Point& b) { return squared_
 
 inline double distance(const Point& a, const Point& b) { return norm(sub(a, b)); }
 
+// The unit normal of triangle (a, b, c), (b - a) x (c - a) scaled to length 1: zero for a
+// degenerate triangle, or one whose normal's length is not finite.
+inline Point unit_normal(const Point& a, const Point& b, const Point& c) {
+  const Point n = cross(sub(b, a), sub(c, a));
+  const double length = norm(n);
+  return length > 0.0 && std::isfinite(length) ? scale(n, 1.0 / length) : Point{0.0, 0.0, 0.0};
+}
+
 // a + t (b - a): a at t = 0, b at t = 1.
 inline Point lerp(const Point& a, const Point& b, double t) { return add(a, scale(sub(b, a), t)); }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "core/geometry/vec.h"
 #include "core/io/exact_point_merger.h"
 #include "core/io/little_endian.h"
 #include "core/io/mesh_checks.h"
@@ -156,14 +157,9 @@ absl::StatusOr<Mesh> parse_stl_bytes(std::string_view bytes, std::string_view so
 }
 
 // Unit normal of the triangle (a, b, c) in float, or zero when it is degenerate.
-std::array<float, 3> unit_normal(const Point& a, const Point& b, const Point& c) {
-  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  if (!(length > 0) || !std::isfinite(length)) return {0.0f, 0.0f, 0.0f};
-  return {static_cast<float>(n[0] / length), static_cast<float>(n[1] / length),
-          static_cast<float>(n[2] / length)};
+std::array<float, 3> float_unit_normal(const Point& a, const Point& b, const Point& c) {
+  const Point n = unit_normal(a, b, c);
+  return {static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2])};
 }
 
 void write_binary_stl(const Mesh& mesh, OutputBuffer& out) {
@@ -175,7 +171,7 @@ void write_binary_stl(const Mesh& mesh, OutputBuffer& out) {
     const Point& a = mesh.points[t[0]];
     const Point& b = mesh.points[t[1]];
     const Point& c = mesh.points[t[2]];
-    for (const float component : unit_normal(a, b, c)) out.put_little_endian(component);
+    for (const float component : float_unit_normal(a, b, c)) out.put_little_endian(component);
     for (const Point* p : {&a, &b, &c}) {
       for (const double coordinate : *p) out.put_little_endian(static_cast<float>(coordinate));
     }
@@ -185,7 +181,7 @@ void write_binary_stl(const Mesh& mesh, OutputBuffer& out) {
 
 void write_ascii_facet(const Mesh& mesh, const Triangle& t, OutputBuffer& out) {
   const std::array<float, 3> normal =
-      unit_normal(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+      float_unit_normal(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
   out.put("  facet normal ");
   for (int axis = 0; axis < 3; ++axis) {
     if (axis > 0) out.put(' ');

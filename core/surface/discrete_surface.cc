@@ -94,15 +94,9 @@ absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
 
   s.normals_.reserve(s.triangles_.size());
   for (const Triangle& t : s.triangles_) {
-    const Point& a = s.points_[t[0]];
-    const Point n = cross(sub(s.points_[t[1]], a), sub(s.points_[t[2]], a));
-    const double length = norm(n);
-    if (length > 0.0 && std::isfinite(length)) {
-      s.normals_.push_back(scale(n, 1.0 / length));
-    } else {
-      s.normals_.push_back({0.0, 0.0, 0.0});
-      ++s.degenerate_faces_;
-    }
+    const Point n = unit_normal(s.points_[t[0]], s.points_[t[1]], s.points_[t[2]]);
+    s.normals_.push_back(n);
+    if (n == Point{0.0, 0.0, 0.0}) ++s.degenerate_faces_;
   }
   if (cancel.look()) return cancelled();
   s.neighbours_ = triangle_edge_neighbours(s.triangles_, &cancel);

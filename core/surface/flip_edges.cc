@@ -15,12 +15,6 @@ namespace {
 
 std::pair<Index, Index> edge_key(Index a, Index b) { return {std::min(a, b), std::max(a, b)}; }
 
-Point unit_normal(const std::vector<Point>& p, Index a, Index b, Index c) {
-  const Point n = cross(sub(p[b], p[a]), sub(p[c], p[a]));
-  const double length = norm(n);
-  return length > 0 ? scale(n, 1.0 / length) : n;
-}
-
 double min_angle(const std::vector<Point>& p, Index a, Index b, Index c) {
   return triangle_min_angle_deg(p[a], p[b], p[c]);
 }
@@ -135,13 +129,14 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
         if (!(first > wanted)) continue;
         const double second = min_angle(points, d, b, c);
         if (!(std::min(first, second) > wanted)) continue;
-        Point n = add(unit_normal(points, a, b, c), unit_normal(points, b, a, d));
+        Point n = add(unit_normal(points[a], points[b], points[c]),
+                      unit_normal(points[b], points[a], points[d]));
         if (!(norm(n) > 0)) continue;
         n = scale(n, 1.0 / norm(n));
         if (orient_in_plane(points, n, a, d, c) <= 0 || orient_in_plane(points, n, d, b, c) <= 0)
           continue;
-        if (dot(unit_normal(points, a, d, c), n) < min_cosine ||
-            dot(unit_normal(points, d, b, c), n) < min_cosine)
+        if (dot(unit_normal(points[a], points[d], points[c]), n) < min_cosine ||
+            dot(unit_normal(points[d], points[b], points[c]), n) < min_cosine)
           continue;
         flip(triangles, neighbours, t1, k, t2, j);
         smallest_angle[t1] = first;  // (a, d, c)

@@ -12,12 +12,6 @@
 namespace afmesh {
 namespace {
 
-Point unit_normal(const Point& a, const Point& b, const Point& c) {
-  const Point n = cross(sub(b, a), sub(c, a));
-  const double length = norm(n);
-  return length > 0 ? scale(n, 1.0 / length) : n;
-}
-
 // The fan of point q with q at `x`: its smallest angle, and whether every triangle's normal
 // stays within `min_cosine` of `before` (its normal with q where it was).
 struct Fan {

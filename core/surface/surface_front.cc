@@ -261,10 +261,7 @@ class PatchFront {
   }
   // The unit normal of triangle t of s_.points (zero for a degenerate one).
   Point triangle_normal(const Triangle& t) const {
-    const Point m =
-        cross(sub(s_.points[t[1]], s_.points[t[0]]), sub(s_.points[t[2]], s_.points[t[0]]));
-    const double length = norm(m);
-    return length > 0 ? scale(m, 1.0 / length) : m;
+    return unit_normal(s_.points[t[0]], s_.points[t[1]], s_.points[t[2]]);
   }
   // Whether point q's side of the patch faces the plane's way (its normal within 90° of the
   // plane's): the 2-D checks of S6 see only such points and sides. Where the patch curves
