@@ -435,6 +435,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   SurfaceMeshState s(*surface, *features, *sizes, growth);
   std::vector<std::vector<Side>> patch_sides(features->patches.size());
   if (absl::Status st = sides_along_lines(s, patch_sides); !st.ok()) return st;
+  s.line_points = static_cast<Index>(s.points.size());
   clock.lap("lines");
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
 

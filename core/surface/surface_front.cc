@@ -304,12 +304,14 @@ class PatchFront {
   bool has_edge(Index a, Index b, Index c = kInvalidIndex);
   // Whether a triangle built before has a new side of face (v, p) the way the face would have
   // it, so that the two would lie over each other, or a new side is a side of a discrete line
-  // the face would be on the wrong side of (the line's other patch is there): wherever the
-  // plane of S6 puts their points, which near a sharp corner can fold a face over a ridge (not
-  // in the paper; exact, from the incidence and the lines).
+  // the face would be on the wrong side of (the line's other patch is there), or a chord that
+  // a patch meshed before has between the same two line points: wherever the plane of S6 puts
+  // their points, which near a sharp corner can fold a face over a ridge (not in the paper;
+  // exact, from the incidence and the lines).
   bool lies_over_a_triangle(const Side& v, Index p) {
     return has_edge(v[1], p) || has_edge(p, v[0]) || off_its_patch(v[1], p) ||
-           off_its_patch(p, v[0]);
+           off_its_patch(p, v[0]) || s_.chord_of_another_patch(v[1], p) ||
+           s_.chord_of_another_patch(p, v[0]);
   }
   // Whether triangle t would fold over a triangle of the patch across one of its edges that is
   // not a line's side: their normals more than 120° apart (kFoldCosine) (not in the paper: the input
@@ -640,6 +642,7 @@ bool PatchFront::fill_hole(Index f) {
       const std::size_t a = ring[(i + ring.size() - 1) % ring.size()], b = ring[i],
                         c = ring[(i + 1) % ring.size()];
       if (orient2d(xy[a].data(), xy[b].data(), xy[c].data()) <= 0) continue;
+      if (s_.chord_of_another_patch(corners[a], corners[c])) continue;
       bool empty = true;
       for (const std::size_t j : ring) {
         if (j == a || j == b || j == c) continue;
@@ -934,6 +937,19 @@ absl::Status check_patch_closed(const SurfaceMeshState& s, PatchId patch,
 // A patch without lines (a closed smooth surface: a sphere, a torus) has no front to start
 // from: a seed triangle of the wanted size is laid on its first face, and its sides, turned
 // outward, are the front (not in the paper, which meshes patches bounded by lines).
+// Records the edges of the patch's triangles (from `first` on) that join two line points off
+// the lines, for the patches meshed after it (SurfaceMeshState::chords_between_line_points).
+void keep_chords_between_line_points(SurfaceMeshState& s, std::size_t first) {
+  for (std::size_t t = first; t < s.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const Index a = s.triangles[t][k], b = s.triangles[t][(k + 1) % 3];
+      const std::pair<Index, Index> edge{std::min(a, b), std::max(a, b)};
+      if (edge.second < s.line_points && !s.line_sides.contains(edge))
+        s.chords_between_line_points.insert(edge);
+    }
+  }
+}
+
 Triangle lay_seed(SurfaceMeshState& s, PatchId patch, std::vector<Side>& sides) {
   const FaceId face = s.features.patches[index_of(patch)].first_face;
   const Triangle& t = s.surface.triangle(face);
@@ -1001,7 +1017,12 @@ absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Si
                     triangles_before, back_offs);
   }
   s.compact_patch(points_before, static_cast<std::size_t>(triangles_before));
-  return check_patch_closed(s, patch, initial, static_cast<std::size_t>(triangles_before));
+  if (absl::Status closed =
+          check_patch_closed(s, patch, initial, static_cast<std::size_t>(triangles_before));
+      !closed.ok())
+    return closed;
+  keep_chords_between_line_points(s, static_cast<std::size_t>(triangles_before));
+  return absl::OkStatus();
 }
 
 }  // namespace afmesh

@@ -70,6 +70,17 @@ struct SurfaceMeshState {
   std::vector<Index> triangle_patch;  // the patch each triangle was meshed in
   // The sides along the discrete lines, as (min, max) point pairs: kept by every clean-up.
   absl::flat_hash_set<std::pair<Index, Index>> line_sides;
+  // The corners and line points are points [0, line_points) (set once the lines are split).
+  Index line_points = 0;
+  // The edges of the patches meshed so far that join two line points off the lines, as (min,
+  // max): two patches that meet at a corner where their lines turn can each cut the corner by
+  // the same chord, and the surface would carry one edge four times (not in the paper).
+  absl::flat_hash_set<std::pair<Index, Index>> chords_between_line_points;
+  // Whether edge (a, b) joins two line points and a patch meshed before has it off the lines.
+  bool chord_of_another_patch(Index a, Index b) const {
+    return a < line_points && b < line_points &&
+           chords_between_line_points.contains({std::min(a, b), std::max(a, b)});
+  }
 
   // The wanted size at x (local frame): the size field there.
   double field_size(const Point& x) const { return field.size_at(surface.to_global(x)); }

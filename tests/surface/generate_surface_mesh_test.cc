@@ -483,5 +483,21 @@ TEST(Regression, Issue11TwoLinesBetweenTheSameCornersGiveDifferentSides) {
   EXPECT_LT(r->report.hausdorff, 0.01 * r->report.model_size);
 }
 
+// inv_coil at ridge angle 45: patches 1 and 4 meet along two lines that turn at corner 64, and
+// each cut the corner by the same chord (77, 89), so that edge carried four triangles ("the
+// surface fronts of the patches did not meet"). A patch no longer lays a chord between two line
+// points that a patch meshed before has.
+TEST(Regression, Issue11TwoPatchesNeverCutACornerByTheSameChord) {
+  const Mesh input = testing::corpus_mesh("inv_coil.stl");
+  ASSERT_FALSE(input.triangles.empty());
+  SurfaceParams params;
+  params.size = mean_edge_length(input);
+  params.ridge_angle_deg = 45.0;
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  ASSERT_TRUE(r.ok()) << r.status();
+  expect_closed_valid(r->mesh);
+  EXPECT_LT(r->report.hausdorff, 0.01 * r->report.model_size);
+}
+
 }  // namespace
 }  // namespace afmesh
