@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <set>
 #include <string>
 
@@ -93,11 +94,14 @@ SurfaceResult mesh_at(const Mesh& input, double size) {
 }
 
 // A corpus file (testing::corpus_mesh) meshed at its mean edge length, as run_corpus.py does.
-absl::StatusOr<SurfaceResult> mesh_corpus_at_mean_edge(const std::string& name) {
+// `adjust` changes the other parameters (ridge or curvature angle) before the job runs.
+absl::StatusOr<SurfaceResult> mesh_corpus_at_mean_edge(
+    const std::string& name, const std::function<void(SurfaceParams&)>& adjust = {}) {
   const Mesh input = testing::corpus_mesh(name);
   if (input.triangles.empty()) return absl::NotFoundError("no corpus file " + name);
   SurfaceParams params;
   params.size = mean_edge_length(input);
+  if (adjust) adjust(params);
   return generate_surface_mesh(input, params);
 }
 
@@ -472,12 +476,8 @@ TEST(Regression, Issue11FacesFitTheGapsRoundASpikeOfAScan) {
 // patch was bounded by a side and its reverse and the front stopped ("no face"). A line that
 // shares its corners with another now gets two sides.
 TEST(Regression, Issue11TwoLinesBetweenTheSameCornersGiveDifferentSides) {
-  const Mesh input = testing::corpus_mesh("gmsh_t13_data.stl");
-  ASSERT_FALSE(input.triangles.empty());
-  SurfaceParams params;
-  params.size = mean_edge_length(input);
-  params.curvature_angle_deg = 0.0;
-  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge(
+      "gmsh_t13_data.stl", [](SurfaceParams& params) { params.curvature_angle_deg = 0.0; });
   ASSERT_TRUE(r.ok()) << r.status();
   expect_closed_valid(r->mesh);
   EXPECT_LT(r->report.hausdorff, 0.01 * r->report.model_size);
@@ -488,12 +488,8 @@ TEST(Regression, Issue11TwoLinesBetweenTheSameCornersGiveDifferentSides) {
 // surface fronts of the patches did not meet"). A patch no longer lays a chord between two line
 // points that a patch meshed before has.
 TEST(Regression, Issue11TwoPatchesNeverCutACornerByTheSameChord) {
-  const Mesh input = testing::corpus_mesh("inv_coil.stl");
-  ASSERT_FALSE(input.triangles.empty());
-  SurfaceParams params;
-  params.size = mean_edge_length(input);
-  params.ridge_angle_deg = 45.0;
-  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge(
+      "inv_coil.stl", [](SurfaceParams& params) { params.ridge_angle_deg = 45.0; });
   ASSERT_TRUE(r.ok()) << r.status();
   expect_closed_valid(r->mesh);
   EXPECT_LT(r->report.hausdorff, 0.01 * r->report.model_size);
