@@ -146,6 +146,10 @@ double DiscreteSurface::squared_distance_to(const Point& x, FaceId f, Point& clo
 
 double DiscreteSurface::squared_distance_to_face(const Point& x, FaceId f) const {
   Point closest;
+  return squared_distance_to_face(x, f, closest);
+}
+
+double DiscreteSurface::squared_distance_to_face(const Point& x, FaceId f, Point& closest) const {
   Located unused;
   return squared_distance_to(x, f, closest, unused);
 }

@@ -110,8 +110,10 @@ class DiscreteSurface {
   Index degenerate_face_count() const { return degenerate_faces_; }
 
   // |x - the closest point of face f to x|^2 (x in the local frame): the distance the walk and
-  // the tree compare, bit for bit.
+  // the tree compare, bit for bit. With `closest`, that closest point too. Every search over
+  // faces (this class's and the surface front's walk within a patch) measures with this one.
   double squared_distance_to_face(const Point& x, FaceId f) const;
+  double squared_distance_to_face(const Point& x, FaceId f, Point& closest) const;
 
   // The face nearest to x (local frame) by the AABB tree, ties to the smaller face id.
   // O(log M) for x near the surface.

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include "absl/strings/str_format.h"
@@ -84,33 +85,41 @@ bool in_patch(const SurfaceFeatures& features, PatchId patch, Index face) {
   return features.face_patch[face] == patch;
 }
 
-double squared_distance_to_face(const DiscreteSurface& surface, const Point& x, Index face,
-                                Point& closest) {
-  const Triangle& t = surface.triangles()[face];
-  const std::vector<Point>& p = surface.local_points();
-  closest = closest_point_on_triangle(x, p[t[0]], p[t[1]], p[t[2]]);
-  return squared_norm(sub(x, closest));
+bool uses_any(const Triangle& t, std::span<const Index> points) {
+  for (const Index q : t)
+    if (std::find(points.begin(), points.end(), q) != points.end()) return true;
+  return false;
 }
 
 }  // namespace
 
+// Each step looks at the faces of the patch round the face's corners, each once: a face round two
+// corners is met again at the second, and one round the face the walk came from was measured at
+// the step before, where it was no nearer than the face the walk moved to. Neither can be strictly
+// nearer now, so skipping them changes no step (the faces are still offered in the same order,
+// ties keeping the first).
 Located locate_in_patch(const DiscreteSurface& surface, const SurfaceFeatures& features,
                         PatchId patch, const Point& x, FaceId hint, int max_steps) {
   Located at;
   Index face = index_of(hint);
-  at.squared_distance = squared_distance_to_face(surface, x, face, at.closest);
+  at.squared_distance = surface.squared_distance_to_face(x, hint, at.closest);
   ++at.evaluations;
+  Triangle previous{kInvalidIndex, kInvalidIndex, kInvalidIndex};  // the corners of the last face
   for (int step = 0; step < max_steps; ++step) {
     Index best = kInvalidIndex;
     double best_distance = at.squared_distance;
     Point best_closest{};
     // The faces of the patch around the face's corners: its edge neighbours and those that share
     // only a corner (where the nearest point is a corner, the nearer face may be one of them).
-    for (const Index v : surface.triangles()[face]) {
-      for (const Index g : surface.faces_at(v)) {
+    const Triangle& corners = surface.triangles()[face];
+    for (int k = 0; k < 3; ++k) {
+      for (const Index g : surface.faces_at(corners[k])) {
         if (g == face || !in_patch(features, patch, g)) continue;
+        const Triangle& t = surface.triangles()[g];
+        if (uses_any(t, std::span<const Index>(corners.data(), k)) || uses_any(t, previous))
+          continue;
         Point closest;
-        const double d = squared_distance_to_face(surface, x, g, closest);
+        const double d = surface.squared_distance_to_face(x, FaceId{g}, closest);
         ++at.evaluations;
         if (d < best_distance) {  // strictly nearer: ties keep the first (lowest corner's) face
           best = g;
@@ -120,6 +129,7 @@ Located locate_in_patch(const DiscreteSurface& surface, const SurfaceFeatures& f
       }
     }
     if (best == kInvalidIndex) break;
+    previous = corners;
     face = best;
     at.squared_distance = best_distance;
     at.closest = best_closest;
