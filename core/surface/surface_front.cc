@@ -95,9 +95,10 @@ bool uses_any(const Triangle& t, std::span<const Index> points) {
 
 // Each step looks at the faces of the patch round the face's corners, each once: a face round two
 // corners is met again at the second, and one round the face the walk came from was measured at
-// the step before, where it was no nearer than the face the walk moved to. Neither can be strictly
-// nearer now, so skipping them changes no step (the faces are still offered in the same order,
-// ties keeping the first).
+// the step before, where it was no nearer than the face the walk moved to; a face whose ball is
+// farther than the nearest so far is not measured (DiscreteSurface::cannot_be_nearer). None of
+// them can be strictly nearer, so skipping them changes no step (the faces are still offered in
+// the same order, ties keeping the first).
 Located locate_in_patch(const DiscreteSurface& surface, const SurfaceFeatures& features,
                         PatchId patch, const Point& x, FaceId hint, int max_steps) {
   Located at;
@@ -116,7 +117,8 @@ Located locate_in_patch(const DiscreteSurface& surface, const SurfaceFeatures& f
       for (const Index g : surface.faces_at(corners[k])) {
         if (g == face || !in_patch(features, patch, g)) continue;
         const Triangle& t = surface.triangles()[g];
-        if (uses_any(t, std::span<const Index>(corners.data(), k)) || uses_any(t, previous))
+        if (uses_any(t, std::span<const Index>(corners.data(), k)) || uses_any(t, previous) ||
+            surface.cannot_be_nearer(x, FaceId{g}, best_distance))
           continue;
         Point closest;
         const double d = surface.squared_distance_to_face(x, FaceId{g}, closest);
