@@ -214,7 +214,7 @@ bool DiscreteSurface::step_around_vertices(const Point& x, Located& at) const {
   for (int k = 0; k < 3; ++k) {
     if (!look[k]) continue;
     for (Index g : faces_at(t[k])) {
-      if (FaceId{g} == at.face) continue;
+      if (FaceId{g} == at.face || cannot_be_nearer(x, FaceId{g}, move.squared_distance)) continue;
       Point closest;
       const double d = squared_distance_to(x, FaceId{g}, closest, at);
       move.offer(FaceId{g}, closest, d);
@@ -229,7 +229,9 @@ bool DiscreteSurface::walk(const Point& x, Located& at) const {
     // Across the edges: the strictly nearest neighbour.
     Move move{kNoFace, {}, at.squared_distance};
     for (Index g : neighbours_.across[index_of(at.face)]) {
-      if (g == kInvalidIndex || FaceId{g} == previous) continue;
+      if (g == kInvalidIndex || FaceId{g} == previous ||
+          cannot_be_nearer(x, FaceId{g}, move.squared_distance))
+        continue;  // no nearer than where the walk is, or the best offer: Move would not take it
       Point closest;
       const double d = squared_distance_to(x, FaceId{g}, closest, at);
       move.offer(FaceId{g}, closest, d);
