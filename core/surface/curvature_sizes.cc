@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <queue>
 #include <utility>
 
@@ -81,11 +82,23 @@ void grade_point_sizes(const DiscreteSurface& surface, double growth, std::vecto
   }
 }
 
+CurvatureLimitedSize::CurvatureLimitedSize(const SizeField& base, const DiscreteSurface& surface,
+                                           std::vector<double> point_sizes)
+    : base_(base),
+      surface_(surface),
+      point_sizes_(std::move(point_sizes)),
+      smallest_(std::accumulate(point_sizes_.begin(), point_sizes_.end(),
+                                std::numeric_limits<double>::infinity(),
+                                [](double a, double b) { return std::min(a, b); })) {}
+
 double CurvatureLimitedSize::size_at(const Point& x) const {
+  const double base = base_.size_at(x);
+  // min(base, curvature) is base whenever curvature >= smallest_ >= base: the same double.
+  if (base <= smallest_) return base;
   const Located at = surface_.nearest_face(surface_.to_local(x));
   double curvature = std::numeric_limits<double>::infinity();
   for (const Index v : surface_.triangle(at.face)) curvature = std::min(curvature, point_sizes_[v]);
-  return std::min(base_.size_at(x), curvature);
+  return std::min(base, curvature);
 }
 
 }  // namespace afmesh

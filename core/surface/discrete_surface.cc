@@ -1,7 +1,9 @@
 #include "core/surface/discrete_surface.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <utility>
 
@@ -72,6 +74,13 @@ struct Move {
   }
 };
 
+// cannot_be_nearer: faces whose doubled area is under this times their ball's squared radius (an
+// equilateral face has 2.6; this is a face ~130 times flatter) get no ball; the ball's margin,
+// in units of the coordinates' magnitude, is ~10^7 times the rounding of the distances of the
+// faces that have one.
+constexpr double kBallShape = 0.02;
+constexpr double kBallMargin = 1e-9;
+
 }  // namespace
 
 absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
@@ -97,6 +106,22 @@ absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
     const Point n = unit_normal(s.points_[t[0]], s.points_[t[1]], s.points_[t[2]]);
     s.normals_.push_back(n);
     if (n == Point{0.0, 0.0, 0.0}) ++s.degenerate_faces_;
+  }
+  s.centroids_.reserve(s.triangles_.size());
+  s.radii_.reserve(s.triangles_.size());
+  for (const Triangle& t : s.triangles_) {
+    const Point c =
+        scale(add(s.points_[t[0]], add(s.points_[t[1]], s.points_[t[2]])), 1.0 / 3.0);
+    double radius = 0.0;
+    for (const Index v : t) radius = std::max(radius, distance(c, s.points_[v]));
+    // A sliver's closest point (barycentric coordinates from nearly cancelling areas) can round
+    // far off the face, out of its ball: no ball for it, cannot_be_nearer is never true there.
+    const Point& a = s.points_[t[0]];
+    if (!(norm(cross(sub(s.points_[t[1]], a), sub(s.points_[t[2]], a))) >=
+          kBallShape * radius * radius))
+      radius = std::numeric_limits<double>::infinity();
+    s.centroids_.push_back(c);
+    s.radii_.push_back(radius);
   }
   if (cancel.look()) return cancelled();
   s.neighbours_ = triangle_edge_neighbours(s.triangles_, &cancel);
@@ -140,8 +165,19 @@ double DiscreteSurface::squared_distance_to(const Point& x, FaceId f, Point& clo
 
 double DiscreteSurface::squared_distance_to_face(const Point& x, FaceId f) const {
   Point closest;
+  return squared_distance_to_face(x, f, closest);
+}
+
+double DiscreteSurface::squared_distance_to_face(const Point& x, FaceId f, Point& closest) const {
   Located unused;
   return squared_distance_to(x, f, closest, unused);
+}
+
+bool DiscreteSurface::cannot_be_nearer(const Point& x, FaceId f, double squared_distance) const {
+  const Point& c = centroids_[index_of(f)];
+  const double magnitude = size_ + std::max({std::abs(x[0]), std::abs(x[1]), std::abs(x[2])});
+  const double gap = distance(x, c) - radii_[index_of(f)] - kBallMargin * magnitude;
+  return gap > 0.0 && gap * gap * (1.0 - 1e-9) > squared_distance;
 }
 
 Located DiscreteSurface::nearest_face(const Point& x) const {
@@ -172,7 +208,7 @@ bool DiscreteSurface::step_around_vertices(const Point& x, Located& at) const {
   for (int k = 0; k < 3; ++k) {
     if (!look[k]) continue;
     for (Index g : faces_at(t[k])) {
-      if (FaceId{g} == at.face) continue;
+      if (FaceId{g} == at.face || cannot_be_nearer(x, FaceId{g}, move.squared_distance)) continue;
       Point closest;
       const double d = squared_distance_to(x, FaceId{g}, closest, at);
       move.offer(FaceId{g}, closest, d);
@@ -187,7 +223,9 @@ bool DiscreteSurface::walk(const Point& x, Located& at) const {
     // Across the edges: the strictly nearest neighbour.
     Move move{kNoFace, {}, at.squared_distance};
     for (Index g : neighbours_.across[index_of(at.face)]) {
-      if (g == kInvalidIndex || FaceId{g} == previous) continue;
+      if (g == kInvalidIndex || FaceId{g} == previous ||
+          cannot_be_nearer(x, FaceId{g}, move.squared_distance))
+        continue;  // no nearer than where the walk is, or the best offer: Move would not take it
       Point closest;
       const double d = squared_distance_to(x, FaceId{g}, closest, at);
       move.offer(FaceId{g}, closest, d);

@@ -110,8 +110,17 @@ class DiscreteSurface {
   Index degenerate_face_count() const { return degenerate_faces_; }
 
   // |x - the closest point of face f to x|^2 (x in the local frame): the distance the walk and
-  // the tree compare, bit for bit.
+  // the tree compare, bit for bit. With `closest`, that closest point too. Every search over
+  // faces (this class's and the surface front's walk within a patch) measures with this one.
   double squared_distance_to_face(const Point& x, FaceId f) const;
+  double squared_distance_to_face(const Point& x, FaceId f, Point& closest) const;
+  // True only when squared_distance_to_face(x, f) > squared_distance, as computed: x is
+  // farther from the ball round face f (its centroid, out to its farthest corner) than
+  // sqrt(squared_distance), by a margin of 1e-9 of the coordinates' magnitude (the distances
+  // round by a few units in their last place); never for a sliver face, whose closest point can
+  // round off it. A fraction of the distance's cost: a walk uses it to pass over the faces
+  // round it that cannot be nearer. False says nothing.
+  bool cannot_be_nearer(const Point& x, FaceId f, double squared_distance) const;
 
   // The face nearest to x (local frame) by the AABB tree, ties to the smaller face id.
   // O(log M) for x near the surface.
@@ -142,6 +151,8 @@ class DiscreteSurface {
   std::vector<Triangle> triangles_;  // M×3
   std::vector<Index> tags_;          // M
   std::vector<Point> normals_;       // M×3 unit (or zero)
+  std::vector<Point> centroids_;     // M×3
+  std::vector<double> radii_;        // M: the largest distance from a face's centroid to a corner
   Index degenerate_faces_ = 0;
   EdgeNeighbours neighbours_;
   std::vector<Index> face_offsets_;  // N + 1: faces_at(v) = vertex_faces_[offsets[v], [v + 1])

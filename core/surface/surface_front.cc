@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include "absl/strings/str_format.h"
@@ -84,33 +85,43 @@ bool in_patch(const SurfaceFeatures& features, PatchId patch, Index face) {
   return features.face_patch[face] == patch;
 }
 
-double squared_distance_to_face(const DiscreteSurface& surface, const Point& x, Index face,
-                                Point& closest) {
-  const Triangle& t = surface.triangles()[face];
-  const std::vector<Point>& p = surface.local_points();
-  closest = closest_point_on_triangle(x, p[t[0]], p[t[1]], p[t[2]]);
-  return squared_norm(sub(x, closest));
+bool uses_any(const Triangle& t, std::span<const Index> points) {
+  for (const Index q : t)
+    if (std::find(points.begin(), points.end(), q) != points.end()) return true;
+  return false;
 }
 
 }  // namespace
 
+// Each step looks at the faces of the patch round the face's corners, each once: a face round two
+// corners is met again at the second, and one round the face the walk came from was measured at
+// the step before, where it was no nearer than the face the walk moved to; a face whose ball is
+// farther than the nearest so far is not measured (DiscreteSurface::cannot_be_nearer). None of
+// them can be strictly nearer, so skipping them changes no step (the faces are still offered in
+// the same order, ties keeping the first).
 Located locate_in_patch(const DiscreteSurface& surface, const SurfaceFeatures& features,
                         PatchId patch, const Point& x, FaceId hint, int max_steps) {
   Located at;
   Index face = index_of(hint);
-  at.squared_distance = squared_distance_to_face(surface, x, face, at.closest);
+  at.squared_distance = surface.squared_distance_to_face(x, hint, at.closest);
   ++at.evaluations;
+  Triangle previous{kInvalidIndex, kInvalidIndex, kInvalidIndex};  // the corners of the last face
   for (int step = 0; step < max_steps; ++step) {
     Index best = kInvalidIndex;
     double best_distance = at.squared_distance;
     Point best_closest{};
     // The faces of the patch around the face's corners: its edge neighbours and those that share
     // only a corner (where the nearest point is a corner, the nearer face may be one of them).
-    for (const Index v : surface.triangles()[face]) {
-      for (const Index g : surface.faces_at(v)) {
+    const Triangle& corners = surface.triangles()[face];
+    for (int k = 0; k < 3; ++k) {
+      for (const Index g : surface.faces_at(corners[k])) {
         if (g == face || !in_patch(features, patch, g)) continue;
+        const Triangle& t = surface.triangles()[g];
+        if (uses_any(t, std::span<const Index>(corners.data(), k)) || uses_any(t, previous) ||
+            surface.cannot_be_nearer(x, FaceId{g}, best_distance))
+          continue;
         Point closest;
-        const double d = squared_distance_to_face(surface, x, g, closest);
+        const double d = surface.squared_distance_to_face(x, FaceId{g}, closest);
         ++at.evaluations;
         if (d < best_distance) {  // strictly nearer: ties keep the first (lowest corner's) face
           best = g;
@@ -120,6 +131,7 @@ Located locate_in_patch(const DiscreteSurface& surface, const SurfaceFeatures& f
       }
     }
     if (best == kInvalidIndex) break;
+    previous = corners;
     face = best;
     at.squared_distance = best_distance;
     at.closest = best_closest;
@@ -192,12 +204,12 @@ class PatchFront {
 
   // One of the patch's initial sides (kept by every back-off).
   void add_initial_side(const Side& v) {
-    front_.add(v, queue_key(v));
+    add_side(v);
     initial_.insert({v[0], v[1]});
   }
   // The seed triangle of a patch without lines (lay_seed), before its sides.
   void add_seed(const Triangle& t) { add_triangle(t); }
-  void defer(Index f) { front_.defer(f, queue_key(front_.item(f).v)); }
+  void defer(Index f) { front_.defer(f, queue_key(front_.item(f).v, target_[f])); }
   AdvancingFront<2>& front() { return front_; }
 
   // S2–S10 for side f; false when no face could be built on it now.
@@ -235,9 +247,18 @@ class PatchFront {
   double element_size(const Side& v, double target) const {
     return element_size_for_target(target, norm(sub(s_.points[v[1]], s_.points[v[0]])));
   }
-  double queue_key(const Side& v) const {
-    const double target = target_size(v);
+  double queue_key(const Side& v, double target) const {
     return queue_key_for_element(target, element_size(v, target));
+  }
+  // Every side goes on the front through here. Its target size (a size field query, the front's
+  // costliest lookup after the walks) is measured once and kept in target_ for the side's
+  // deletion, deferrals and back-offs: the side's points and their sizes do not change while
+  // it is on the front, so neither does its target.
+  void add_side(const Side& v) {
+    const double target = target_size(v);
+    const Index f = front_.add(v, queue_key(v, target));
+    if (static_cast<std::size_t>(f) >= target_.size()) target_.resize(f + 1);
+    target_[f] = target;
   }
   Point midpoint(const Side& v) const {
     return scale(add(s_.points[v[0]], s_.points[v[1]]), 0.5);
@@ -337,6 +358,7 @@ class PatchFront {
   SurfaceMeshState& s_;
   PatchId patch_;
   AdvancingFront<2> front_;
+  std::vector<double> target_;  // the target size (eq. 15) of each front item, by item index
   // The triangles this front built (indices into s_.triangles), by point: the back-off finds
   // the triangles near a side through them.
   SimplexIncidence<3> incidence_;
@@ -548,7 +570,7 @@ void PatchFront::add_face(Index f, const Side& v, Index p) {
     if (auto g = front_.find({side[1], side[0]})) {
       front_.remove(*g);
     } else {
-      front_.add(side, queue_key(side));                                      // S9
+      add_side(side);                                                         // S9
     }
   }
 }
@@ -721,7 +743,7 @@ bool PatchFront::delete_side(Index f) {
     add_face(f, v, y);
     return true;
   }
-  const double target = target_size(v);
+  const double target = target_[f];
   const double d = element_size(v, target);
   const double length = norm(sub(s_.points[v[1]], s_.points[v[0]]));
   // S4: the best point, at the height that makes both new sides d long, moved onto the patch.
@@ -857,7 +879,7 @@ void PatchFront::open_cavity(const std::vector<Index>& cavity) {
     const bool wanted = !has_edge(side[0], side[1]) &&
                         (has_edge(side[1], side[0]) || initial_.contains({side[0], side[1]}));
     if (wanted) {
-      if (!front_.find(side)) front_.add(side, queue_key(side));
+      if (!front_.find(side)) add_side(side);
     } else {
       // All copies: where triangles were laid twice, the front can hold a side twice.
       while (const std::optional<Index> g = front_.find(side)) front_.remove(*g);
@@ -868,7 +890,7 @@ void PatchFront::open_cavity(const std::vector<Index>& cavity) {
 bool PatchFront::back_off(Index f) {
   const Side v = front_.item(f).v;
   const std::uint32_t stamp = front_.item(f).stamp;
-  const double d = std::max(target_size(v), norm(sub(s_.points[v[1]], s_.points[v[0]])));
+  const double d = std::max(target_[f], norm(sub(s_.points[v[1]], s_.points[v[0]])));
   if (!(d > 0)) return false;
   const Point x = midpoint(v);
   int& count = repairs_.at(x, d);
@@ -882,7 +904,7 @@ bool PatchFront::back_off(Index f) {
   } while (overlaps_outside(cavity_));
   open_cavity(cavity_);
   const FrontItem<2>& item = front_.item(f);
-  if (item.alive && item.stamp == stamp) front_.requeue(f, queue_key(v));
+  if (item.alive && item.stamp == stamp) front_.requeue(f, queue_key(v, target_[f]));
   return true;
 }
 
@@ -895,7 +917,7 @@ absl::Status PatchFront::stuck(Index f, std::string_view why, std::int64_t trian
       "%g, %g), %g long, size wanted %g, after %d back-offs in the patch; %d triangles built in "
       "the patch (some later removed by back-offs), %d sides left",
       index_of(patch_), s_.features.patches[index_of(patch_)].tag, why, v[0], v[1], x[0], x[1],
-      x[2], norm(sub(s_.points[v[1]], s_.points[v[0]])), target_size(v), back_offs,
+      x[2], norm(sub(s_.points[v[1]], s_.points[v[0]])), target_[f], back_offs,
       static_cast<std::int64_t>(s_.triangles.size()) - triangles_before, front_.size()));
 }
 

@@ -300,5 +300,40 @@ TEST(DiscreteSurface, WalkAgreesWithTheTreeOnTheCorpusBunny) {
   EXPECT_GE(f.same_distance, f.queries * 99 / 100);
 }
 
+// cannot_be_nearer lets the walks skip faces: it must never say so of a face whose distance is
+// not strictly above the bound (here the face's own distance, the closest call), whatever the
+// face's shape (a jittered sphere's faces, and the slivers of a CAD box, which get no ball), and
+// on well-shaped faces it must say so of most faces well away from x, or it saves nothing.
+TEST(DiscreteSurface, CannotBeNearerHoldsForNoFaceAsNearAsTheBound) {
+  const std::vector<Mesh> meshes = {
+      testing::jittered(testing::uv_sphere({0, 0, 0}, 1.0, 40, 20), 0.01, 3),
+      testing::sliver_box(2.0, 1.0, 0.5, 12)};
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    const DiscreteSurface s = build_or_die(meshes[m]);
+    const std::vector<Point>& p = s.local_points();
+    std::mt19937 rng(5);
+    std::uniform_int_distribution<Index> any_face(0, s.face_count() - 1);
+    std::normal_distribution<double> off(0.0, 0.05);
+    int far = 0, skipped = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const FaceId on{any_face(rng)};
+      const Triangle& t = s.triangle(on);
+      const Point centroid = scale(add(p[t[0]], add(p[t[1]], p[t[2]])), 1.0 / 3.0);
+      const Point x = add(centroid, {off(rng), off(rng), off(rng)});
+      const FaceId f{any_face(rng)};
+      const double d = s.squared_distance_to_face(x, f);
+      EXPECT_FALSE(s.cannot_be_nearer(x, f, d)) << "face " << index_of(f);
+      const double bound = s.squared_distance_to_face(x, on);
+      if (d > 4.0 * bound + 0.01) {
+        ++far;
+        skipped += s.cannot_be_nearer(x, f, bound);
+      }
+    }
+    if (m == 0) {  // the sphere's faces are well shaped
+      EXPECT_GT(far, 10000);
+      EXPECT_GT(skipped, far / 2) << skipped << " of " << far;
+    }
+  }
+}
 }  // namespace
 }  // namespace afmesh
