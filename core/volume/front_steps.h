@@ -81,13 +81,16 @@ Point ideal_point(const MesherState& s, const Triangle& v, double d);
 void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
                        const Strictness& rules);
 
-// F7.2: true when a new point at x keeps its distance from the front for element size d:
-// rules.point_spacing·d from front points and rules.face_clearance·d from front faces (else an
-// existing point is to be used in lieu of it).
+// F7.2: true when a new point at x keeps its distance from the front: rules.point_spacing ×
+// `spacing_size` from front points (else an existing point is to be used in lieu of it) and
+// rules.face_clearance × `clearance_size` from front faces (Candidate's sizes: the element size
+// for the best point; for a point closer to the face, the clearance shrinks with its height,
+// the spacing does not).
 // Only points and faces visible from environment `env` count (paper §2). Front points closer
-// than `min_spacing` always count as too close, whatever d.
-bool new_point_is_clear(MesherState& s, const Point& x, double d, const Strictness& rules,
-                        Index env, double min_spacing);
+// than `min_spacing` always count as too close, whatever the sizes.
+bool new_point_is_clear(MesherState& s, const Point& x, double spacing_size,
+                        double clearance_size, const Strictness& rules, Index env,
+                        double min_spacing);
 
 // F7.3: true when tet (v[0], v[1], v[2], p) would cross the front: it intersects a front face
 // other than those it shares properly, or contains a front point. `p` is an index into

@@ -61,6 +61,8 @@ absl::Status load_initial_front(MesherState& s, const Mesh& input,
   for (std::size_t t = 0; t < input.triangles.size(); ++t) {
     const Triangle& u = input.triangles[t];
     const Triangle inward{u[0], u[2], u[1]};
+    s.sliver_front = s.sliver_front ||
+                     volume::is_sliver_face(s, volume::best_element_quality(s, inward));
     s.front.add(inward, volume::queue_size_for_face(s, inward),
                 face_env.empty() ? 0 : face_env[t]);
   }
@@ -97,7 +99,7 @@ bool delete_face(MesherState& s, Index face) {
   for (const volume::Candidate& c : s.candidates) {
     Index p = c.point;
     if (p == kInvalidIndex) {  // a new point: eq. 15 sets its size
-      if (!volume::new_point_is_clear(s, c.position, c.clearance_size, rules,
+      if (!volume::new_point_is_clear(s, c.position, c.spacing_size, c.clearance_size, rules,
                                       s.front.item(face).env, min_spacing))
         continue;
       p = static_cast<Index>(s.points.size());

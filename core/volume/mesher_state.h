@@ -21,7 +21,10 @@ struct Candidate {
   Index point = kInvalidIndex;
   Point position{};
   double rank = 0;  // lower is tried first
-  double clearance_size = 0;  // a new point: the element size its clearance is checked with
+  // A new point: the element sizes its distances from front faces and from front points are
+  // checked with (new_point_is_clear).
+  double clearance_size = 0;
+  double spacing_size = 0;
 };
 
 struct MesherState {
@@ -37,6 +40,9 @@ struct MesherState {
   // Crossing environments (paper §2): LPOCR per point (0 none, -1 on several, new points 0);
   // empty when the input has none. The environment of a front face is FrontItem::env (LFACR).
   std::vector<std::int32_t> point_env;
+  // The input front has sliver faces (is_sliver_face, so no crossing environments): new points
+  // closer to a face keep the best point's spacing from front points (gather_candidates).
+  bool sliver_front = false;
   std::vector<Tet> tets;           // a deleted tet has tet[0] == kInvalidIndex
   std::int64_t live_tets = 0;
   // Sum of the live tets' volumes (a measure, for the guard against overlapping elements).

@@ -1,8 +1,10 @@
 // Fronts of sliver triangles, as raw CAD tessellations give them (issue 10, part 3): they mesh as
 // given, the boundary kept exactly. Small hand-built shapes with the patterns corpus files
 // failed on.
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "core/mesh/mesh.h"
@@ -16,6 +18,50 @@ namespace {
 Index add_point(Mesh& m, double x, double y, double z) {
   m.points.push_back({x, y, z});
   return static_cast<Index>(m.points.size() - 1);
+}
+
+// The unit cube, its top face's four edges each split by `splits` points on the top face only,
+// pushed inwards by up to `dent` along a parabola: the side faces keep the whole edge, and the
+// thin strip between the edge and the split points is a fan of caps (angles near 180 degrees)
+// from the edge's far end, as CAD tessellators close a ridge split on one side only. The rest
+// of the top face is a fan from its centre. Outward oriented, closed, no self-intersection.
+Mesh cube_with_split_top_edges(int splits, double dent) {
+  Mesh m;
+  std::vector<Index> c;
+  for (const auto& [x, y, z] : std::vector<std::array<double, 3>>{
+           {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}})
+    c.push_back(add_point(m, x, y, z));
+  const auto quad = [&](Index a, Index b, Index d, Index e) {
+    m.triangles.push_back({a, b, d});
+    m.triangles.push_back({a, d, e});
+  };
+  quad(c[0], c[3], c[2], c[1]);
+  quad(c[0], c[1], c[5], c[4]);
+  quad(c[1], c[2], c[6], c[5]);
+  quad(c[2], c[3], c[7], c[6]);
+  quad(c[3], c[0], c[4], c[7]);
+  const Index top[4] = {c[4], c[5], c[6], c[7]};
+  std::vector<Index> inner;  // the top face's inner polygon: corners and split points
+  for (int e = 0; e < 4; ++e) {
+    const Point a = m.points[top[e]], b = m.points[top[(e + 1) % 4]];
+    const double mx = 0.5 * (a[0] + b[0]), my = 0.5 * (a[1] + b[1]);
+    const double ix = (0.5 - mx) * 2, iy = (0.5 - my) * 2;  // unit inward direction
+    std::vector<Index> chain{top[e]};
+    for (int i = 1; i <= splits; ++i) {
+      const double t = static_cast<double>(i) / (splits + 1);
+      const double depth = dent * 4 * t * (1 - t);
+      chain.push_back(add_point(m, a[0] + t * (b[0] - a[0]) + depth * ix,
+                                a[1] + t * (b[1] - a[1]) + depth * iy, 1.0));
+    }
+    for (std::size_t i = 0; i + 1 < chain.size(); ++i)  // the caps, fanned from b
+      m.triangles.push_back({chain[i], top[(e + 1) % 4], chain[i + 1]});
+    inner.insert(inner.end(), chain.begin(), chain.end());
+  }
+  const Index centre = add_point(m, 0.5, 0.5, 1.0);
+  for (std::size_t i = 0; i < inner.size(); ++i)
+    m.triangles.push_back({inner[i], inner[(i + 1) % inner.size()], centre});
+  m.triangle_tags.assign(m.triangles.size(), 0);
+  return m;
 }
 
 // A cylinder of radius 1 and height `height`, `rim` points on each rim, its discs fanned from
@@ -40,6 +86,39 @@ Mesh cylinder_with_fanned_discs(int rim, double height) {
   }
   m.triangle_tags.assign(m.triangles.size(), 0);
   return m;
+}
+
+// Regression for issue 10: on a cube whose top edges are split by caps (angles to 179.9
+// degrees) the front did not close at size 0.2 ("did not close after 300k steps", 20k-40k tets
+// for about 1000). The caps were not the cause: where a face's best new point was crowded, the
+// new points at 0.6 and 0.35 of its height were checked against the spacing of their own
+// smaller elements, so they fitted among the very points that crowded the best one; their faces
+// were smaller, their best points crowded in turn, and the elements shrank without end (d 0.2,
+// 0.16, 0.12, ... 0.05 in a few steps). On a front with sliver faces a closer point now keeps
+// the best point's spacing from front points; only its clearance from front faces shrinks with
+// its height.
+TEST(Regression, Issue10CubeWithSliversAlongItsEdgesMeshes) {
+  for (const int splits : {3, 5})
+    for (const double dent : {1e-2, 1e-3, 1e-5}) {
+      if (splits == 5 && dent == 1e-3) continue;  // DISABLED_ test below
+      SCOPED_TRACE(testing::Message() << splits << " splits, dent " << dent);
+      const VolumeResult result = mesh_and_check(cube_with_split_top_edges(splits, dent), 0.2);
+      EXPECT_LT(result.mesh.tets.size(), 2000u);
+    }
+}
+
+// Issue 10, found and not fixed: with the spiral stopped, four of the split cubes still fail,
+// on other causes: one split at dent 1e-2 stops in the end game ("the last front faces (24 now,
+// 20 at best) only make ever smaller elements"), at 1e-3 and 1e-5 it meshes valid but with 4158
+// and 2142 tets (about 1000 are due); five splits at dent 1e-3 gets stuck after re-opening its
+// surroundings 4 times.
+TEST(Regression, DISABLED_Issue10CubeWithOneOrFiveSplitsMeshes) {
+  for (const auto& [splits, dent] : std::vector<std::pair<int, double>>{
+           {1, 1e-2}, {1, 1e-3}, {1, 1e-5}, {5, 1e-3}}) {
+    SCOPED_TRACE(testing::Message() << splits << " splits, dent " << dent);
+    const VolumeResult result = mesh_and_check(cube_with_split_top_edges(splits, dent), 0.2);
+    EXPECT_LT(result.mesh.tets.size(), 2000u);
+  }
 }
 
 // Regression for issue 10: on a fan of coplanar caps every element is a sliver; each cap failed
