@@ -30,9 +30,6 @@ std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
       line_edges.insert(edge_key(line.vertices[i], line.vertices[i + 1]));
   const double tan_p = std::tan(0.5 * alpha_p_deg * std::numbers::pi / 180.0);
   const EdgeNeighbours& neighbours = surface.neighbours();
-  auto centroid = [&](Index f) {
-    return scale(add(p[t[f][0]], add(p[t[f][1]], p[t[f][2]])), 1.0 / 3.0);
-  };
   // Eq. 20–22 over each edge between two faces, once (from its lower face).
   for (Index f = 0; f < surface.face_count(); ++f) {
     for (int k = 0; k < 3; ++k) {
@@ -47,7 +44,7 @@ std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
       const double alpha_g = std::acos(cosine);
       if (!(alpha_g > 1e-9)) continue;
       const double tan_g = std::tan(0.5 * std::min(alpha_g, 0.99 * std::numbers::pi));
-      const double l_g = norm(sub(centroid(f), centroid(g)));
+      const double l_g = distance(surface.centroid(FaceId{f}), surface.centroid(FaceId{g}));
       const double l_p = l_g * tan_p / tan_g;  // eq. 21
       size[a] = std::min(size[a], l_p);        // eq. 22
       size[b] = std::min(size[b], l_p);

@@ -107,6 +107,8 @@ class DiscreteSurface {
 
   // S3: the unit normal of face f, (b-a)x(c-a) normalised; zero for a degenerate face.
   const Point& normal(FaceId f) const { return normals_[index_of(f)]; }
+  // The centroid of face f, (a + (b + c)) / 3 in the local frame.
+  const Point& centroid(FaceId f) const { return centroids_[index_of(f)]; }
   Index degenerate_face_count() const { return degenerate_faces_; }
 
   // |x - the closest point of face f to x|^2 (x in the local frame): the distance the walk and

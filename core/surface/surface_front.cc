@@ -976,7 +976,7 @@ Triangle lay_seed(SurfaceMeshState& s, PatchId patch, std::vector<Side>& sides) 
   const FaceId face = s.features.patches[index_of(patch)].first_face;
   const Triangle& t = s.surface.triangle(face);
   const std::vector<Point>& p = s.surface.local_points();
-  const Point c = scale(add(p[t[0]], add(p[t[1]], p[t[2]])), 1.0 / 3.0);
+  const Point& c = s.surface.centroid(face);
   const double h = s.field_size(c);
   const Point& n = s.surface.normal(face);
   Point e = sub(p[t[1]], p[t[0]]);
