@@ -46,7 +46,8 @@ inline constexpr double kSurfaceBytesPerTriangle = 600.0;
 // bytes over the memory budget), then `job` (UNIMPLEMENTED when empty; exceptions become
 // statuses; the job is admitted again in the same way, through params.admit_expected, when the
 // sizes attached to the surface ask for more triangles than the estimate), its surface checked
-// (INTERNAL naming the element when tags or indices are wrong), its quality measured. The report's repairs are appended to `notes` for Warnings.
+// (INTERNAL naming the element when tags or indices are wrong), its quality measured. The
+// report's repairs are appended to `notes` for Warnings.
 absl::StatusOr<SurfaceOutcome> run_surface_step(const SurfaceJob& job, const Mesh& input,
                                                 SurfaceParams params, std::int64_t max_elements,
                                                 JobContext& context,

@@ -148,7 +148,8 @@ std::vector<VertexFans> split_vertices(const std::vector<Triangle>& triangles,
   std::vector<Index> fans;
   for (Index v = 0; v < points; ++v) {
     fans.clear();
-    for (std::size_t i = start[v]; i < start[v + 1]; ++i) fans.push_back(corners.find(corner_at[i]));
+    for (std::size_t i = start[v]; i < start[v + 1]; ++i)
+      fans.push_back(corners.find(corner_at[i]));
     std::sort(fans.begin(), fans.end());
     const int fan_count =
         static_cast<int>(std::unique(fans.begin(), fans.end()) - fans.begin());

@@ -270,13 +270,14 @@ std::vector<double> expected_patch_triangles(const SurfaceMeshState& s) {
 // Step 6: the largest distance from samples of `from` (vertices, edge midpoints, centroids) to
 // `to`, or `floor` when that is larger. Both in the same frame. CANCELLED soon after
 // progress.cancelled() turns true.
-// With `hosts` (a face of `to` near each point of `from`; they are moved nearer), a sample's distance to the host of a
-// corner it lies between is an upper bound of its distance to `to`: at or below the largest
-// distance so far (or the floor) it cannot raise the maximum, and the sample needs nothing more.
-// Above, the sample is located by the surface's walk from the nearest of those hosts (S2), a few
-// steps where the tree's query costs several times that, and the walk's face gives a nearer
-// bound; only a sample still above is asked of the tree (a walk that did not settle has asked the
-// tree already). The maximum is the tree's, exactly (not in the paper).
+// With `hosts` (a face of `to` near each point of `from`; they are moved nearer), a sample's
+// distance to the host of a corner it lies between is an upper bound of its distance to `to`:
+// at or below the largest distance so far (or the floor) it cannot raise the maximum, and the
+// sample needs nothing more. Above, the sample is located by the surface's walk from the
+// nearest of those hosts (S2), a few steps where the tree's query costs several times that, and
+// the walk's face gives a nearer bound; only a sample still above is asked of the tree (a walk
+// that did not settle has asked the tree already). The maximum is the tree's, exactly (not in
+// the paper).
 absl::StatusOr<double> sampled_distance(const Mesh& from, const DiscreteSurface& to,
                                         std::vector<FaceId>* hosts, double floor,
                                         double* vertex_max, Progress& progress) {

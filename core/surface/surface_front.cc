@@ -335,8 +335,8 @@ class PatchFront {
            s_.chord_of_another_patch(p, v[0]);
   }
   // Whether triangle t would fold over a triangle of the patch across one of its edges that is
-  // not a line's side: their normals more than 120° apart (kFoldCosine) (not in the paper: the input
-  // turns by less than the ridge angle there, and a face laid back onto its neighbour — the
+  // not a line's side: their normals more than 120° apart (kFoldCosine) (not in the paper: the
+  // input turns by less than the ridge angle there, and a face laid back onto its neighbour — the
   // two sides of a crease, a pinch of the front — lies over it, which the checks in one
   // plane cannot see; exact on the topology, the angle measured on the two triangles).
   bool folds_over_a_neighbour(const Triangle& t);
@@ -956,9 +956,6 @@ absl::Status check_patch_closed(const SurfaceMeshState& s, PatchId patch,
   return absl::OkStatus();
 }
 
-// A patch without lines (a closed smooth surface: a sphere, a torus) has no front to start
-// from: a seed triangle of the wanted size is laid on its first face, and its sides, turned
-// outward, are the front (not in the paper, which meshes patches bounded by lines).
 // Records the edges of the patch's triangles (from `first` on) that join two line points off
 // the lines, for the patches meshed after it (SurfaceMeshState::chords_between_line_points).
 void keep_chords_between_line_points(SurfaceMeshState& s, std::size_t first) {
@@ -972,6 +969,9 @@ void keep_chords_between_line_points(SurfaceMeshState& s, std::size_t first) {
   }
 }
 
+// A patch without lines (a closed smooth surface: a sphere, a torus) has no front to start
+// from: a seed triangle of the wanted size is laid on its first face, and its sides, turned
+// outward, are the front (not in the paper, which meshes patches bounded by lines).
 Triangle lay_seed(SurfaceMeshState& s, PatchId patch, std::vector<Side>& sides) {
   const FaceId face = s.features.patches[index_of(patch)].first_face;
   const Triangle& t = s.surface.triangle(face);
