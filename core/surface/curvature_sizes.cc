@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <numbers>
@@ -17,10 +18,130 @@ namespace {
 
 std::pair<Index, Index> edge_key(Index a, Index b) { return {std::min(a, b), std::max(a, b)}; }
 
+// The turn test at the element's scale (see the header). Not in the paper.
+// A disk at scale rho reaches kDiskRadius * rho from the edge's midpoint: about the
+// circumradius (rho / sqrt(3)) of an element of that size, the part of the surface it stands for.
+constexpr double kDiskRadius = 0.6;
+// The largest scale tried, in face-centroid spacings l_g: disks of radius ~10 l_g hold ~250
+// faces of an even triangulation, enough to average out a scan's noise, and bound the work.
+constexpr double kTopScaleInSpacings = 16.0;
+// A disk of more faces than this (finer faces round a coarse one) is not summed: that scale is
+// passed over, and the next, smaller one tried.
+constexpr std::size_t kMaxDiskFaces = 512;
+// A half-disk whose normals cancel to less than this fraction of their total area turns by more
+// than ~120° within itself: it wraps round the surface and says nothing at that scale.
+constexpr double kMinCoherence = 0.5;
+
+// Bit k of a face's mask: edge k of the face lies on a discrete line.
+using LineMask = std::vector<std::uint8_t>;
+
+// Eq. 21: l_p = l tan(alpha_p / 2) / tan(alpha / 2) for normals n_1, n_2 (any length; the second
+// counted reversed when `reversed`) l apart. +infinity where they agree.
+double eq21_size(const Point& n_1, const Point& n_2, bool reversed, double l, double tan_p) {
+  const double cosine = std::clamp(
+      (reversed ? -1.0 : 1.0) * dot(n_1, n_2) / (norm(n_1) * norm(n_2)), -1.0, 1.0);
+  const double alpha = std::acos(cosine);
+  if (!(alpha > 1e-9)) return std::numeric_limits<double>::infinity();
+  const double tan_alpha = std::tan(0.5 * std::min(alpha, 0.99 * std::numbers::pi));
+  return l * tan_p / tan_alpha;
+}
+
+// Eq. 20–21 across one edge at scale rho (not in the paper): the faces whose centroids lie within
+// kDiskRadius * rho of the edge's midpoint, reached from its two faces without crossing a line
+// (so a disk never reaches over a ridge), are split by the plane through the edge across the
+// surface into the first face's half and the second's; eq. 21 between the halves' vector-area
+// sums, over the distance between their area centroids. A face met across an edge that both
+// faces traverse the same way (they disagree in orientation) counts reversed, so each sum is
+// oriented as the face its half grew from. With a disk that holds only the two faces this is
+// eq. 21 between the faces themselves.
+class HalfDisks {
+ public:
+  HalfDisks(const DiscreteSurface& surface, const LineMask& line_mask, double tan_p)
+      : surface_(surface), line_mask_(line_mask), tan_p_(tan_p), stamp_(surface.face_count(), 0) {}
+
+  // l_p across edge k of face f (whose other face is g) at scale rho; NaN when a half is empty,
+  // not coherent, or the disk holds more than kMaxDiskFaces faces.
+  double size_across(Index f, int k, Index g, double rho) {
+    const std::vector<Point>& p = surface_.local_points();
+    const std::vector<Triangle>& t = surface_.triangles();
+    const EdgeNeighbours& neighbours = surface_.neighbours();
+    const Point& a = p[t[f][k]];
+    const Point& b = p[t[f][(k + 1) % 3]];
+    const Point mid = scale(add(a, b), 0.5);
+    const Point edge = sub(b, a);
+    // The direction across the edge, in the surface, from f's side to g's.
+    Point across = sub(surface_.centroid(FaceId{g}), surface_.centroid(FaceId{f}));
+    across = sub(across, scale(edge, dot(across, edge) / squared_norm(edge)));
+    const double r2 = kDiskRadius * kDiskRadius * rho * rho;
+    ++visit_;
+    stack_.clear();
+    const bool g_reversed = neighbours.same_way[f][k];
+    stack_.push_back({f, 1.0});
+    stack_.push_back({g, g_reversed ? -1.0 : 1.0});
+    stamp_[f] = stamp_[g] = visit_;
+    // Half 0 is f's, half 1 is g's; sums oriented as f.
+    Point normal[2] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+    Point moment[2] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+    double area[2] = {0.0, 0.0};
+    std::size_t faces = 0;
+    while (!stack_.empty()) {
+      const auto [h, sign] = stack_.back();
+      stack_.pop_back();
+      if (++faces > kMaxDiskFaces) return std::numeric_limits<double>::quiet_NaN();
+      const Triangle& tri = t[h];
+      const Point vector_area = cross(sub(p[tri[1]], p[tri[0]]), sub(p[tri[2]], p[tri[0]]));
+      const double h_area = norm(vector_area);
+      const Point& centroid = surface_.centroid(FaceId{h});
+      const int half = h == f ? 0 : h == g ? 1 : dot(sub(centroid, mid), across) > 0.0 ? 1 : 0;
+      normal[half] = add(normal[half], scale(vector_area, sign));
+      moment[half] = add(moment[half], scale(centroid, h_area));
+      area[half] += h_area;
+      for (int j = 0; j < 3; ++j) {
+        const Index n = neighbours.across[h][j];
+        if (n == kInvalidIndex || stamp_[n] == visit_ || (line_mask_[h] >> j & 1)) continue;
+        if (squared_norm(sub(surface_.centroid(FaceId{n}), mid)) > r2) continue;
+        stamp_[n] = visit_;
+        stack_.push_back({n, neighbours.same_way[h][j] ? -sign : sign});
+      }
+    }
+    for (int half = 0; half < 2; ++half)
+      if (!(area[half] > 0.0) || !(norm(normal[half]) >= kMinCoherence * area[half]))
+        return std::numeric_limits<double>::quiet_NaN();
+    const double l = distance(scale(moment[0], 1.0 / area[0]), scale(moment[1], 1.0 / area[1]));
+    return eq21_size(normal[0], normal[1], false, l, tan_p_);
+  }
+
+ private:
+  const DiscreteSurface& surface_;
+  const LineMask& line_mask_;
+  double tan_p_;
+  std::vector<std::uint32_t> stamp_;
+  std::uint32_t visit_ = 0;
+  std::vector<std::pair<Index, double>> stack_;
+};
+
+// The turn across edge k of face f (other face g) seen at the element's scale (not in the paper;
+// see the header): down from rho = top, halving, eq. 21 between the half-disks at rho; the first
+// scale whose size is at least rho gives it, but no more than the last scale passed over (the
+// turn was too much there). When no scale down to the faces' own spacing passes, `face_level`
+// (eq. 21 between the two faces), again no more than the last scale passed over.
+double turn_at_element_scale(HalfDisks& disks, Index f, int k, Index g, double l_g, double top,
+                             double face_level) {
+  double passed_over = std::numeric_limits<double>::infinity();
+  for (double rho = top; kDiskRadius * rho >= l_g; rho *= 0.5) {
+    const double l_p = disks.size_across(f, k, g, rho);
+    if (std::isnan(l_p)) continue;
+    if (l_p >= rho) return std::min(l_p, passed_over);
+    passed_over = rho;
+  }
+  return std::min(face_level, passed_over);
+}
+
 }  // namespace
 
 std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
-                                          const SurfaceFeatures& features, double alpha_p_deg) {
+                                          const SurfaceFeatures& features, double alpha_p_deg,
+                                          const SizeField& base) {
   const std::vector<Point>& p = surface.local_points();
   const std::vector<Triangle>& t = surface.triangles();
   std::vector<double> size(p.size(), std::numeric_limits<double>::infinity());
@@ -28,25 +149,32 @@ std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
   for (const DiscreteLine& line : features.lines)
     for (std::size_t i = 0; i + 1 < line.vertices.size(); ++i)
       line_edges.insert(edge_key(line.vertices[i], line.vertices[i + 1]));
+  LineMask line_mask(t.size(), 0);
+  for (Index f = 0; f < surface.face_count(); ++f)
+    for (int k = 0; k < 3; ++k)
+      if (line_edges.contains(edge_key(t[f][k], t[f][(k + 1) % 3])))
+        line_mask[f] |= static_cast<std::uint8_t>(1u << k);
   const double tan_p = std::tan(0.5 * alpha_p_deg * std::numbers::pi / 180.0);
   const EdgeNeighbours& neighbours = surface.neighbours();
+  HalfDisks disks(surface, line_mask, tan_p);
   // Eq. 20–22 over each edge between two faces, once (from its lower face).
   for (Index f = 0; f < surface.face_count(); ++f) {
     for (int k = 0; k < 3; ++k) {
       const Index g = neighbours.across[f][k];
-      if (g == kInvalidIndex || g < f) continue;
+      if (g == kInvalidIndex || g < f || (line_mask[f] >> k & 1)) continue;
       const Index a = t[f][k], b = t[f][(k + 1) % 3];
-      if (line_edges.contains(edge_key(a, b))) continue;
-      // Normals of faces that traverse the edge the same way disagree in orientation.
-      const double sign = neighbours.same_way[f][k] ? -1.0 : 1.0;
-      const double cosine = std::clamp(
-          sign * dot(surface.normal(FaceId{f}), surface.normal(FaceId{g})), -1.0, 1.0);
-      const double alpha_g = std::acos(cosine);
-      if (!(alpha_g > 1e-9)) continue;
-      const double tan_g = std::tan(0.5 * std::min(alpha_g, 0.99 * std::numbers::pi));
-      const double l_g = distance(surface.centroid(FaceId{f}), surface.centroid(FaceId{g}));
-      const double l_p = l_g * tan_p / tan_g;  // eq. 21
-      size[a] = std::min(size[a], l_p);        // eq. 22
+      const Point& c_f = surface.centroid(FaceId{f});
+      const Point& c_g = surface.centroid(FaceId{g});
+      const double l_g = distance(c_f, c_g);
+      // Eq. 21 between the two faces; normals of faces that traverse the edge the same way
+      // disagree in orientation.
+      double l_p = eq21_size(surface.normal(FaceId{f}), surface.normal(FaceId{g}),
+                             neighbours.same_way[f][k], l_g, tan_p);
+      // Where that asks for less than the base size, the turn at the element's scale.
+      const double top = std::min(kTopScaleInSpacings * l_g,
+                                  base.size_at(surface.to_global(scale(add(c_f, c_g), 0.5))));
+      if (l_p < top) l_p = turn_at_element_scale(disks, f, k, g, l_g, top, l_p);
+      size[a] = std::min(size[a], l_p);  // eq. 22
       size[b] = std::min(size[b], l_p);
     }
   }

@@ -5,12 +5,28 @@
 // than a prescribed alpha_p are (eq. 21)
 //   l_p = l_g tan(alpha_p / 2) / tan(alpha_g / 2)
 // long, and the points of the edge take delta_i = min(delta_i, l_p) (eq. 22). Edges on discrete
-// lines (ridges, boundaries, tag changes) are features, not curvature, and are left out. The
+// lines (ridges, boundaries, tag changes) are features, not curvature, and are left out.
+//
+// The turn is read at the element's scale (not in the paper, which measures it between the faces
+// of a grid of about the size in force). On a scan whose faces are smaller than the size, noise
+// turns neighbouring faces by degrees over a fraction of an element, and eq. 21 between the faces
+// reads that as curvature (a scanned sphere at h = 0.012: 1.2M triangles where ~200k are asked).
+// So where eq. 21 between an edge's faces asks for less than the base size, the edge is judged
+// at scales rho: the base size (at most 16 face spacings, which bounds the work), then halved
+// while a disk still reaches past the two faces. At each, the faces within 0.6 rho of the edge's
+// midpoint (an element's circumradius; reached without crossing a line) are split by the edge
+// into two halves, and eq. 21 is taken between the halves' mean normals, over the distance
+// between their centroids. The first rho whose size is at least rho gives the size (no more than
+// the last rho passed over); when none does, eq. 21 between the faces does. A turn counts only
+// where it persists at the scale of the element it limits: noise averages out within the halves,
+// while a rounding narrower than the disk turns by as much between the halves as its faces do in
+// all, so it is passed over until rho fits it and keeps its own size. The
 // sizes attached to the input's points (these and the gaps of gap_sizes.h) are then graded by
 // the growth factor c_i: delta_j <= delta_i + (c_i - 1) |x_j - x_i| along the surface's edges
 // (the continuous form of eq. 15; not in the paper's §4.4, which grades through the background
-// grid), so a small hole does not put a size jump into its surroundings. The paper iterates this with remeshing through an adapted background grid
-// (AdaptBackground); MeshSurface applies it once, on the input.
+// grid), so a small hole does not put a size jump into its surroundings. The paper iterates this
+// with remeshing through an adapted background grid (AdaptBackground); MeshSurface applies it
+// once, on the input.
 #pragma once
 
 #include <span>
@@ -24,9 +40,11 @@
 namespace afmesh {
 
 // delta_i for every input point of `surface` (N values; +infinity where the surface is flat or
-// only meets lines), not graded. `alpha_p_deg` in (0, 180).
+// only meets lines), not graded. `alpha_p_deg` in (0, 180); `base` is the size in force without
+// the curvature (the largest scale at which a turn is read).
 std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
-                                          const SurfaceFeatures& features, double alpha_p_deg);
+                                          const SurfaceFeatures& features, double alpha_p_deg,
+                                          const SizeField& base);
 
 // Grades point sizes (N values, +infinity for none) in place: each becomes the smallest
 // delta_i + (c_i - 1) |x_j - x_i| over paths along the surface's edges (Dijkstra, O(N log N)).

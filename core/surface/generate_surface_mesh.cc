@@ -416,7 +416,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   std::unique_ptr<CurvatureLimitedSize> limited;
   std::vector<double> point_sizes =
       params.curvature_angle_deg > 0
-          ? curvature_point_sizes(*surface, *features, params.curvature_angle_deg)
+          ? curvature_point_sizes(*surface, *features, params.curvature_angle_deg, **field)
           : std::vector<double>(surface->local_points().size(),
                                 std::numeric_limits<double>::infinity());
   const std::vector<double> gaps = line_gap_sizes(*surface, *features, **field);
