@@ -85,6 +85,30 @@ bool in_patch(const SurfaceFeatures& features, PatchId patch, Index face) {
   return features.face_patch[face] == patch;
 }
 
+// Whether x, moved onto the patch at `on`, was held at the patch's edge (not in the paper): the
+// nearest point lies on an edge where the patch ends (a line to another patch, or the input's
+// boundary), and x lies beyond it by more than `reach` along the surface. x stood outside the
+// patch, and a point made there sits on the line, where it makes faces of no area with the
+// line's own points (inv_coil at a quarter of its mean edge, where a patch tapers to a tip
+// between two lines).
+bool held_at_the_patch_edge(const DiscreteSurface& surface, const SurfaceFeatures& features,
+                            PatchId patch, const Point& x, const Located& on, double reach) {
+  const Point r = sub(x, on.closest);
+  const Point& n = surface.normal(on.face);
+  if (squared_norm(sub(r, scale(n, dot(r, n)))) <= reach * reach) return false;
+  const Index f = index_of(on.face);
+  const Triangle& t = surface.triangle(on.face);
+  const std::vector<Point>& p = surface.local_points();
+  const double tolerance = 1e-9 * surface.size();
+  for (int k = 0; k < 3; ++k) {
+    const Index g = surface.neighbours().across[f][k];
+    if (g != kInvalidIndex && in_patch(features, patch, g)) continue;
+    const Point on_edge = closest_point_on_segment(on.closest, p[t[k]], p[t[(k + 1) % 3]]);
+    if (squared_distance(on_edge, on.closest) <= tolerance * tolerance) return true;
+  }
+  return false;
+}
+
 bool uses_any(const Triangle& t, std::span<const Index> points) {
   for (const Index q : t)
     if (std::find(points.begin(), points.end(), q) != points.end()) return true;
@@ -755,7 +779,9 @@ bool PatchFront::delete_side(Index f) {
   for (const Candidate& c : candidates_) {
     Index p = c.point;
     if (p == kInvalidIndex) {
-      if (!new_point_is_clear(best, d, rules, f)) continue;
+      if (held_at_the_patch_edge(s_.surface, s_.features, patch_, above, on, 0.25 * d) ||
+          !new_point_is_clear(best, d, rules, f))
+        continue;
       p = s_.add_point(best, new_point_size(s_.field_size(best), s_.growth, s_.point_size, v),
                        on.face, kInvalidIndex);
       if (triangle_quality(s_.points[v[0]], s_.points[v[1]], best).min_angle_deg <

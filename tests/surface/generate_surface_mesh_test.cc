@@ -495,5 +495,18 @@ TEST(Regression, Issue11TwoPatchesNeverCutACornerByTheSameChord) {
   EXPECT_LT(r->report.hausdorff, 0.01 * r->report.model_size);
 }
 
+// inv_coil at a quarter of its mean edge (the size the parameter sweep computed, in single
+// precision): patch 6 tapers to a tip between two lines, and best points made near the tip stood
+// past the line the patch ends at; moved onto the patch, they landed on that line, and the front
+// made five faces of no area along it, which crossed the next patch's (11 intersecting pairs).
+// A new point held at the patch's edge is now not made; the side takes a point the front has.
+TEST(Regression, Issue11NoNewPointIsMadeOnTheLineAPatchEndsAt) {
+  const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge(
+      "inv_coil.stl", [](SurfaceParams& params) { params.size = 1.585822582244873; });
+  ASSERT_TRUE(r.ok()) << r.status();
+  expect_closed_valid(r->mesh);
+  EXPECT_GT(figures_of(r->mesh).min_angle, 0.5);
+}
+
 }  // namespace
 }  // namespace afmesh
