@@ -509,9 +509,9 @@ TEST(Regression, Issue11NoNewPointIsMadeOnTheLineAPatchEndsAt) {
 }
 
 // netgen_part1 is a raw CAD tessellation (sliver triangles) that the volume front does not fill
-// as given (at 223a136 it stops stuck after ~3,400 tets: issue 10 part 3). Re-triangulated first, as `afmesh volume --remesh-surface`
-// does, it fills with valid tets at the new surface's mean edge (README: the way to mesh such
-// fronts today).
+// as given (at 223a136 it stops stuck after ~3,400 tets: issue 10 part 3). Re-triangulated
+// first, as `afmesh volume --remesh-surface` does, it fills with valid tets at the new surface's
+// mean edge (README: the way to mesh such fronts today).
 TEST(GenerateSurfaceMesh, ARawCadFrontFillsOnceReTriangulated) {
   const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge("netgen_part1.stl");
   ASSERT_TRUE(r.ok()) << r.status();
