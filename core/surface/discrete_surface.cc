@@ -140,10 +140,13 @@ absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
   }
 
   if (cancel.look()) return cancelled();
-  s.tree_ =
-      AabbTree(triangle_boxes(s.points_, s.triangles_), AabbTree::kDefaultLeafSize, &cancel);
+  if (params.tree) s.build_tree(&cancel);
   if (cancel.look()) return cancelled();
   return s;
+}
+
+void DiscreteSurface::build_tree(CancelCheck* cancel) {
+  tree_ = AabbTree(triangle_boxes(points_, triangles_), AabbTree::kDefaultLeafSize, cancel);
 }
 
 Point DiscreteSurface::to_local(const Point& global) const { return sub(global, origin_); }
@@ -182,10 +185,22 @@ bool DiscreteSurface::cannot_be_nearer(const Point& x, FaceId f, double squared_
 
 Located DiscreteSurface::nearest_face(const Point& x) const {
   Located at;
-  const AabbTree::Nearest found = tree_.nearest(x, [&](Index f) {
-    Point closest;
-    return squared_distance_to(x, FaceId{f}, closest, at);
-  });
+  AabbTree::Nearest found{kInvalidIndex, std::numeric_limits<double>::infinity()};
+  if (has_tree()) {
+    found = tree_.nearest(x, [&](Index f) {
+      Point closest;
+      return squared_distance_to(x, FaceId{f}, closest, at);
+    });
+  } else {
+    // Every face in id order, the strictly nearer kept: the tree's answer, ties to the smaller
+    // id. A face whose ball is farther than the best so far is passed over, as in the walk.
+    for (Index f = 0; f < face_count(); ++f) {
+      if (cannot_be_nearer(x, FaceId{f}, found.squared_distance)) continue;
+      Point closest;
+      const double d = squared_distance_to(x, FaceId{f}, closest, at);
+      if (d < found.squared_distance) found = {f, d};
+    }
+  }
   at.face = FaceId{found.id};
   at.squared_distance = squared_distance_to(x, at.face, at.closest, at);
   at.used_tree = true;

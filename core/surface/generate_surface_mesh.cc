@@ -278,10 +278,20 @@ std::vector<double> expected_patch_triangles(const SurfaceMeshState& s) {
 // the walk's face gives a nearer bound; only a sample still above is asked of the tree (a walk
 // that did not settle has asked the tree already). The maximum is the tree's, exactly (not in
 // the paper).
-absl::StatusOr<double> sampled_distance(const Mesh& from, const DiscreteSurface& to,
+// `to` may come without its tree: a few samples ask (11 of the 1M sphere's 4.5M), and the scans
+// of all faces that answer them without it cost less than the tree until kScansBeforeTree; then
+// the tree is built, so a surface that needs many answers costs at most that many scans more.
+constexpr int kScansBeforeTree = 16;
+
+absl::StatusOr<double> sampled_distance(const Mesh& from, DiscreteSurface& to,
                                         std::vector<FaceId>* hosts, double floor,
                                         double* vertex_max, Progress& progress) {
   CancelCheck cancel(progress, 1024);  // each sample a nearest-face query at most
+  int scans = 0;
+  // Counts a nearest_face answer; the tree once the scans have cost about as much.
+  auto answered = [&] {
+    if (!to.has_tree() && ++scans >= kScansBeforeTree) to.build_tree(&cancel);
+  };
   // The squared distance of x from `to`, or a bound of it at or below `worst2`; x lies between
   // the points `corners` of `from`. A vertex sample (one corner, x itself) that had to be
   // located leaves its face as its host: a nearer start for the samples round it.
@@ -298,11 +308,13 @@ absl::StatusOr<double> sampled_distance(const Mesh& from, const DiscreteSurface&
       }
       if (nearest != kNoFace) {
         const Located walked = to.locate(x, nearest);
+        if (walked.used_tree) answered();
         if (corners.size() == 1) (*hosts)[*corners.begin()] = walked.face;
         if (walked.used_tree || walked.squared_distance <= worst2) return walked.squared_distance;
       }
     }
     const Located found = to.nearest_face(x);
+    answered();
     if (hosts != nullptr && corners.size() == 1) (*hosts)[*corners.begin()] = found.face;
     return found.squared_distance;
   };
@@ -487,7 +499,10 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   local.points = s.points;
   local.triangles = std::move(s.triangles);
   local.triangle_tags = std::move(s.triangle_tags);
-  absl::StatusOr<DiscreteSurface> output = DiscreteSurface::build(local, {}, progress);
+  // The output's tree is built only if the distance needs it (sampled_distance).
+  DiscreteSurfaceParams output_params;
+  output_params.tree = false;
+  absl::StatusOr<DiscreteSurface> output = DiscreteSurface::build(local, output_params, progress);
   if (!output.ok()) return output.status();
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
   Mesh input_local;
