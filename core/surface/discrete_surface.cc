@@ -107,8 +107,7 @@ absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
     s.normals_.push_back(n);
     if (n == Point{0.0, 0.0, 0.0}) ++s.degenerate_faces_;
   }
-  s.centroids_.reserve(s.triangles_.size());
-  s.radii_.reserve(s.triangles_.size());
+  s.balls_.reserve(s.triangles_.size());
   for (const Triangle& t : s.triangles_) {
     const Point c =
         scale(add(s.points_[t[0]], add(s.points_[t[1]], s.points_[t[2]])), 1.0 / 3.0);
@@ -120,8 +119,7 @@ absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
     if (!(norm(cross(sub(s.points_[t[1]], a), sub(s.points_[t[2]], a))) >=
           kBallShape * radius * radius))
       radius = std::numeric_limits<double>::infinity();
-    s.centroids_.push_back(c);
-    s.radii_.push_back(radius);
+    s.balls_.push_back({c, radius});
   }
   if (cancel.look()) return cancelled();
   s.neighbours_ = triangle_edge_neighbours(s.triangles_, &cancel);
@@ -177,9 +175,9 @@ double DiscreteSurface::squared_distance_to_face(const Point& x, FaceId f, Point
 }
 
 bool DiscreteSurface::cannot_be_nearer(const Point& x, FaceId f, double squared_distance) const {
-  const Point& c = centroids_[index_of(f)];
+  const Ball& ball = balls_[index_of(f)];
   const double magnitude = size_ + std::max({std::abs(x[0]), std::abs(x[1]), std::abs(x[2])});
-  const double gap = distance(x, c) - radii_[index_of(f)] - kBallMargin * magnitude;
+  const double gap = distance(x, ball.centroid) - ball.radius - kBallMargin * magnitude;
   return gap > 0.0 && gap * gap * (1.0 - 1e-9) > squared_distance;
 }
 

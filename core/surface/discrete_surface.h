@@ -112,7 +112,7 @@ class DiscreteSurface {
   // S3: the unit normal of face f, (b-a)x(c-a) normalised; zero for a degenerate face.
   const Point& normal(FaceId f) const { return normals_[index_of(f)]; }
   // The centroid of face f, (a + (b + c)) / 3 in the local frame.
-  const Point& centroid(FaceId f) const { return centroids_[index_of(f)]; }
+  const Point& centroid(FaceId f) const { return balls_[index_of(f)].centroid; }
   Index degenerate_face_count() const { return degenerate_faces_; }
 
   // |x - the closest point of face f to x|^2 (x in the local frame): the distance the walk and
@@ -163,8 +163,14 @@ class DiscreteSurface {
   std::vector<Triangle> triangles_;  // M×3
   std::vector<Index> tags_;          // M
   std::vector<Point> normals_;       // M×3 unit (or zero)
-  std::vector<Point> centroids_;     // M×3
-  std::vector<double> radii_;        // M: the largest distance from a face's centroid to a corner
+  // A face's ball for cannot_be_nearer: its centroid and the largest distance from it to a
+  // corner (infinite for a sliver). One array, so that a walk's test of a face reads one cache
+  // line, not two (the tests' misses were most of their time on the 1M sphere).
+  struct Ball {
+    Point centroid;
+    double radius = 0.0;
+  };
+  std::vector<Ball> balls_;  // M
   Index degenerate_faces_ = 0;
   EdgeNeighbours neighbours_;
   std::vector<Index> face_offsets_;  // N + 1: faces_at(v) = vertex_faces_[offsets[v], [v + 1])
