@@ -513,9 +513,14 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   absl::StatusOr<DiscreteSurface> output = DiscreteSurface::build(local, output_params, progress);
   if (!output.ok()) return output.status();
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
-  Mesh input_local;
-  input_local.points = surface->local_points();
-  input_local.triangles = surface->triangles();
+  // The input in the output's frame: `output` keeps its points relative to its own origin, the
+  // centre of the output's bounding box, which is not the input's (1e-4 off on the bunny), and
+  // sampled_distance needs both surfaces in one frame.
+  Mesh input_in_output_frame;
+  input_in_output_frame.points.reserve(surface->local_points().size());
+  for (const Point& p : surface->local_points())
+    input_in_output_frame.points.push_back(output->to_local(p));
+  input_in_output_frame.triangles = surface->triangles();
   std::vector<FaceId> output_hosts = s.host;
   const absl::StatusOr<double> out_to_in =
       sampled_distance(local, output->neighbours(), *surface, &output_hosts, 0.0,
@@ -525,8 +530,8 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   // Only the larger of the two directions is reported: input samples no farther than the output's
   // largest distance need no exact distance of their own.
   const absl::StatusOr<double> hausdorff =
-      sampled_distance(input_local, surface->neighbours(), *output, &input_hints, *out_to_in,
-                       nullptr, progress);
+      sampled_distance(input_in_output_frame, surface->neighbours(), *output, &input_hints,
+                       *out_to_in, nullptr, progress);
   if (!hausdorff.ok()) return hausdorff.status();
   result.report.hausdorff = *hausdorff;
   clock.lap("distance");
