@@ -279,9 +279,9 @@ std::vector<double> expected_patch_triangles(const SurfaceMeshState& s) {
 // sample needs nothing more. Above, the sample is located by the surface's walk from the
 // nearest of those hosts (S2), a few steps where the tree's query costs several times that, and
 // the walk's face gives a nearer bound; only a sample still above is asked of the tree (a walk
-// that did not settle has asked the tree already). The maximum is the tree's, exactly (not in
-// the paper).
-// `to` may come without its tree: a few samples ask (11 of the 1M sphere's 4.5M), and the scans
+// that did not settle has asked the tree already). The maximum is the tree's (or the scan's,
+// the same), exactly (not in the paper).
+// `to` may come without its tree: a few samples ask (11 on the 1M sphere), and the scans
 // of all faces that answer them without it cost less than the tree until kScansBeforeTree; then
 // the tree is built, so a surface that needs many answers costs at most that many scans more.
 constexpr int kScansBeforeTree = 16;
