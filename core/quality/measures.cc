@@ -202,11 +202,34 @@ TetQuality tet_quality(const std::vector<Point>& points, const Tet& tet) {
 // is 2 r_in / r_circ with r_in = 2A / perimeter and r_circ = abc / (4A).
 namespace {
 
-// The smallest corner angle, degrees, of the triangle with edge vectors ab, bc, ca (all of
-// non-zero length).
-double smallest_corner_angle_deg(const Vec& ab, const Vec& bc, const Vec& ca) {
-  return degrees(
-      std::min({angle_between(ab, -ca), angle_between(bc, -ab), angle_between(ca, -bc)}));
+// The smallest corner angle, degrees, of the triangle with edge vectors ab, bc, ca of lengths
+// lc, la, lb (all non-zero): the smallest of the three angle_between values, bit for bit.
+// The corners are ranked by half_angle_tangent, as dihedral_extremes ranks its pairs, and only
+// those whose key is within a relative 1e-9 of the smallest go through atan2: the keys and the
+// angles agree to a few ulps and an angle under 60 degrees moves by at least 0.8 of its key's
+// relative change, so a corner farther off cannot hold the minimum. (Usually one atan2, not
+// three: they were most of the cost of the front's, the flips' and the smoothing's angle tests.)
+// Lengths far from 1 (products near the under- and overflow) and NaNs take all three atan2.
+double smallest_corner_angle_deg(const Vec& ab, const Vec& bc, const Vec& ca, double la,
+                                 double lb, double lc) {
+  const std::array<Vec, 3> u{ab, bc, ca}, v{-ca, -ab, -bc};
+  const std::array<double, 3> scale{lc * lb, la * lc, lb * la};
+  std::array<double, 3> key;
+  bool ranked = std::min({la, lb, lc}) > 1e-100 && std::max({la, lb, lc}) < 1e100;
+  for (int k = 0; k < 3; ++k) {
+    key[k] = half_angle_tangent(u[k].cross(v[k]).norm(), u[k].dot(v[k]), scale[k]);
+    ranked = ranked && key[k] >= 0.0;  // false for a NaN
+  }
+  if (!ranked) {
+    return degrees(std::min(
+        {angle_between(u[0], v[0]), angle_between(u[1], v[1]), angle_between(u[2], v[2])}));
+  }
+  const double bound = std::min({key[0], key[1], key[2]}) * (1.0 + 1e-9);
+  double smallest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    if (key[k] <= bound) smallest = std::min(smallest, angle_between(u[k], v[k]));
+  }
+  return degrees(smallest);
 }
 
 }  // namespace
@@ -214,8 +237,9 @@ double smallest_corner_angle_deg(const Vec& ab, const Vec& bc, const Vec& ca) {
 double triangle_min_angle_deg(const Point& a, const Point& b, const Point& c) {
   const Vec pa = vec(a), pb = vec(b), pc = vec(c);
   const Vec ab = pb - pa, bc = pc - pb, ca = pa - pc;
-  if (bc.norm() == 0.0 || ca.norm() == 0.0 || ab.norm() == 0.0) return 0.0;
-  return smallest_corner_angle_deg(ab, bc, ca);
+  const double la = bc.norm(), lb = ca.norm(), lc = ab.norm();
+  if (la == 0.0 || lb == 0.0 || lc == 0.0) return 0.0;
+  return smallest_corner_angle_deg(ab, bc, ca, la, lb, lc);
 }
 
 TriangleQuality triangle_quality(const Point& a, const Point& b, const Point& c) {
@@ -225,7 +249,7 @@ TriangleQuality triangle_quality(const Point& a, const Point& b, const Point& c)
   q.area = 0.5 * ab.cross(-ca).norm();
   const double la = bc.norm(), lb = ca.norm(), lc = ab.norm();
   if (la == 0.0 || lb == 0.0 || lc == 0.0) return q;
-  q.min_angle_deg = smallest_corner_angle_deg(ab, bc, ca);
+  q.min_angle_deg = smallest_corner_angle_deg(ab, bc, ca, la, lb, lc);
   const double denominator = (la + lb + lc) * la * lb * lc;
   q.radius_ratio = denominator > 0.0 ? 16.0 * q.area * q.area / denominator : 0.0;
   return q;

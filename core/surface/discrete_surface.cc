@@ -107,8 +107,7 @@ absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
     s.normals_.push_back(n);
     if (n == Point{0.0, 0.0, 0.0}) ++s.degenerate_faces_;
   }
-  s.centroids_.reserve(s.triangles_.size());
-  s.radii_.reserve(s.triangles_.size());
+  s.balls_.reserve(s.triangles_.size());
   for (const Triangle& t : s.triangles_) {
     const Point c =
         scale(add(s.points_[t[0]], add(s.points_[t[1]], s.points_[t[2]])), 1.0 / 3.0);
@@ -120,8 +119,7 @@ absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
     if (!(norm(cross(sub(s.points_[t[1]], a), sub(s.points_[t[2]], a))) >=
           kBallShape * radius * radius))
       radius = std::numeric_limits<double>::infinity();
-    s.centroids_.push_back(c);
-    s.radii_.push_back(radius);
+    s.balls_.push_back({c, radius});
   }
   if (cancel.look()) return cancelled();
   s.neighbours_ = triangle_edge_neighbours(s.triangles_, &cancel);
@@ -140,10 +138,13 @@ absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
   }
 
   if (cancel.look()) return cancelled();
-  s.tree_ =
-      AabbTree(triangle_boxes(s.points_, s.triangles_), AabbTree::kDefaultLeafSize, &cancel);
+  if (params.tree) s.build_tree(&cancel);
   if (cancel.look()) return cancelled();
   return s;
+}
+
+void DiscreteSurface::build_tree(CancelCheck* cancel) {
+  tree_ = AabbTree(triangle_boxes(points_, triangles_), AabbTree::kDefaultLeafSize, cancel);
 }
 
 Point DiscreteSurface::to_local(const Point& global) const { return sub(global, origin_); }
@@ -174,18 +175,30 @@ double DiscreteSurface::squared_distance_to_face(const Point& x, FaceId f, Point
 }
 
 bool DiscreteSurface::cannot_be_nearer(const Point& x, FaceId f, double squared_distance) const {
-  const Point& c = centroids_[index_of(f)];
+  const Ball& ball = balls_[index_of(f)];
   const double magnitude = size_ + std::max({std::abs(x[0]), std::abs(x[1]), std::abs(x[2])});
-  const double gap = distance(x, c) - radii_[index_of(f)] - kBallMargin * magnitude;
+  const double gap = distance(x, ball.centroid) - ball.radius - kBallMargin * magnitude;
   return gap > 0.0 && gap * gap * (1.0 - 1e-9) > squared_distance;
 }
 
 Located DiscreteSurface::nearest_face(const Point& x) const {
   Located at;
-  const AabbTree::Nearest found = tree_.nearest(x, [&](Index f) {
-    Point closest;
-    return squared_distance_to(x, FaceId{f}, closest, at);
-  });
+  AabbTree::Nearest found{kInvalidIndex, std::numeric_limits<double>::infinity()};
+  if (has_tree()) {
+    found = tree_.nearest(x, [&](Index f) {
+      Point closest;
+      return squared_distance_to(x, FaceId{f}, closest, at);
+    });
+  } else {
+    // Every face in id order, the strictly nearer kept: the tree's answer, ties to the smaller
+    // id. A face whose ball is farther than the best so far is passed over, as in the walk.
+    for (Index f = 0; f < face_count(); ++f) {
+      if (cannot_be_nearer(x, FaceId{f}, found.squared_distance)) continue;
+      Point closest;
+      const double d = squared_distance_to(x, FaceId{f}, closest, at);
+      if (d < found.squared_distance) found = {f, d};
+    }
+  }
   at.face = FaceId{found.id};
   at.squared_distance = squared_distance_to(x, at.face, at.closest, at);
   at.used_tree = true;

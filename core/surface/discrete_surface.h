@@ -56,6 +56,10 @@ struct DiscreteSurfaceParams {
   // evaluations per step (~130), a bounded multiple of a tree query (~5 evaluations near the
   // surface plus O(log M) box tests).
   int max_walk_steps = 64;
+  // Build the AABB tree with the surface. Without it `nearest_face` scans every face (O(M) a
+  // query, the same answer) until build_tree() is called: for a surface asked for a handful of
+  // nearest faces, where the tree would cost more than the scans (not in the paper).
+  bool tree = true;
 };
 
 // The face found for a point and how it was found.
@@ -64,7 +68,7 @@ struct Located {
   Point closest{0.0, 0.0, 0.0};   // closest point of `face` to x, local frame
   double squared_distance = 0.0;  // |x - closest|^2
   int walk_steps = 0;             // faces moved to by the walk (0 for nearest_face)
-  bool used_tree = false;         // the walk did not settle within max_walk_steps
+  bool used_tree = false;         // nearest_face answered (for a walk: it did not settle)
   int evaluations = 0;            // point-triangle distances computed (walk and tree)
 };
 
@@ -108,7 +112,7 @@ class DiscreteSurface {
   // S3: the unit normal of face f, (b-a)x(c-a) normalised; zero for a degenerate face.
   const Point& normal(FaceId f) const { return normals_[index_of(f)]; }
   // The centroid of face f, (a + (b + c)) / 3 in the local frame.
-  const Point& centroid(FaceId f) const { return centroids_[index_of(f)]; }
+  const Point& centroid(FaceId f) const { return balls_[index_of(f)].centroid; }
   Index degenerate_face_count() const { return degenerate_faces_; }
 
   // |x - the closest point of face f to x|^2 (x in the local frame): the distance the walk and
@@ -125,8 +129,14 @@ class DiscreteSurface {
   bool cannot_be_nearer(const Point& x, FaceId f, double squared_distance) const;
 
   // The face nearest to x (local frame) by the AABB tree, ties to the smaller face id.
-  // O(log M) for x near the surface.
+  // O(log M) for x near the surface. Without the tree (params.tree false, build_tree not
+  // called), the same face by a scan of all faces, O(M).
   Located nearest_face(const Point& x) const;
+
+  // Whether the AABB tree is built; builds it (O(M log M)) for a surface built without. With
+  // `cancel`, stopped partway when cancel->stopped() turns true: the caller drops the surface.
+  bool has_tree() const { return tree_.size() == face_count(); }
+  void build_tree(CancelCheck* cancel = nullptr);
 
   // S2: the face nearest to x (local frame) by the walk from `hint` (see the header comment);
   // with hint == kNoFace, or when the walk has not settled after params.max_walk_steps moves,
@@ -153,13 +163,19 @@ class DiscreteSurface {
   std::vector<Triangle> triangles_;  // M×3
   std::vector<Index> tags_;          // M
   std::vector<Point> normals_;       // M×3 unit (or zero)
-  std::vector<Point> centroids_;     // M×3
-  std::vector<double> radii_;        // M: the largest distance from a face's centroid to a corner
+  // A face's ball for cannot_be_nearer: its centroid and the largest distance from it to a
+  // corner (infinite for a sliver). One array, so that a walk's test of a face reads one cache
+  // line, not two (the tests' misses were most of their time on the 1M sphere).
+  struct Ball {
+    Point centroid;
+    double radius = 0.0;
+  };
+  std::vector<Ball> balls_;  // M
   Index degenerate_faces_ = 0;
   EdgeNeighbours neighbours_;
   std::vector<Index> face_offsets_;  // N + 1: faces_at(v) = vertex_faces_[offsets[v], [v + 1])
   std::vector<Index> vertex_faces_;  // 3M
-  AabbTree tree_;                    // over the faces' boxes, local frame
+  AabbTree tree_;                    // over the faces' boxes, local frame (or empty: !has_tree())
 };
 
 }  // namespace afmesh

@@ -270,18 +270,31 @@ std::vector<double> expected_patch_triangles(const SurfaceMeshState& s) {
 // Step 6: the largest distance from samples of `from` (vertices, edge midpoints, centroids) to
 // `to`, or `floor` when that is larger. Both in the same frame. CANCELLED soon after
 // progress.cancelled() turns true.
+// An edge's midpoint is sampled once, from the triangle of the smaller id where the edge has a
+// neighbour (`from_neighbours`, edge adjacency of from.triangles): once a sample has been
+// looked at, the maximum is at least its distance, so a second look could not raise it.
 // With `hosts` (a face of `to` near each point of `from`; they are moved nearer), a sample's
 // distance to the host of a corner it lies between is an upper bound of its distance to `to`:
 // at or below the largest distance so far (or the floor) it cannot raise the maximum, and the
 // sample needs nothing more. Above, the sample is located by the surface's walk from the
 // nearest of those hosts (S2), a few steps where the tree's query costs several times that, and
 // the walk's face gives a nearer bound; only a sample still above is asked of the tree (a walk
-// that did not settle has asked the tree already). The maximum is the tree's, exactly (not in
-// the paper).
-absl::StatusOr<double> sampled_distance(const Mesh& from, const DiscreteSurface& to,
-                                        std::vector<FaceId>* hosts, double floor,
-                                        double* vertex_max, Progress& progress) {
+// that did not settle has asked the tree already). The maximum is the tree's (or the scan's,
+// the same), exactly (not in the paper).
+// `to` may come without its tree: a few samples ask (11 on the 1M sphere), and the scans
+// of all faces that answer them without it cost less than the tree until kScansBeforeTree; then
+// the tree is built, so a surface that needs many answers costs at most that many scans more.
+constexpr int kScansBeforeTree = 16;
+
+absl::StatusOr<double> sampled_distance(const Mesh& from, const EdgeNeighbours& from_neighbours,
+                                        DiscreteSurface& to, std::vector<FaceId>* hosts,
+                                        double floor, double* vertex_max, Progress& progress) {
   CancelCheck cancel(progress, 1024);  // each sample a nearest-face query at most
+  int scans = 0;
+  // Counts a nearest_face answer; the tree once the scans have cost about as much.
+  auto answered = [&] {
+    if (!to.has_tree() && ++scans >= kScansBeforeTree) to.build_tree(&cancel);
+  };
   // The squared distance of x from `to`, or a bound of it at or below `worst2`; x lies between
   // the points `corners` of `from`. A vertex sample (one corner, x itself) that had to be
   // located leaves its face as its host: a nearer start for the samples round it.
@@ -298,11 +311,13 @@ absl::StatusOr<double> sampled_distance(const Mesh& from, const DiscreteSurface&
       }
       if (nearest != kNoFace) {
         const Located walked = to.locate(x, nearest);
+        if (walked.used_tree) answered();
         if (corners.size() == 1) (*hosts)[*corners.begin()] = walked.face;
         if (walked.used_tree || walked.squared_distance <= worst2) return walked.squared_distance;
       }
     }
     const Located found = to.nearest_face(x);
+    answered();
     if (hosts != nullptr && corners.size() == 1) (*hosts)[*corners.begin()] = found.face;
     return found.squared_distance;
   };
@@ -312,15 +327,20 @@ absl::StatusOr<double> sampled_distance(const Mesh& from, const DiscreteSurface&
     worst2 = std::max(worst2, at(from.points[v], {v}, worst2));
   }
   if (vertex_max != nullptr) *vertex_max = std::sqrt(worst2);
-  for (const Triangle& t : from.triangles) {
+  for (Index f = 0; f < static_cast<Index>(from.triangles.size()); ++f) {
     if (cancel.due()) return absl::CancelledError("surface distance: cancelled");
+    const Triangle& t = from.triangles[f];
     const Point& a = from.points[t[0]];
     const Point& b = from.points[t[1]];
     const Point& c = from.points[t[2]];
     worst2 = std::max(worst2, at(scale(add(a, add(b, c)), 1.0 / 3.0), {t[0], t[1], t[2]}, worst2));
-    worst2 = std::max(worst2, at(scale(add(a, b), 0.5), {t[0], t[1]}, worst2));
-    worst2 = std::max(worst2, at(scale(add(b, c), 0.5), {t[1], t[2]}, worst2));
-    worst2 = std::max(worst2, at(scale(add(c, a), 0.5), {t[2], t[0]}, worst2));
+    const auto first_look = [&](int k) {
+      const Index g = from_neighbours.across[f][k];
+      return g == kInvalidIndex || f < g;
+    };
+    if (first_look(0)) worst2 = std::max(worst2, at(scale(add(a, b), 0.5), {t[0], t[1]}, worst2));
+    if (first_look(1)) worst2 = std::max(worst2, at(scale(add(b, c), 0.5), {t[1], t[2]}, worst2));
+    if (first_look(2)) worst2 = std::max(worst2, at(scale(add(c, a), 0.5), {t[2], t[0]}, worst2));
   }
   return std::max(floor, std::sqrt(worst2));
 }
@@ -487,21 +507,31 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   local.points = s.points;
   local.triangles = std::move(s.triangles);
   local.triangle_tags = std::move(s.triangle_tags);
-  absl::StatusOr<DiscreteSurface> output = DiscreteSurface::build(local, {}, progress);
+  // The output's tree is built only if the distance needs it (sampled_distance).
+  DiscreteSurfaceParams output_params;
+  output_params.tree = false;
+  absl::StatusOr<DiscreteSurface> output = DiscreteSurface::build(local, output_params, progress);
   if (!output.ok()) return output.status();
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
-  Mesh input_local;
-  input_local.points = surface->local_points();
-  input_local.triangles = surface->triangles();
+  // The input in the output's frame: `output` keeps its points relative to its own origin, the
+  // centre of the output's bounding box, which is not the input's (1e-4 off on the bunny), and
+  // sampled_distance needs both surfaces in one frame.
+  Mesh input_in_output_frame;
+  input_in_output_frame.points.reserve(surface->local_points().size());
+  for (const Point& p : surface->local_points())
+    input_in_output_frame.points.push_back(output->to_local(p));
+  input_in_output_frame.triangles = surface->triangles();
   std::vector<FaceId> output_hosts = s.host;
-  const absl::StatusOr<double> out_to_in = sampled_distance(
-      local, *surface, &output_hosts, 0.0, &result.report.max_vertex_distance, progress);
+  const absl::StatusOr<double> out_to_in =
+      sampled_distance(local, output->neighbours(), *surface, &output_hosts, 0.0,
+                       &result.report.max_vertex_distance, progress);
   if (!out_to_in.ok()) return out_to_in.status();
   std::vector<FaceId> input_hints = output_faces_near_input_points(*surface, *output, s.host);
   // Only the larger of the two directions is reported: input samples no farther than the output's
   // largest distance need no exact distance of their own.
   const absl::StatusOr<double> hausdorff =
-      sampled_distance(input_local, *output, &input_hints, *out_to_in, nullptr, progress);
+      sampled_distance(input_in_output_frame, surface->neighbours(), *output, &input_hints,
+                       *out_to_in, nullptr, progress);
   if (!hausdorff.ok()) return hausdorff.status();
   result.report.hausdorff = *hausdorff;
   clock.lap("distance");

@@ -12,7 +12,7 @@
 namespace afmesh {
 namespace {
 
-// The fan of point q with q at `x`: its smallest angle, and whether every triangle's normal
+// The fan of point q with q moved to `x`: its smallest angle, and whether every triangle's normal
 // stays within `min_cosine` of `before` (its normal with q where it was).
 struct Fan {
   double min_angle = 180.0;
@@ -25,8 +25,8 @@ Fan fan_at(const SurfaceMeshState& s, Index q, const Point& x, const std::vector
   for (std::size_t i = 0; i < fan.size(); ++i) {
     const Triangle& t = s.triangles[fan[i]];
     const auto at = [&](Index k) -> const Point& { return k == q ? x : s.points[k]; };
-    out.min_angle = std::min(out.min_angle, triangle_quality(at(t[0]), at(t[1]), at(t[2])).min_angle_deg);
-    if (!before.empty() && dot(unit_normal(at(t[0]), at(t[1]), at(t[2])), before[i]) < min_cosine)
+    out.min_angle = std::min(out.min_angle, triangle_min_angle_deg(at(t[0]), at(t[1]), at(t[2])));
+    if (dot(unit_normal(at(t[0]), at(t[1]), at(t[2])), before[i]) < min_cosine)
       out.turned = true;
   }
   return out;
@@ -42,6 +42,17 @@ absl::StatusOr<std::int64_t> smooth_points(SurfaceMeshState& s, const SmoothPara
   CancelCheck cancel(progress, 1024);  // each point a walk and a few fans
   std::vector<Index> fan;
   std::vector<Point> before;
+  // The smallest angle of each triangle, computed when first needed (negative: not yet) and
+  // forgotten when a corner moves: a triangle is in the fans of its three corners, and each
+  // fan's angles are measured where it stands before a move is tried.
+  std::vector<double> smallest_angle(s.triangles.size(), -1.0);
+  const auto angle_of = [&](Index t) {
+    if (smallest_angle[t] < 0) {
+      const Triangle& k = s.triangles[t];
+      smallest_angle[t] = triangle_min_angle_deg(s.points[k[0]], s.points[k[1]], s.points[k[2]]);
+    }
+    return smallest_angle[t];
+  };
   // A point is looked at in a pass when it or a neighbour moved in the one before.
   std::vector<char> due(s.points.size(), 1), next(s.points.size(), 0);
   std::int64_t moves = 0;
@@ -53,7 +64,8 @@ absl::StatusOr<std::int64_t> smooth_points(SurfaceMeshState& s, const SmoothPara
       fan.clear();
       incidence.elements_of(s.triangles, q, fan);
       if (fan.size() < 3) continue;
-      const double now = fan_at(s, q, s.points[q], fan, {}, min_cosine).min_angle;
+      double now = 180.0;
+      for (const Index t : fan) now = std::min(now, angle_of(t));
       if (now >= params.good_fan_deg) continue;
       // The mean of the fan's other corners, in the patch's tangent plane after projection.
       Point mean{0, 0, 0};
@@ -73,8 +85,10 @@ absl::StatusOr<std::int64_t> smooth_points(SurfaceMeshState& s, const SmoothPara
       s.points[q] = on.closest;
       s.host[q] = on.face;
       ++moved;
-      for (const Index t : fan)
+      for (const Index t : fan) {
+        smallest_angle[t] = -1.0;
         for (const Index r : s.triangles[t]) next[r] = 1;
+      }
     }
     moves += moved;
     if (moved == 0) break;

@@ -108,6 +108,36 @@ TEST(DiscreteSurface, NearestFaceEqualsAScan) {
   }
 }
 
+// Without the tree, nearest_face scans the faces: the tree's face (ties to the smaller id) and
+// distance, bit for bit, also on a sphere whose faces tie at the vertices; build_tree restores
+// the tree.
+TEST(DiscreteSurface, NearestFaceWithoutTheTreeEqualsTheTree) {
+  DiscreteSurfaceParams no_tree;
+  no_tree.tree = false;
+  for (const Mesh& mesh : {torus_surface(1.0, 0.3, 0.08), sphere_surface({0, 0, 0}, 1.0, 0.1)}) {
+    const DiscreteSurface with = build_or_die(mesh);
+    DiscreteSurface without = build_or_die(mesh, no_tree);
+    EXPECT_TRUE(with.has_tree());
+    EXPECT_FALSE(without.has_tree());
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> coordinate(-1.5, 1.5);
+    std::vector<Point> queries(mesh.points.begin(), mesh.points.begin() + 50);  // ties
+    for (int i = 0; i < 300; ++i)
+      queries.push_back({coordinate(rng), coordinate(rng), coordinate(rng)});
+    for (const Point& global : queries) {
+      const Point x = with.to_local(global);
+      const Located a = with.nearest_face(x), b = without.nearest_face(x);
+      EXPECT_TRUE(b.used_tree);
+      EXPECT_EQ(a.face, b.face);
+      EXPECT_EQ(a.squared_distance, b.squared_distance);
+      EXPECT_EQ(a.face, without.locate(x, kNoFace).face);
+    }
+    without.build_tree();
+    EXPECT_TRUE(without.has_tree());
+    EXPECT_EQ(without.nearest_face(queries[0]).face, with.nearest_face(queries[0]).face);
+  }
+}
+
 // What the walk did over many queries.
 struct WalkFigures {
   int queries = 0;
