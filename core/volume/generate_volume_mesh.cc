@@ -82,11 +82,12 @@ absl::Status check_face_environments(const Mesh& front, const std::vector<std::i
   return absl::OkStatus();
 }
 
-// F7: tries the candidates of the face in order; adds the first element that does not cross the
-// front (F8–F10). Returns false when none fits.
-bool delete_face(MesherState& s, Index face) {
+// F7: tries the candidates of the face in order, under the acceptance rules for a face that has
+// failed `attempts` times (strictness_for); adds the first element that does not cross the front
+// (F8–F10). Returns false when none fits.
+bool delete_face(MesherState& s, Index face, int attempts) {
   const Triangle v = s.front.item(face).v;
-  const volume::Strictness rules = volume::strictness_for(s.front.item(face).attempts);
+  const volume::Strictness rules = volume::strictness_for(attempts);
   const double target = volume::target_size_for_face(s, v);           // F5/F9, eq. 15
   const double d = volume::element_size_for_target(s, v, target);
   // A face much smaller than the size wanted there (a sliver of front left between elements)
@@ -116,6 +117,20 @@ bool delete_face(MesherState& s, Index face) {
       s.point_size.pop_back();
     }
   }
+  return false;
+}
+
+// Not in the paper: on a sliver front (MesherState::sliver_front), a face that failed under the
+// rules of its queue class retries at once under those of the later classes, before it is
+// deferred. F6 orders the queue by class first, so a deferred face waits behind the whole front,
+// and among the forced slivers of a CAD tessellation the faces around it are meshed over
+// meanwhile and leave it no point at all (Regression.Issue10CubeWithOneOrFiveSplitsMeshes).
+// Retried at once, it takes the best point its surroundings offer while they are still open.
+// Returns true when it closed.
+bool delete_face_with_later_rules(MesherState& s, Index face) {
+  for (int attempts = s.front.item(face).attempts + 1; attempts < kAttemptsBeforeBackOff;
+       ++attempts)
+    if (delete_face(s, face, attempts)) return true;
   return false;
 }
 
@@ -357,7 +372,8 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
         return overlap_report(s, *face, domain_volume);
       progress.report("front", std::min(0.99, static_cast<double>(s.live_tets) / expected_tets));
     }
-    if (delete_face(s, *face)) continue;
+    if (delete_face(s, *face, s.front.item(*face).attempts)) continue;
+    if (s.sliver_front && delete_face_with_later_rules(s, *face)) continue;
     const FrontItem<3>& f = s.front.item(*face);
     if (f.attempts + 1 < kAttemptsBeforeBackOff) {
       s.front.defer(*face, volume::queue_size_for_face(s, f.v));
