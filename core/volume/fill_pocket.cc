@@ -72,6 +72,36 @@ Point pocket_centre(const MesherState& s, const std::vector<Index>& pocket) {
   return c;
 }
 
+// Shares of the way from a corner of the pocket to its centre at which
+// kernel_point_beside_a_corner looks for a kernel point, nearest the centre first.
+constexpr double kBesideCornerShares[] = {0.3, 0.1, 0.03, 0.01};
+
+// Not in the paper: a kernel point of the pocket next to one of its corners, for a pocket whose
+// kernel is a thin wedge at a corner that lies in the plane of other faces of the pocket (a
+// planar CAD face triangulated across the diagonal the pocket's other faces do not share:
+// Regression.Issue10PocketWithItsKernelAtACornerMeshes). The centre of pocket_centre misses such
+// a kernel and the corner itself sees the coplanar faces edge-on; a point a small share of the
+// way from the corner towards the centre can see them all. Appends it to the points, with its
+// size, and returns its index; kInvalidIndex when no such point sees every face.
+template <typename SeesAll>
+Index kernel_point_beside_a_corner(MesherState& s, const std::vector<Index>& pocket,
+                                   const std::vector<Index>& corners, SeesAll&& sees_all) {
+  const Point c = pocket_centre(s, pocket);
+  const Index p = static_cast<Index>(s.points.size());
+  for (const double share : kBesideCornerShares)
+    for (Index q : corners) {
+      const Point x = add(s.points[q], scale(sub(c, s.points[q]), share));
+      s.points.push_back(x);
+      if (sees_all(p)) {
+        s.point_size.push_back(
+            new_point_size(s.size_field.size_at(x), 1.0, s.point_size, corners));
+        return p;
+      }
+      s.points.pop_back();
+    }
+  return kInvalidIndex;
+}
+
 }  // namespace
 
 bool collect_pocket(MesherState& s, Index face, std::size_t max_faces,
@@ -142,6 +172,10 @@ std::int64_t fill_pocket(MesherState& s, Index face, std::size_t max_faces) {
         kernel = q;
         break;
       }
+  }
+  if (kernel == kInvalidIndex) {
+    kernel = kernel_point_beside_a_corner(s, pocket, corners, sees_all);
+    new_point = kernel != kInvalidIndex;
   }
   if (kernel == kInvalidIndex) return 0;
 

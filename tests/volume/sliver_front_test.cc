@@ -135,5 +135,37 @@ TEST(Regression, Issue10CylinderWithFannedDiscsMeshes) {
   }
 }
 
+// A pocket the volume front of OCCT's shape.stl left at --size 13 (0.5 x its mean edge), taken
+// as a front of its own: eight points of the input, a prism 140 long with a needle (2.5 degrees)
+// along it. Its bottom, points 0, 3, 5 and 6, lies in one plane, split across the diagonal 3-6;
+// the face on the needle's other side ends at 0. No point of its own closes it: corner 0, whose
+// element would close the needle, meets the bottom faces across the other diagonal, 0-5. It is
+// star-shaped, but its kernel is a thin wedge beside corner 0, 0.19 high.
+Mesh pocket_with_its_kernel_at_a_corner() {
+  Mesh m;
+  m.points = {{210.0, -45.0, -157.5},         {210.0, -30.0, -135.0},
+              {210.0, -33.6079, -129.1361},    {74.45804, -45.0, -157.5},
+              {75.23962, -30.0, -135.0},       {70.89064, -39.18568, -157.5},
+              {75.23962, -30.0, -157.5},       {69.3956, -41.77619, -144.6429}};
+  m.triangles = {{1, 5, 4}, {0, 7, 3}, {7, 0, 2}, {4, 5, 2}, {3, 5, 6}, {6, 0, 3},
+                 {4, 0, 1}, {2, 0, 4}, {2, 3, 7}, {1, 0, 6}, {2, 5, 3}, {6, 5, 1}};
+  m.triangle_tags.assign(m.triangles.size(), 0);
+  return m;
+}
+
+// Regression for issue 10: the pocket above stopped "stuck ... after re-opening its
+// surroundings 4 times; 0 tets built" at size 5: fill_pocket looked for its kernel point at the
+// pocket's centre (pocket_centre misses a kernel this thin) and at its corners (corner 0 sees the
+// bottom faces edge-on). It now also tries points a small share of the way from each corner
+// towards the centre; one beside corner 0 sees every face. The elements are the slivers the
+// boundary forces (tetgen -pY makes them too).
+TEST(Regression, Issue10PocketWithItsKernelAtACornerMeshes) {
+  const Mesh front = pocket_with_its_kernel_at_a_corner();
+  for (const double h : {5.0, mean_edge_length(front)}) {
+    SCOPED_TRACE(testing::Message() << "size " << h);
+    mesh_and_check(front, h);
+  }
+}
+
 }  // namespace
 }  // namespace afmesh
