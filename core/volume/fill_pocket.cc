@@ -14,6 +14,7 @@ namespace afmesh::volume {
 namespace {
 
 constexpr int kPocketChebyshevSteps = 64;
+constexpr int kDeepestPointSteps = 2000;  // simplex pivots; a pocket has at most 256 faces
 
 Box segment_box(const Point& a, const Point& b) {
   Box box{a, a};
@@ -70,6 +71,98 @@ Point pocket_centre(const MesherState& s, const std::vector<Index>& pocket) {
     step *= 0.9;
   }
   return c;
+}
+
+// The point of box `box` highest above the lowest of the pocket's face planes: the linear
+// program max t subject to n_f . (x - a_f) >= t for every face f (n_f its unit normal into the
+// pocket, a_f a corner), solved by the simplex method on the tableau of y = (x - box.lo, t + M) >= 0
+// with M large enough that y = 0 is feasible. Returns false when the simplex does not end within
+// its step limit or the best t is not positive (no kernel). Floating point: the caller checks the
+// point with the exact predicates.
+bool deepest_point(const MesherState& s, const std::vector<Index>& pocket, const Box& box,
+                   Point& x) {
+  const std::size_t m = pocket.size() + 3, n = 4, width = n + m + 1;
+  std::vector<double> tab((m + 1) * width, 0.0);
+  const auto at = [&](std::size_t r, std::size_t c) -> double& { return tab[r * width + c]; };
+  double extent = 0;
+  for (int k = 0; k < 3; ++k) extent = std::max(extent, box.hi[k] - box.lo[k]);
+  const double big = 4.0 * extent;  // M: above every face's distance from box.lo
+  for (std::size_t i = 0; i < pocket.size(); ++i) {
+    const Triangle& v = s.front.item(pocket[i]).v;
+    const Point& a = s.points[v[0]];
+    Point nrm = cross(sub(s.points[v[1]], a), sub(s.points[v[2]], a));
+    const double length = norm(nrm);
+    if (!(length > 0)) return false;
+    nrm = scale(nrm, 1.0 / length);
+    // t - n . x' <= n . (lo - a)  becomes  (t + M) - n . x' <= n . (lo - a) + M.
+    for (int k = 0; k < 3; ++k) at(i, k) = -nrm[k];
+    at(i, 3) = 1.0;
+    at(i, width - 1) = dot(nrm, sub(box.lo, a)) + big;
+    if (at(i, width - 1) < 0) return false;
+  }
+  for (int k = 0; k < 3; ++k) {  // x'_k <= hi_k - lo_k
+    at(pocket.size() + k, k) = 1.0;
+    at(pocket.size() + k, width - 1) = box.hi[k] - box.lo[k];
+  }
+  for (std::size_t r = 0; r < m; ++r) at(r, n + r) = 1.0;  // slacks
+  at(m, 3) = -1.0;  // maximise t + M
+  std::vector<std::size_t> basis(m);
+  for (std::size_t r = 0; r < m; ++r) basis[r] = n + r;
+  for (int step = 0; step < kDeepestPointSteps; ++step) {
+    std::size_t col = width;  // Bland's rule: the first column that improves
+    for (std::size_t c = 0; c + 1 < width && col == width; ++c)
+      if (at(m, c) < -1e-12) col = c;
+    if (col == width) {  // optimal
+      double y[4] = {0, 0, 0, 0};
+      for (std::size_t r = 0; r < m; ++r)
+        if (basis[r] < n) y[basis[r]] = at(r, width - 1);
+      if (!(y[3] - big > 0)) return false;
+      x = {box.lo[0] + y[0], box.lo[1] + y[1], box.lo[2] + y[2]};
+      return true;
+    }
+    std::size_t row = m;
+    double ratio = 0;
+    for (std::size_t r = 0; r < m; ++r) {
+      if (at(r, col) <= 1e-12) continue;
+      const double q = at(r, width - 1) / at(r, col);
+      if (row == m || q < ratio || (q == ratio && basis[r] < basis[row])) {
+        row = r;
+        ratio = q;
+      }
+    }
+    if (row == m) return false;  // unbounded: cannot happen with the box
+    const double pivot = at(row, col);
+    for (std::size_t c = 0; c < width; ++c) at(row, c) /= pivot;
+    for (std::size_t r = 0; r <= m; ++r) {
+      if (r == row || at(r, col) == 0) continue;
+      const double f = at(r, col);
+      for (std::size_t c = 0; c < width; ++c) at(r, c) -= f * at(row, c);
+    }
+    basis[row] = col;
+  }
+  return false;
+}
+
+// Not in the paper: the deepest point of the pocket (deepest_point, over the box of its corners)
+// as its kernel point, for a star-shaped pocket whose kernel pocket_centre's ascent misses:
+// Regression.Issue10PocketWithAThinKernelMeshes, a pocket of 16 faces the front of gmsh_lever
+// left, whose kernel is 0.02 high in a pocket 95 long. Appends it to the points, with its size,
+// and returns its index; kInvalidIndex when it does not see every face (exact test).
+template <typename SeesAll>
+Index deepest_kernel_point(MesherState& s, const std::vector<Index>& pocket,
+                           const std::vector<Index>& corners, SeesAll&& sees_all) {
+  Box box = empty_box();
+  for (Index q : corners) enclose(box, s.points[q]);
+  Point x;
+  if (!deepest_point(s, pocket, box, x)) return kInvalidIndex;
+  const Index p = static_cast<Index>(s.points.size());
+  s.points.push_back(x);
+  if (!sees_all(p)) {
+    s.points.pop_back();
+    return kInvalidIndex;
+  }
+  s.point_size.push_back(new_point_size(s.size_field.size_at(x), 1.0, s.point_size, corners));
+  return p;
 }
 
 // Shares of the way from a corner of the pocket to its centre at which
@@ -175,6 +268,7 @@ std::int64_t fill_pocket(MesherState& s, Index face, std::size_t max_faces) {
   }
   if (kernel == kInvalidIndex) {
     kernel = kernel_point_beside_a_corner(s, pocket, corners, sees_all);
+    if (kernel == kInvalidIndex) kernel = deepest_kernel_point(s, pocket, corners, sees_all);
     new_point = kernel != kInvalidIndex;
   }
   if (kernel == kInvalidIndex) return 0;

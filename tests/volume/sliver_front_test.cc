@@ -167,5 +167,39 @@ TEST(Regression, Issue10PocketWithItsKernelAtACornerMeshes) {
   }
 }
 
+// A pocket the volume front of gmsh_lever.stl left (at its mean edge): ten points, six of them
+// the input's, in the lever's plate 8 thick, 95 long with needles along it (points 6-9 are the
+// front's own). It is star-shaped, but its kernel is 0.02 high, away from its corners.
+Mesh pocket_with_a_thin_kernel() {
+  Mesh m;
+  m.points = {{-97.09246826171875, -73.06375885009766, 0.0},
+              {-93.53809356689453, -71.01164245605469, 8.0},
+              {-100.81380462646484, -75.7468032836914, 0.0},
+              {-5.615737438201904, -76.15491485595703, 8.0},
+              {-11.25389289855957, -69.20703887939453, 8.0},
+              {-8.615736961364746, -72.35106658935547, 8.0},
+              {-55.125204261382095, -50.443359820860266, 5.728761752484921},
+              {-50.43357693898434, -53.05914546604539, 5.720922880989058},
+              {-93.83869760497687, -73.39299860030142, 2.8700106281198683},
+              {-20.254033117483015, -67.93156681236407, 4.917174691309898}};
+  m.triangles = {{0, 2, 8}, {2, 4, 5}, {1, 6, 7}, {2, 5, 3}, {7, 4, 9}, {0, 8, 9},
+                 {9, 4, 0}, {4, 7, 6}, {4, 6, 5}, {3, 1, 8}, {9, 8, 1}, {3, 6, 1},
+                 {4, 2, 0}, {5, 6, 3}, {1, 7, 9}, {3, 8, 2}};
+  m.triangle_tags.assign(m.triangles.size(), 0);
+  return m;
+}
+
+// Regression for issue 10: the pocket above stopped "stuck ... 0 tets built": no point of its
+// own closes it, and neither pocket_centre's ascent nor a point beside a corner reaches its
+// kernel. fill_pocket now also takes the deepest point of the pocket (the highest above the
+// lowest of its face planes, a linear program) when it sees every face.
+TEST(Regression, Issue10PocketWithAThinKernelMeshes) {
+  const Mesh front = pocket_with_a_thin_kernel();
+  for (const double h : {mean_edge_length(front), 3.0}) {
+    SCOPED_TRACE(testing::Message() << "size " << h);
+    mesh_and_check(front, h);
+  }
+}
+
 }  // namespace
 }  // namespace afmesh
