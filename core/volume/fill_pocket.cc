@@ -4,6 +4,7 @@
 // star-shaped about that point and the elements (face, point) tile it.
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
@@ -77,10 +78,11 @@ Point pocket_centre(const MesherState& s, const std::vector<Index>& pocket) {
 // program max t subject to n_f . (x - a_f) >= t for every face f (n_f its unit normal into the
 // pocket, a_f a corner), solved by the simplex method on the tableau of y = (x - box.lo, t + M) >= 0
 // with M large enough that y = 0 is feasible. Returns false when the simplex does not end within
-// its step limit or the best t is not positive (no kernel). Floating point: the caller checks the
-// point with the exact predicates.
+// its step limit or the best t is not positive (no kernel); `depth` is then set to that t, and `x`
+// to its point, when the simplex ended. Floating point: the caller checks the point with the
+// exact predicates.
 bool deepest_point(const MesherState& s, const std::vector<Index>& pocket, const Box& box,
-                   Point& x) {
+                   Point& x, double& depth) {
   const std::size_t m = pocket.size() + 3, n = 4, width = n + m + 1;
   std::vector<double> tab((m + 1) * width, 0.0);
   const auto at = [&](std::size_t r, std::size_t c) -> double& { return tab[r * width + c]; };
@@ -116,9 +118,9 @@ bool deepest_point(const MesherState& s, const std::vector<Index>& pocket, const
       double y[4] = {0, 0, 0, 0};
       for (std::size_t r = 0; r < m; ++r)
         if (basis[r] < n) y[basis[r]] = at(r, width - 1);
-      if (!(y[3] - big > 0)) return false;
       x = {box.lo[0] + y[0], box.lo[1] + y[1], box.lo[2] + y[2]};
-      return true;
+      depth = y[3] - big;
+      return depth > 0;
     }
     std::size_t row = m;
     double ratio = 0;
@@ -154,7 +156,8 @@ Index deepest_kernel_point(MesherState& s, const std::vector<Index>& pocket,
   Box box = empty_box();
   for (Index q : corners) enclose(box, s.points[q]);
   Point x;
-  if (!deepest_point(s, pocket, box, x)) return kInvalidIndex;
+  double depth = 0;
+  if (!deepest_point(s, pocket, box, x, depth)) return kInvalidIndex;
   const Index p = static_cast<Index>(s.points.size());
   s.points.push_back(x);
   if (!sees_all(p)) {
@@ -195,7 +198,79 @@ Index kernel_point_beside_a_corner(MesherState& s, const std::vector<Index>& poc
   return kInvalidIndex;
 }
 
+// The index in `part` of the face to leave it next, for the new point at index `xi` (the part's
+// deepest point; `inside` when it lies above every face plane): of the faces the point does not
+// close (behind their plane, or the element crosses the front, F7.3), the one it is lowest above;
+// when `keep` is the only one, the face other than `keep` it is lowest above, to move the point.
+// Returns part.size() when the point closes every face, part.size() + 1 when only `keep` is left.
+std::size_t face_to_drop(MesherState& s, const std::vector<Index>& part, Index xi, bool inside,
+                         Index keep) {
+  const Point& x = s.points[xi];
+  const auto height = [&](Index g) {
+    const Triangle& v = s.front.item(g).v;
+    return height_above(s.points[v[0]], s.points[v[1]], s.points[v[2]], x);
+  };
+  std::size_t worst = part.size(), lowest_other = part.size();
+  bool keep_fails = false;
+  for (std::size_t i = 0; i < part.size(); ++i) {
+    const Triangle& v = s.front.item(part[i]).v;
+    const bool closes = inside &&
+                        orient3d(s.points[v[0]], s.points[v[1]], s.points[v[2]], x) > 0 &&
+                        !element_crosses_front(s, part[i], xi);
+    if (part[i] == keep) {
+      keep_fails = !closes;
+      continue;
+    }
+    if (lowest_other == part.size() || height(part[i]) < height(part[lowest_other]))
+      lowest_other = i;
+    if (!closes && (worst == part.size() || height(part[i]) < height(part[worst]))) worst = i;
+  }
+  if (worst < part.size()) return worst;
+  if (!keep_fails) return part.size();
+  return lowest_other < part.size() ? lowest_other : part.size() + 1;
+}
+
 }  // namespace
+
+std::int64_t fill_part_of_pocket(MesherState& s, Index face, std::size_t max_faces) {
+  if (!s.point_env.empty()) return 0;  // thin regions keep the back-off they had
+  std::vector<Index> part;
+  if (!collect_pocket(s, face, max_faces, part)) return 0;
+  const Index x = static_cast<Index>(s.points.size());
+  s.points.push_back(Point{0, 0, 0});
+  while (!part.empty()) {
+    Box box = empty_box();
+    for (Index g : part)
+      for (Index q : s.front.item(g).v) enclose(box, s.points[q]);
+    double depth = 0;
+    const bool inside = deepest_point(s, part, box, s.points[x], depth);
+    const std::size_t drop = face_to_drop(s, part, x, inside, face);
+    if (drop > part.size()) break;  // `face` is left alone and the point does not close it
+    if (drop < part.size()) {
+      part.erase(part.begin() + static_cast<std::ptrdiff_t>(drop));
+      continue;
+    }
+    // x closes every face of the part: its elements are added, each checked by F7.3 above.
+    std::vector<Index> corners;
+    std::vector<Triangle> faces;
+    for (Index g : part) {
+      faces.push_back(s.front.item(g).v);
+      for (Index q : s.front.item(g).v) corners.push_back(q);
+    }
+    const Point c = s.points[x];
+    s.point_size.push_back(new_point_size(s.size_field.size_at(c), 1.0, s.point_size, corners));
+    std::int64_t added = 0;
+    for (const Triangle& v : faces) {
+      const std::optional<Index> g = s.front.find(v);
+      if (!g) continue;
+      add_element(s, *g, x);
+      ++added;
+    }
+    return added;
+  }
+  s.points.pop_back();
+  return 0;
+}
 
 bool collect_pocket(MesherState& s, Index face, std::size_t max_faces,
                     std::vector<Index>& pocket) {

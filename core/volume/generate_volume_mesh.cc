@@ -182,12 +182,14 @@ std::string describe_input_near_face(const MesherState& s, const Mesh& input, co
 }
 
 // The back-off for a face that failed in every queue class (F11): fill the small pocket it
-// bounds from one kernel point; failing that, re-open the elements around it, one ring more each
-// time the same region needs it again.
+// bounds from one kernel point, or, when it has none, the part of it about `face` that one point
+// sees; failing that, re-open the elements around it, one ring more each time the same region
+// needs it again.
 absl::Status back_off(MesherState& s, const Mesh& input, Index face, RepairCounts& repairs) {
   const Triangle v = s.front.item(face).v;
   const std::uint32_t stamp = s.front.item(face).stamp;
-  if (volume::fill_pocket(s, face, kMaxPocketFaces) > 0) {
+  if (volume::fill_pocket(s, face, kMaxPocketFaces) > 0 ||
+      volume::fill_part_of_pocket(s, face, kMaxPocketFaces) > 0) {
     const FrontItem<3>& f = s.front.item(face);
     if (f.alive && f.stamp == stamp) s.front.requeue(face, volume::queue_size_for_face(s, v));
     return absl::OkStatus();
