@@ -76,11 +76,11 @@ Point pocket_centre(const MesherState& s, const std::vector<Index>& pocket) {
 
 // The point of box `box` highest above the lowest of the pocket's face planes: the linear
 // program max t subject to n_f . (x - a_f) >= t for every face f (n_f its unit normal into the
-// pocket, a_f a corner), solved by the simplex method on the tableau of y = (x - box.lo, t + M) >= 0
-// with M large enough that y = 0 is feasible. Returns false when the simplex does not end within
-// its step limit or the best t is not positive (no kernel); `depth` is then set to that t, and `x`
-// to its point, when the simplex ended. Floating point: the caller checks the point with the
-// exact predicates.
+// pocket, a_f a corner), solved by the simplex method (Bland's rule) on the tableau of
+// y = (x - box.lo, t + M) >= 0, with M large enough that y = 0 is feasible. Returns false when
+// the simplex does not end within its step limit or the best t is not positive (no kernel);
+// `depth` is then set to that t, and `x` to its point, when the simplex ended. Floating point:
+// the caller checks the point with the exact predicates.
 bool deepest_point(const MesherState& s, const std::vector<Index>& pocket, const Box& box,
                    Point& x, double& depth) {
   const std::size_t m = pocket.size() + 3, n = 4, width = n + m + 1;
