@@ -4,6 +4,7 @@
 // star-shaped about that point and the elements (face, point) tile it.
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
@@ -14,6 +15,7 @@ namespace afmesh::volume {
 namespace {
 
 constexpr int kPocketChebyshevSteps = 64;
+constexpr int kDeepestPointSteps = 2000;  // simplex pivots; a pocket has at most 256 faces
 
 Box segment_box(const Point& a, const Point& b) {
   Box box{a, a};
@@ -72,7 +74,203 @@ Point pocket_centre(const MesherState& s, const std::vector<Index>& pocket) {
   return c;
 }
 
+// The point of box `box` highest above the lowest of the pocket's face planes: the linear
+// program max t subject to n_f . (x - a_f) >= t for every face f (n_f its unit normal into the
+// pocket, a_f a corner), solved by the simplex method (Bland's rule) on the tableau of
+// y = (x - box.lo, t + M) >= 0, with M large enough that y = 0 is feasible. Returns false when
+// the simplex does not end within its step limit or the best t is not positive (no kernel);
+// `depth` is then set to that t, and `x` to its point, when the simplex ended. Floating point:
+// the caller checks the point with the exact predicates.
+bool deepest_point(const MesherState& s, const std::vector<Index>& pocket, const Box& box,
+                   Point& x, double& depth) {
+  const std::size_t m = pocket.size() + 3, n = 4, width = n + m + 1;
+  std::vector<double> tab((m + 1) * width, 0.0);
+  const auto at = [&](std::size_t r, std::size_t c) -> double& { return tab[r * width + c]; };
+  double extent = 0;
+  for (int k = 0; k < 3; ++k) extent = std::max(extent, box.hi[k] - box.lo[k]);
+  const double big = 4.0 * extent;  // M: above every face's distance from box.lo
+  for (std::size_t i = 0; i < pocket.size(); ++i) {
+    const Triangle& v = s.front.item(pocket[i]).v;
+    const Point& a = s.points[v[0]];
+    Point nrm = cross(sub(s.points[v[1]], a), sub(s.points[v[2]], a));
+    const double length = norm(nrm);
+    if (!(length > 0)) return false;
+    nrm = scale(nrm, 1.0 / length);
+    // t - n . x' <= n . (lo - a)  becomes  (t + M) - n . x' <= n . (lo - a) + M.
+    for (int k = 0; k < 3; ++k) at(i, k) = -nrm[k];
+    at(i, 3) = 1.0;
+    at(i, width - 1) = dot(nrm, sub(box.lo, a)) + big;
+    if (at(i, width - 1) < 0) return false;
+  }
+  for (int k = 0; k < 3; ++k) {  // x'_k <= hi_k - lo_k
+    at(pocket.size() + k, k) = 1.0;
+    at(pocket.size() + k, width - 1) = box.hi[k] - box.lo[k];
+  }
+  for (std::size_t r = 0; r < m; ++r) at(r, n + r) = 1.0;  // slacks
+  at(m, 3) = -1.0;  // maximise t + M
+  std::vector<std::size_t> basis(m);
+  for (std::size_t r = 0; r < m; ++r) basis[r] = n + r;
+  for (int step = 0; step < kDeepestPointSteps; ++step) {
+    std::size_t col = width;  // Bland's rule: the first column that improves
+    for (std::size_t c = 0; c + 1 < width && col == width; ++c)
+      if (at(m, c) < -1e-12) col = c;
+    if (col == width) {  // optimal
+      double y[4] = {0, 0, 0, 0};
+      for (std::size_t r = 0; r < m; ++r)
+        if (basis[r] < n) y[basis[r]] = at(r, width - 1);
+      x = {box.lo[0] + y[0], box.lo[1] + y[1], box.lo[2] + y[2]};
+      depth = y[3] - big;
+      return depth > 0;
+    }
+    std::size_t row = m;
+    double ratio = 0;
+    for (std::size_t r = 0; r < m; ++r) {
+      if (at(r, col) <= 1e-12) continue;
+      const double q = at(r, width - 1) / at(r, col);
+      if (row == m || q < ratio || (q == ratio && basis[r] < basis[row])) {
+        row = r;
+        ratio = q;
+      }
+    }
+    if (row == m) return false;  // unbounded: cannot happen with the box
+    const double pivot = at(row, col);
+    for (std::size_t c = 0; c < width; ++c) at(row, c) /= pivot;
+    for (std::size_t r = 0; r <= m; ++r) {
+      if (r == row || at(r, col) == 0) continue;
+      const double f = at(r, col);
+      for (std::size_t c = 0; c < width; ++c) at(r, c) -= f * at(row, c);
+    }
+    basis[row] = col;
+  }
+  return false;
+}
+
+// Not in the paper: the deepest point of the pocket (deepest_point, over the box of its corners)
+// as its kernel point, for a star-shaped pocket whose kernel pocket_centre's ascent misses:
+// Regression.Issue10PocketWithAThinKernelMeshes, a pocket of 16 faces the front of gmsh_lever
+// left, whose kernel is 0.02 high in a pocket 95 long. Appends it to the points, with its size,
+// and returns its index; kInvalidIndex when it does not see every face (exact test).
+template <typename SeesAll>
+Index deepest_kernel_point(MesherState& s, const std::vector<Index>& pocket,
+                           const std::vector<Index>& corners, SeesAll&& sees_all) {
+  Box box = empty_box();
+  for (Index q : corners) enclose(box, s.points[q]);
+  Point x;
+  double depth = 0;
+  if (!deepest_point(s, pocket, box, x, depth)) return kInvalidIndex;
+  const Index p = static_cast<Index>(s.points.size());
+  s.points.push_back(x);
+  if (!sees_all(p)) {
+    s.points.pop_back();
+    return kInvalidIndex;
+  }
+  s.point_size.push_back(new_point_size(s.size_field.size_at(x), 1.0, s.point_size, corners));
+  return p;
+}
+
+// Shares of the way from a corner of the pocket to its centre at which
+// kernel_point_beside_a_corner looks for a kernel point, nearest the centre first.
+constexpr double kBesideCornerShares[] = {0.3, 0.1, 0.03, 0.01};
+
+// Not in the paper: a kernel point of the pocket next to one of its corners, for a pocket whose
+// kernel is a thin wedge at a corner that lies in the plane of other faces of the pocket (a
+// planar CAD face triangulated across the diagonal the pocket's other faces do not share:
+// Regression.Issue10PocketWithItsKernelAtACornerMeshes). The centre of pocket_centre misses such
+// a kernel and the corner itself sees the coplanar faces edge-on; a point a small share of the
+// way from the corner towards the centre can see them all. Appends it to the points, with its
+// size, and returns its index; kInvalidIndex when no such point sees every face.
+template <typename SeesAll>
+Index kernel_point_beside_a_corner(MesherState& s, const std::vector<Index>& pocket,
+                                   const std::vector<Index>& corners, SeesAll&& sees_all) {
+  const Point c = pocket_centre(s, pocket);
+  const Index p = static_cast<Index>(s.points.size());
+  for (const double share : kBesideCornerShares)
+    for (Index q : corners) {
+      const Point x = add(s.points[q], scale(sub(c, s.points[q]), share));
+      s.points.push_back(x);
+      if (sees_all(p)) {
+        s.point_size.push_back(
+            new_point_size(s.size_field.size_at(x), 1.0, s.point_size, corners));
+        return p;
+      }
+      s.points.pop_back();
+    }
+  return kInvalidIndex;
+}
+
+// The index in `part` of the face to leave it next, for the new point at index `xi` (the part's
+// deepest point; `inside` when it lies above every face plane): of the faces the point does not
+// close (behind their plane, or the element crosses the front, F7.3), the one it is lowest above;
+// when `keep` is the only one, the face other than `keep` it is lowest above, to move the point.
+// Returns part.size() when the point closes every face, part.size() + 1 when only `keep` is left.
+std::size_t face_to_drop(MesherState& s, const std::vector<Index>& part, Index xi, bool inside,
+                         Index keep) {
+  const Point& x = s.points[xi];
+  const auto height = [&](Index g) {
+    const Triangle& v = s.front.item(g).v;
+    return height_above(s.points[v[0]], s.points[v[1]], s.points[v[2]], x);
+  };
+  std::size_t worst = part.size(), lowest_other = part.size();
+  bool keep_fails = false;
+  for (std::size_t i = 0; i < part.size(); ++i) {
+    const Triangle& v = s.front.item(part[i]).v;
+    const bool closes = inside &&
+                        orient3d(s.points[v[0]], s.points[v[1]], s.points[v[2]], x) > 0 &&
+                        !element_crosses_front(s, part[i], xi);
+    if (part[i] == keep) {
+      keep_fails = !closes;
+      continue;
+    }
+    if (lowest_other == part.size() || height(part[i]) < height(part[lowest_other]))
+      lowest_other = i;
+    if (!closes && (worst == part.size() || height(part[i]) < height(part[worst]))) worst = i;
+  }
+  if (worst < part.size()) return worst;
+  if (!keep_fails) return part.size();
+  return lowest_other < part.size() ? lowest_other : part.size() + 1;
+}
+
 }  // namespace
+
+std::int64_t fill_part_of_pocket(MesherState& s, Index face, std::size_t max_faces) {
+  if (!s.point_env.empty()) return 0;  // thin regions keep the back-off they had
+  std::vector<Index> part;
+  if (!collect_pocket(s, face, max_faces, part)) return 0;
+  const Index x = static_cast<Index>(s.points.size());
+  s.points.push_back(Point{0, 0, 0});
+  while (!part.empty()) {
+    Box box = empty_box();
+    for (Index g : part)
+      for (Index q : s.front.item(g).v) enclose(box, s.points[q]);
+    double depth = 0;
+    const bool inside = deepest_point(s, part, box, s.points[x], depth);
+    const std::size_t drop = face_to_drop(s, part, x, inside, face);
+    if (drop > part.size()) break;  // `face` is left alone and the point does not close it
+    if (drop < part.size()) {
+      part.erase(part.begin() + static_cast<std::ptrdiff_t>(drop));
+      continue;
+    }
+    // x closes every face of the part: its elements are added, each checked by F7.3 above.
+    std::vector<Index> corners;
+    std::vector<Triangle> faces;
+    for (Index g : part) {
+      faces.push_back(s.front.item(g).v);
+      for (Index q : s.front.item(g).v) corners.push_back(q);
+    }
+    const Point c = s.points[x];
+    s.point_size.push_back(new_point_size(s.size_field.size_at(c), 1.0, s.point_size, corners));
+    std::int64_t added = 0;
+    for (const Triangle& v : faces) {
+      const std::optional<Index> g = s.front.find(v);
+      if (!g) continue;
+      add_element(s, *g, x);
+      ++added;
+    }
+    return added;
+  }
+  s.points.pop_back();
+  return 0;
+}
 
 bool collect_pocket(MesherState& s, Index face, std::size_t max_faces,
                     std::vector<Index>& pocket) {
@@ -142,6 +340,11 @@ std::int64_t fill_pocket(MesherState& s, Index face, std::size_t max_faces) {
         kernel = q;
         break;
       }
+  }
+  if (kernel == kInvalidIndex) {
+    kernel = kernel_point_beside_a_corner(s, pocket, corners, sees_all);
+    if (kernel == kInvalidIndex) kernel = deepest_kernel_point(s, pocket, corners, sees_all);
+    new_point = kernel != kInvalidIndex;
   }
   if (kernel == kInvalidIndex) return 0;
 

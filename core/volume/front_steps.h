@@ -117,4 +117,14 @@ bool collect_pocket(MesherState& s, Index face, std::size_t max_faces, std::vect
 // too large or no kernel point was found).
 std::int64_t fill_pocket(MesherState& s, Index face, std::size_t max_faces);
 
+// Not in the paper: the back-off for a face whose pocket is not star-shaped (fill_pocket found
+// no kernel point). Of the pocket's faces, `face` and as many others as possible are closed from
+// one new point: the deepest point of the part (the highest above the lowest of its face planes,
+// a linear program); while that point does not close a face of the part (behind its plane, or
+// the element crosses the front, F7.3), the face it is lowest above leaves the part and the
+// point is found again. The part left is star-shaped about its point, and the pocket shrinks by
+// it. Returns the number of elements added (0 when no part with `face` has such a point, or on
+// a front with crossing environments, whose thin regions keep the back-off they had).
+std::int64_t fill_part_of_pocket(MesherState& s, Index face, std::size_t max_faces);
+
 }  // namespace afmesh::volume

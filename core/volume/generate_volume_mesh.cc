@@ -31,6 +31,11 @@ constexpr int kAttemptsBeforeBackOff = 6;  // queue classes a face passes before
 constexpr int kMaxCavityRings = 4;
 constexpr double kMinNewPointSpacing = 0.04;  // of the wanted size; the last class allows 0.044
 constexpr std::size_t kMaxPocketFaces = 256;  // larger unmeshed regions are not pockets
+// Part fills (fill_part_of_pocket) per region: uncounted, a region whose faces each part fill
+// leaves stuck again was filled part by part without end (OCCT sh1.stl at 0.5 x its mean edge:
+// 364 s, 135k tets, then stuck; with at most 2, stuck after 61 s, and sh1 at its mean edge
+// meshes in 1.8 s instead of 6.5 s).
+constexpr int kMaxPartFills = 2;
 constexpr int kCancelCheckInterval = 256;  // faces between cancellation checks
 // Input triangles with an angle below this are called slivers in failure messages.
 constexpr double kSliverAngleDeg = 5.0;
@@ -82,11 +87,12 @@ absl::Status check_face_environments(const Mesh& front, const std::vector<std::i
   return absl::OkStatus();
 }
 
-// F7: tries the candidates of the face in order; adds the first element that does not cross the
-// front (F8–F10). Returns false when none fits.
-bool delete_face(MesherState& s, Index face) {
+// F7: tries the candidates of the face in order, under the acceptance rules for a face that has
+// failed `attempts` times (strictness_for); adds the first element that does not cross the front
+// (F8–F10). Returns false when none fits.
+bool delete_face(MesherState& s, Index face, int attempts) {
   const Triangle v = s.front.item(face).v;
-  const volume::Strictness rules = volume::strictness_for(s.front.item(face).attempts);
+  const volume::Strictness rules = volume::strictness_for(attempts);
   const double target = volume::target_size_for_face(s, v);           // F5/F9, eq. 15
   const double d = volume::element_size_for_target(s, v, target);
   // A face much smaller than the size wanted there (a sliver of front left between elements)
@@ -116,6 +122,20 @@ bool delete_face(MesherState& s, Index face) {
       s.point_size.pop_back();
     }
   }
+  return false;
+}
+
+// Not in the paper: on a sliver front (MesherState::sliver_front), a face that failed under the
+// rules of its queue class retries at once under those of the later classes, before it is
+// deferred. F6 orders the queue by class first, so a deferred face waits behind the whole front,
+// and among the forced slivers of a CAD tessellation the faces around it are meshed over
+// meanwhile and leave it no point at all (Regression.Issue10CubeWithOneOrFiveSplitsMeshes).
+// Retried at once, it takes the best point its surroundings offer while they are still open.
+// Returns true when it closed.
+bool delete_face_with_later_rules(MesherState& s, Index face) {
+  for (int attempts = s.front.item(face).attempts + 1; attempts < kAttemptsBeforeBackOff;
+       ++attempts)
+    if (delete_face(s, face, attempts)) return true;
   return false;
 }
 
@@ -167,18 +187,26 @@ std::string describe_input_near_face(const MesherState& s, const Mesh& input, co
 }
 
 // The back-off for a face that failed in every queue class (F11): fill the small pocket it
-// bounds from one kernel point; failing that, re-open the elements around it, one ring more each
-// time the same region needs it again.
-absl::Status back_off(MesherState& s, const Mesh& input, Index face, RepairCounts& repairs) {
+// bounds from one kernel point, or, when it has none, the part of it about `face` that one point
+// sees (at most kMaxPartFills times per region, counted in `part_fills`); failing that, re-open
+// the elements around it, one ring more each time the same region needs it again.
+absl::Status back_off(MesherState& s, const Mesh& input, Index face, RepairCounts& repairs,
+                      RepairCounts& part_fills) {
   const Triangle v = s.front.item(face).v;
   const std::uint32_t stamp = s.front.item(face).stamp;
-  if (volume::fill_pocket(s, face, kMaxPocketFaces) > 0) {
+  const Point centroid =
+      scale(add(s.points[v[0]], add(s.points[v[1]], s.points[v[2]])), 1.0 / 3.0);
+  int& fills = part_fills.at(centroid, volume::element_size_for_face(s, v));
+  const auto fill_part = [&] {
+    if (fills >= kMaxPartFills) return false;
+    ++fills;
+    return volume::fill_part_of_pocket(s, face, kMaxPocketFaces) > 0;
+  };
+  if (volume::fill_pocket(s, face, kMaxPocketFaces) > 0 || fill_part()) {
     const FrontItem<3>& f = s.front.item(face);
     if (f.alive && f.stamp == stamp) s.front.requeue(face, volume::queue_size_for_face(s, v));
     return absl::OkStatus();
   }
-  const Point centroid =
-      scale(add(s.points[v[0]], add(s.points[v[1]], s.points[v[2]])), 1.0 / 3.0);
   int& count = repairs.at(centroid, volume::element_size_for_face(s, v));
   const int rings = 1 + count;
   const Point& x = centroid;
@@ -337,7 +365,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
   if (absl::Status st = load_initial_front(s, front, params.face_environments); !st.ok())
     return st;
 
-  RepairCounts repairs;
+  RepairCounts repairs, part_fills;
   EndGameWatch end_game;
   std::int64_t steps = 0;
   // A face is taken from the queue a little more than once per element it builds; a front that
@@ -357,13 +385,14 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
         return overlap_report(s, *face, domain_volume);
       progress.report("front", std::min(0.99, static_cast<double>(s.live_tets) / expected_tets));
     }
-    if (delete_face(s, *face)) continue;
+    if (delete_face(s, *face, s.front.item(*face).attempts)) continue;
+    if (s.sliver_front && delete_face_with_later_rules(s, *face)) continue;
     const FrontItem<3>& f = s.front.item(*face);
     if (f.attempts + 1 < kAttemptsBeforeBackOff) {
       s.front.defer(*face, volume::queue_size_for_face(s, f.v));
       continue;
     }
-    if (absl::Status st = back_off(s, front, *face, repairs); !st.ok()) return st;
+    if (absl::Status st = back_off(s, front, *face, repairs, part_fills); !st.ok()) return st;
   }
   if (s.front.size() != 0)  // every live face is queued; an empty queue means an empty front
     return absl::InternalError(absl::StrFormat(

@@ -103,6 +103,18 @@ TEST(Regression, Issue10CorpusBlobMeshesAtGrowthOne) {
   mesh_valid(front, mean_edge_length(front));
 }
 
+// Regression for issue 10, part 3: a CAD part (netgen-doc, 380 triangles, angles down to
+// 0.44 degrees) stopped "stuck ... after re-opening its surroundings 4 times" at its mean edge:
+// the front left pockets of slivers that are not star-shaped (no one point sees all their
+// faces), so fill_pocket could not fill them, and the re-opened cavities were rebuilt into the
+// same pockets. The back-off now fills the part of such a pocket that its deepest point sees
+// (fill_part_of_pocket); the part meshes as given, boundary kept.
+TEST(Regression, Issue10CorpusPart1MeshesAsGiven) {
+  const Mesh front = corpus_front("netgen_part1.stl");
+  ASSERT_FALSE(front.triangles.empty());
+  mesh_valid(front, mean_edge_length(front));
+}
+
 // A knot (libcgal-demo), closed and clean, at the same defaults.
 TEST(RealSurfaces, CorpusKnotMeshesAtGrowthOne) {
   const Mesh front = corpus_front("cgal_knot1.stl");
@@ -113,7 +125,10 @@ TEST(RealSurfaces, CorpusKnotMeshesAtGrowthOne) {
 // Regression for issue 10: a front that cannot be closed says why, in terms of the input. The
 // lever (gmsh-doc) has fans of triangles with angles down to 0.008 degrees; the front fails there, and
 // the message must say so instead of advising "a size near the input's edge lengths" (the size
-// already was). When sliver fronts mesh (issue 10, part 3), this becomes a test that it meshes.
+// already was). When sliver fronts mesh (issue 10, part 3), this becomes a test that it meshes;
+// meanwhile the place it stops moves on as the back-off gets further (at its fans of 0.008-degree
+// triangles first, now in its plate, among triangles down to 0.087 degrees), so the test asks for
+// the sliver diagnosis, not for one angle.
 TEST(Regression, Issue10StuckFrontOnSliversNamesThem) {
   const Mesh front = corpus_front("gmsh_lever.stl");
   ASSERT_FALSE(front.triangles.empty());
@@ -122,7 +137,7 @@ TEST(Regression, Issue10StuckFrontOnSliversNamesThem) {
   absl::StatusOr<VolumeResult> result = generate_volume_mesh(front, params, no_progress());
   ASSERT_FALSE(result.ok());
   EXPECT_EQ(result.status().code(), absl::StatusCode::kFailedPrecondition);
-  EXPECT_NE(result.status().message().find("angles down to 0.00838 degrees"), std::string::npos)
+  EXPECT_NE(result.status().message().find("angles down to 0.0"), std::string::npos)
       << result.status();
   EXPECT_NE(result.status().message().find("sliver triangles"), std::string::npos)
       << result.status();
