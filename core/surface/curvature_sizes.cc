@@ -200,10 +200,13 @@ std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
       // disagree in orientation.
       double l_p = eq21_size(surface.normal(FaceId{f}), surface.normal(FaceId{g}),
                              neighbours.same_way[f][k], l_g, tan_p);
-      // Where that asks for less than the base size, the turn at the element's scale.
-      const double top = std::min(kTopScaleInSpacings * l_g,
-                                  base.size_at(surface.to_global(scale(add(c_f, c_g), 0.5))));
-      if (l_p < top) l_p = turn_at_element_scale(disks, f, k, g, l_g, top, l_p);
+      // Where that asks for less than the base size (and than the largest scale tried), the
+      // turn at the element's scale. The base size is asked only then: most edges turn slowly.
+      if (l_p < kTopScaleInSpacings * l_g) {
+        const double top = std::min(
+            kTopScaleInSpacings * l_g, base.size_at(surface.to_global(scale(add(c_f, c_g), 0.5))));
+        if (l_p < top) l_p = turn_at_element_scale(disks, f, k, g, l_g, top, l_p);
+      }
       size[a] = std::min(size[a], l_p);  // eq. 22
       size[b] = std::min(size[b], l_p);
     }
