@@ -7,6 +7,8 @@
 #include <initializer_list>
 #include <limits>
 #include <memory>
+#include <optional>
+#include <span>
 
 #include "absl/container/flat_hash_map.h"
 #include "absl/container/flat_hash_set.h"
@@ -143,8 +145,13 @@ std::vector<bool> lines_sharing_their_corners(const SurfaceFeatures& features) {
 }
 
 // Step 4 (F3): the sides along every line, shared by the patches on both sides; fills
-// patch_sides with each patch's initial front, oriented with the patch on the left.
-absl::Status sides_along_lines(SurfaceMeshState& s, std::vector<std::vector<Side>>& patch_sides) {
+// patch_sides with each patch's initial front, oriented with the patch on the left, side_lines
+// with the line of each of those sides, and side_count with each line's number of sides. A line
+// gets at least more_sides[l] sides (0: no more than its size asks).
+absl::Status sides_along_lines(SurfaceMeshState& s, std::span<const Index> more_sides,
+                               std::vector<std::vector<Side>>& patch_sides,
+                               std::vector<std::vector<Index>>& side_lines,
+                               std::vector<Index>& side_count) {
   const DiscreteSurface& surface = s.surface;
   const SurfaceFeatures& features = s.features;
   const std::vector<LineEndSizes> ends = line_end_sizes(surface, features);
@@ -171,6 +178,7 @@ absl::Status sides_along_lines(SurfaceMeshState& s, std::vector<std::vector<Side
     split_params.growth = s.growth;
     if (line.closed) split_params.min_sides = 3;
     if (sharing[l]) split_params.min_sides = 2;
+    split_params.min_sides = std::max(split_params.min_sides, more_sides[l]);
     absl::StatusOr<LineSplit> split = split_line(polyline, s.field, split_params);
     if (!split.ok()) return split.status();
     std::vector<Index> ids(split->points.size());
@@ -184,6 +192,7 @@ absl::Status sides_along_lines(SurfaceMeshState& s, std::vector<std::vector<Side
       const Index host = !forward.empty() ? forward[0] : backward[0];
       ids[i] = s.add_point(split->points[i], s.field_size(split->points[i]), FaceId{host}, a);
     }
+    side_count[l] = static_cast<Index>(last);
     // Attached sizes (eq. 15's delta_A): a line point carries the length of its sides.
     for (std::size_t i = 0; i < last; ++i) {
       s.line_sides.insert({std::min(ids[i], ids[i + 1]), std::max(ids[i], ids[i + 1])});
@@ -200,15 +209,53 @@ absl::Status sides_along_lines(SurfaceMeshState& s, std::vector<std::vector<Side
                            [&](Index f) { return features.face_patch[f] == patch; });
       };
       std::vector<Side>& out = patch_sides[index_of(patch)];
+      std::vector<Index>& of_line = side_lines[index_of(patch)];
       if (in(forward))
         for (std::size_t i = 0; i < last; ++i) out.push_back({ids[i], ids[i + 1]});
       if (in(backward))
         for (std::size_t i = 0; i < last; ++i) out.push_back({ids[i + 1], ids[i]});
+      of_line.resize(out.size(), static_cast<Index>(l));
     }
   }
   return absl::OkStatus();
 }
 
+// Step 4 (F3) until no patch's initial front crosses itself (crossing_sides in
+// surface_front.h; not in the paper): a line with a side that crosses another side of a patch
+// gets twice its sides, and the lines are laid again, at most kMaxSideDoublings times. Shorter
+// chords follow their polylines closer, and the polylines themselves (input edges) do not
+// cross. A front that still crosses after that is left to the patch front, which stops where it
+// cannot close.
+constexpr int kMaxSideDoublings = 6;
+
+absl::Status lay_initial_fronts(std::optional<SurfaceMeshState>& state,
+                                const DiscreteSurface& surface, const SurfaceFeatures& features,
+                                const SizeField& sizes, double growth,
+                                std::vector<std::vector<Side>>& patch_sides) {
+  std::vector<Index> more_sides(features.lines.size(), 0);
+  for (int round = 0;; ++round) {
+    state.emplace(surface, features, sizes, growth);
+    patch_sides.assign(features.patches.size(), {});
+    std::vector<std::vector<Index>> side_lines(features.patches.size());
+    std::vector<Index> side_count(features.lines.size(), 0);
+    if (absl::Status st = sides_along_lines(*state, more_sides, patch_sides, side_lines, side_count);
+        !st.ok())
+      return st;
+    if (round == kMaxSideDoublings) return absl::OkStatus();
+    bool again = false;
+    for (std::size_t p = 0; p < features.patches.size(); ++p) {
+      const PatchId patch{static_cast<Index>(p)};
+      for (const auto& [i, j] : crossing_sides(*state, patch, patch_sides[p])) {
+        for (const Index l : {side_lines[p][i], side_lines[p][j]}) {
+          if (more_sides[l] >= 2 * side_count[l]) continue;
+          more_sides[l] = 2 * side_count[l];
+          again = true;
+        }
+      }
+    }
+    if (!again) return absl::OkStatus();
+  }
+}
 
 // The boxes of the patches (their input faces), padded by 1% of their extent.
 std::vector<Box> patch_boxes(const DiscreteSurface& surface, const SurfaceFeatures& features) {
@@ -452,9 +499,12 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   }
   clock.lap("curvature");
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
-  SurfaceMeshState s(*surface, *features, *sizes, growth);
-  std::vector<std::vector<Side>> patch_sides(features->patches.size());
-  if (absl::Status st = sides_along_lines(s, patch_sides); !st.ok()) return st;
+  std::optional<SurfaceMeshState> state;
+  std::vector<std::vector<Side>> patch_sides;
+  if (absl::Status st = lay_initial_fronts(state, *surface, *features, *sizes, growth, patch_sides);
+      !st.ok())
+    return st;
+  SurfaceMeshState& s = *state;
   s.line_points = static_cast<Index>(s.points.size());
   clock.lap("lines");
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");

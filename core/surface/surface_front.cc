@@ -9,6 +9,7 @@
 #include <span>
 #include <string_view>
 
+#include "absl/container/flat_hash_map.h"
 #include "absl/strings/str_format.h"
 #include "core/front/advancing_front.h"
 #include "core/front/front_sizes.h"
@@ -601,8 +602,11 @@ void PatchFront::add_face(Index f, const Side& v, Index p) {
 
 // Not in the paper (as the volume front's pocket fill, F11): where the last sides of a region
 // cannot take a new point, the hole they bound is cut into ears: the best-shaped ear (largest
-// smallest angle) first, each checked in the hole's mean plane with exact tests.
-constexpr std::size_t kMaxHoleSides = 32;
+// smallest angle) first, each checked in the hole's mean plane with exact tests. Up to 64 sides
+// (O(n^3) tests at most): a ledge narrower than the size, its lines split finer until their
+// sides no longer cross (crossing_sides), leaves a strip of ~60 sides that no new point fits
+// (gmsh_lever at its mean edge; 32 left it stuck).
+constexpr std::size_t kMaxHoleSides = 64;
 
 Index PatchFront::next_side_of_loop(Index at, Index from) const {
   Index leaving = kInvalidIndex, count = 0;
@@ -1021,6 +1025,82 @@ Triangle lay_seed(SurfaceMeshState& s, PatchId patch, std::vector<Side>& sides) 
 }
 
 }  // namespace
+
+std::vector<std::pair<std::size_t, std::size_t>> crossing_sides(const SurfaceMeshState& s,
+                                                                PatchId patch,
+                                                                std::span<const Side> sides) {
+  std::vector<std::pair<std::size_t, std::size_t>> crossing;
+  if (sides.size() < 2) return crossing;
+  double total = 0.0;
+  for (const Side& v : sides) total += norm(sub(s.points[v[1]], s.points[v[0]]));
+  const double cell = total / static_cast<double>(sides.size());
+  if (!(cell > 0.0)) return crossing;
+  using Cell = std::array<std::int64_t, 3>;
+  const auto cell_of = [&](const Point& x) {
+    return Cell{static_cast<std::int64_t>(std::floor(x[0] / cell)),
+                static_cast<std::int64_t>(std::floor(x[1] / cell)),
+                static_cast<std::int64_t>(std::floor(x[2] / cell))};
+  };
+  // The cells a side passes through, sampled every half cell along it.
+  std::vector<Cell> along;
+  const auto cells_along = [&](const Side& v) {
+    along.clear();
+    const Point& a = s.points[v[0]];
+    const Point& b = s.points[v[1]];
+    const int samples = 1 + static_cast<int>(std::ceil(2.0 * norm(sub(b, a)) / cell));
+    for (int k = 0; k <= samples; ++k) {
+      const Cell c = cell_of(lerp(a, b, static_cast<double>(k) / samples));
+      if (along.empty() || along.back() != c) along.push_back(c);
+    }
+  };
+  absl::flat_hash_map<Cell, std::vector<std::size_t>> grid;
+  for (std::size_t i = 0; i < sides.size(); ++i) {
+    cells_along(sides[i]);
+    for (const Cell& c : along) {
+      std::vector<std::size_t>& in = grid[c];
+      if (in.empty() || in.back() != i) in.push_back(i);
+    }
+  }
+  std::vector<std::size_t> seen(sides.size(), sides.size());  // the last i that met side j
+  for (std::size_t i = 0; i < sides.size(); ++i) {
+    const Side& v = sides[i];
+    const Point& a = s.points[v[0]];
+    const Point& b = s.points[v[1]];
+    const double length = norm(sub(b, a));
+    const Point& n = s.surface.normal(patch_hint(s, patch, v[0]));
+    Point u = sub(b, a);
+    u = sub(u, scale(n, dot(u, n)));
+    if (!(norm(u) > 0.0)) continue;
+    u = scale(u, 1.0 / norm(u));
+    const Point w = cross(n, u);
+    const auto in_plane = [&](const Point& x) {
+      const Point r = sub(x, a);
+      return std::array<double, 2>{dot(r, u), dot(r, w)};
+    };
+    const std::array<double, 2> p = in_plane(a), q = in_plane(b);
+    cells_along(v);
+    for (const Cell& c : along) {
+      for (std::int64_t dx = -1; dx <= 1; ++dx)
+        for (std::int64_t dy = -1; dy <= 1; ++dy)
+          for (std::int64_t dz = -1; dz <= 1; ++dz) {
+            const auto it = grid.find(Cell{c[0] + dx, c[1] + dy, c[2] + dz});
+            if (it == grid.end()) continue;
+            for (const std::size_t j : it->second) {
+              if (j <= i || seen[j] == i) continue;
+              seen[j] = i;
+              const Side& x = sides[j];
+              if (x[0] == v[0] || x[0] == v[1] || x[1] == v[0] || x[1] == v[1]) continue;
+              const Point& c0 = s.points[x[0]];
+              const Point& c1 = s.points[x[1]];
+              if (std::abs(dot(sub(c0, a), n)) > length || std::abs(dot(sub(c1, a), n)) > length)
+                continue;
+              if (segments_cross(p, q, in_plane(c0), in_plane(c1))) crossing.push_back({i, j});
+            }
+          }
+    }
+  }
+  return crossing;
+}
 
 absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Side>& sides,
                         const Box& domain, const PatchFrontParams& params, Progress& progress) {

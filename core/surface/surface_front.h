@@ -29,6 +29,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -105,6 +106,18 @@ Located locate_in_patch(const DiscreteSurface& surface, const SurfaceFeatures& f
 // A face of `patch` to start a walk for point p from: its host when that is in the patch, else
 // a face of the patch around its anchor vertex, else the patch's first face.
 FaceId patch_hint(const SurfaceMeshState& s, PatchId patch, Index p);
+
+// The pairs (i, j), i < j, of sides of one patch's initial front (`sides`, each with the patch
+// on its left) that cross or touch away from a point they share, each pair in the plane of side
+// i (its first point's face of the patch); sides whose points lie farther off that plane than
+// side i is long are another sheet and are not compared. Not in the paper: the chords of two
+// lines running closer than their sides' sagitta (a ledge narrower than the size, gmsh_lever)
+// pass beyond each other's points, and a front that starts folded cannot close. Sides are
+// found through a hash grid of cells of their mean length, each side entered along its length:
+// O(n) for sides of similar lengths.
+std::vector<std::pair<std::size_t, std::size_t>> crossing_sides(const SurfaceMeshState& s,
+                                                                PatchId patch,
+                                                                std::span<const Side> sides);
 
 struct PatchFrontParams {
   // The front stops with FAILED_PRECONDITION after this many steps per side it started with

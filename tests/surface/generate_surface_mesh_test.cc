@@ -547,6 +547,18 @@ TEST(Regression, Issue11NoNewPointIsMadeOnTheLineAPatchEndsAt) {
   EXPECT_GT(figures_of(r->mesh).min_angle, 0.5);
 }
 
+// gmsh_lever has a ledge 0.008 wide along a curved rim, at a size of 11.76 (its mean edge): the
+// chords of the ledge's two lines, split at the size the gap allows (1.76), crossed each other
+// (their sagitta exceeds the width), and the patch's front, folded from the start, stopped.
+// The lines are now split finer until no initial side crosses another (crossing_sides), and
+// the strip left is filled as a hole. The strip's triangles are slivers (under 1°): the width
+// is under a thousandth of the size.
+TEST(Regression, Issue11ALedgeNarrowerThanItsChordsSagittaMeshes) {
+  const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge("gmsh_lever.stl");
+  ASSERT_TRUE(r.ok()) << r.status();
+  expect_closed_valid(r->mesh);
+}
+
 // netgen_part1 is a raw CAD tessellation (sliver triangles) that the volume front does not fill
 // as given (at 223a136 it stops stuck after ~3,400 tets: issue 10 part 3). Re-triangulated
 // first, as `afmesh volume --remesh-surface` does, it fills with valid tets at the new surface's
