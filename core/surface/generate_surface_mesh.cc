@@ -273,8 +273,12 @@ std::vector<Box> patch_boxes(const DiscreteSurface& surface, const SurfaceFeatur
 
 // Not in the paper: the triangles each patch should get, its input faces' areas over the area
 // of an equilateral triangle of the size wanted at their centroids (a bound for the front: a
-// patch meshed far finer than asked stops, kMaxTrianglesOverExpected).
+// patch meshed far finer than asked stops, kMaxTrianglesOverExpected), plus
+// kTrianglesPerInitialSide for each side the patch starts with: sides far shorter than the size
+// (lines split finer where they run close, crossing_sides) grade out over several rings of
+// triangles each (gmsh_lever at twice its mean edge: 4 per side stopped it, 8 close it).
 constexpr double kMaxTrianglesOverExpected = 10.0;
+constexpr double kTrianglesPerInitialSide = 8.0;
 // Not in the paper: the back-offs allowed in a patch (PatchFrontParams::max_back_offs), a few
 // plus one per this many of the triangles it should get.
 constexpr std::int64_t kMinBackOffs = 50;
@@ -528,7 +532,8 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
     const PatchId patch{static_cast<Index>(p)};
     PatchFrontParams front_params;
     front_params.max_triangles = static_cast<std::int64_t>(
-        kMaxTrianglesOverExpected * expected[p] + 4.0 * patch_sides[p].size() + 1000.0);
+        kMaxTrianglesOverExpected * expected[p] +
+        kTrianglesPerInitialSide * static_cast<double>(patch_sides[p].size()) + 1000.0);
     front_params.max_back_offs =
         kMinBackOffs + static_cast<std::int64_t>(expected[p] / kExpectedTrianglesPerBackOff);
     if (absl::Status st = mesh_patch(s, patch, patch_sides[p], boxes[p], front_params, progress);
