@@ -145,12 +145,17 @@ std::vector<bool> lines_sharing_their_corners(const SurfaceFeatures& features) {
 }
 
 // Step 4 (F3): the sides along every line, shared by the patches on both sides; fills
-// patch_sides with each patch's initial front, oriented with the patch on the left, side_lines
-// with the line of each of those sides, and side_count with each line's number of sides. A line
-// gets at least more_sides[l] sides (0: no more than its size asks).
+// patch_sides with each patch's initial front, oriented with the patch on the left,
+// side_origins with where each of those sides comes from, and side_count with each line's number
+// of sides. A line gets at least more_sides[l] sides (0: no more than its size asks).
+struct SideOrigin {
+  Index line = kInvalidIndex;
+  bool on_one_segment = false;  // no vertex of the line's polyline lies between its ends
+};
+
 absl::Status sides_along_lines(SurfaceMeshState& s, std::span<const Index> more_sides,
                                std::vector<std::vector<Side>>& patch_sides,
-                               std::vector<std::vector<Index>>& side_lines,
+                               std::vector<std::vector<SideOrigin>>& side_origins,
                                std::vector<Index>& side_count) {
   const DiscreteSurface& surface = s.surface;
   const SurfaceFeatures& features = s.features;
@@ -209,12 +214,16 @@ absl::Status sides_along_lines(SurfaceMeshState& s, std::span<const Index> more_
                            [&](Index f) { return features.face_patch[f] == patch; });
       };
       std::vector<Side>& out = patch_sides[index_of(patch)];
-      std::vector<Index>& of_line = side_lines[index_of(patch)];
+      std::vector<SideOrigin>& origins = side_origins[index_of(patch)];
+      const auto origin = [&](std::size_t i) {
+        return SideOrigin{static_cast<Index>(l), split->segment[i + 1] == split->segment[i]};
+      };
       if (in(forward))
-        for (std::size_t i = 0; i < last; ++i) out.push_back({ids[i], ids[i + 1]});
+        for (std::size_t i = 0; i < last; ++i)
+          out.push_back({ids[i], ids[i + 1]}), origins.push_back(origin(i));
       if (in(backward))
-        for (std::size_t i = 0; i < last; ++i) out.push_back({ids[i + 1], ids[i]});
-      of_line.resize(out.size(), static_cast<Index>(l));
+        for (std::size_t i = 0; i < last; ++i)
+          out.push_back({ids[i + 1], ids[i]}), origins.push_back(origin(i));
     }
   }
   return absl::OkStatus();
@@ -223,8 +232,11 @@ absl::Status sides_along_lines(SurfaceMeshState& s, std::span<const Index> more_
 // Step 4 (F3) until no patch's initial front crosses itself (crossing_sides in
 // surface_front.h; not in the paper): a line with a side that crosses another side of a patch
 // gets twice its sides, and the lines are laid again, at most kMaxSideDoublings times. Shorter
-// chords follow their polylines closer, and the polylines themselves (input edges) do not
-// cross. A front that still crosses after that is left to the patch front, which stops where it
+// chords follow their polylines closer (the chords of a ledge narrower than their sagitta,
+// gmsh_lever). A side that lies on one segment of its polyline already follows it: where two
+// such sides cross, the input's lines themselves touch (TR12J_OCC), no split parts them, and
+// neither line is doubled for it (there, 6 doublings took a line of 84 sides to 5,376 and its
+// patch ran away). A front that still crosses is left to the patch front, which stops where it
 // cannot close.
 constexpr int kMaxSideDoublings = 6;
 
@@ -236,9 +248,10 @@ absl::Status lay_initial_fronts(std::optional<SurfaceMeshState>& state,
   for (int round = 0;; ++round) {
     state.emplace(surface, features, sizes, growth);
     patch_sides.assign(features.patches.size(), {});
-    std::vector<std::vector<Index>> side_lines(features.patches.size());
+    std::vector<std::vector<SideOrigin>> side_origins(features.patches.size());
     std::vector<Index> side_count(features.lines.size(), 0);
-    if (absl::Status st = sides_along_lines(*state, more_sides, patch_sides, side_lines, side_count);
+    if (absl::Status st =
+            sides_along_lines(*state, more_sides, patch_sides, side_origins, side_count);
         !st.ok())
       return st;
     if (round == kMaxSideDoublings) return absl::OkStatus();
@@ -246,8 +259,9 @@ absl::Status lay_initial_fronts(std::optional<SurfaceMeshState>& state,
     for (std::size_t p = 0; p < features.patches.size(); ++p) {
       const PatchId patch{static_cast<Index>(p)};
       for (const auto& [i, j] : crossing_sides(*state, patch, patch_sides[p])) {
-        for (const Index l : {side_lines[p][i], side_lines[p][j]}) {
-          if (more_sides[l] >= 2 * side_count[l]) continue;
+        for (const SideOrigin& o : {side_origins[p][i], side_origins[p][j]}) {
+          const Index l = o.line;
+          if (o.on_one_segment || more_sides[l] >= 2 * side_count[l]) continue;
           more_sides[l] = 2 * side_count[l];
           again = true;
         }
