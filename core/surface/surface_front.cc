@@ -702,9 +702,19 @@ bool PatchFront::fill_hole(Index f) {
           empty = false;
       }
       if (!empty) continue;
-      const double angle =
+      double angle =
           triangle_quality(s_.points[corners[a]], s_.points[corners[b]], s_.points[corners[c]])
               .min_angle_deg;
+      // With four corners left, the ear decides the last triangle too: both are judged, so
+      // that three points along a straight line are not left as the last one (cgal_homer at
+      // half its mean edge: a last triangle of 1e-13 degrees).
+      if (ring.size() == 4) {
+        const std::size_t d = ring[(i + 2) % ring.size()];
+        if (orient2d(xy[c].data(), xy[d].data(), xy[a].data()) <= 0) continue;
+        angle = std::min(angle, triangle_quality(s_.points[corners[c]], s_.points[corners[d]],
+                                                 s_.points[corners[a]])
+                                    .min_angle_deg);
+      }
       if (angle > best_angle) best_angle = angle, best = i;
     }
     if (best_angle < 0) return false;
