@@ -315,13 +315,24 @@ class PatchFront {
   // A line point that the patch lies on both sides of (a crease that ends inside the patch)
   // faces the plane when a face of the patch around it does: its host may be on either side.
   bool faces_plane(Index q, const SidePlane& plane) const {
-    if (dot(s_.surface.normal(patch_hint(s_, patch_, q)), plane.n) > kFacingCosine) return true;
-    if (s_.anchor[q] == kInvalidIndex) return false;
-    for (const Index g : s_.surface.faces_at(s_.anchor[q]))
-      if (in_patch(s_.features, patch_, g) &&
-          dot(s_.surface.normal(FaceId{g}), plane.n) > kFacingCosine)
-        return true;
-    return false;
+    return planes_faced(q, std::span<const SidePlane>(&plane, 1)) != 0;
+  }
+  // faces_plane for each of `planes` (at most 32) at once, bit k for planes[k]: the normals of
+  // q's faces are looked up once for all of them.
+  std::uint32_t planes_faced(Index q, std::span<const SidePlane> planes) const {
+    const std::uint32_t all = (std::uint32_t{1} << planes.size()) - 1;
+    std::uint32_t faced = 0;
+    const Point& n = s_.surface.normal(patch_hint(s_, patch_, q));
+    for (std::size_t k = 0; k < planes.size(); ++k)
+      if (dot(n, planes[k].n) > kFacingCosine) faced |= std::uint32_t{1} << k;
+    if (faced == all || s_.anchor[q] == kInvalidIndex) return faced;
+    for (const Index g : s_.surface.faces_at(s_.anchor[q])) {
+      if (!in_patch(s_.features, patch_, g)) continue;
+      for (std::size_t k = 0; k < planes.size(); ++k)
+        if (dot(s_.surface.normal(FaceId{g}), planes[k].n) > kFacingCosine)
+          faced |= std::uint32_t{1} << k;
+    }
+    return faced;
   }
   // The plane of the surface at front point a: through a, normal to the mean of the unit
   // normals of the patch's triangles at a and of a's host face. Where the surface turns fast
@@ -339,8 +350,10 @@ class PatchFront {
   void gather(const Side& v, const SidePlane& plane, const Point& best, double d,
               const SideRules& rules);
   bool new_point_is_clear(const Point& x, double d, const SideRules& rules, Index f) const;
-  bool face_crosses_front(Index f, const Side& v, Index p, const SidePlane& plane,
-                          double clearance) const;
+  // S6 for new face (v, p) in each of `planes` (the side's plane and the face's own): whether
+  // it crosses the front in any of them. One pass over the front near the face serves both.
+  bool face_crosses_front(Index f, const Side& v, Index p,
+                          const std::array<SidePlane, 2>& planes, double clearance) const;
   void add_face(Index f, const Side& v, Index p);
   // Every triangle of the front goes through here: into s_ and into the incidence.
   void add_triangle(const Triangle& t);
@@ -531,11 +544,17 @@ bool segments_cross(const std::array<double, 2>& p, const std::array<double, 2>&
          (o4 == 0 && on(r, s, q));
 }
 
-bool PatchFront::face_crosses_front(Index f, const Side& v, Index p, const SidePlane& plane,
+bool PatchFront::face_crosses_front(Index f, const Side& v, Index p,
+                                    const std::array<SidePlane, 2>& planes,
                                     double clearance) const {
-  const std::array<double, 2> a = plane.at(s_.points[v[0]]), b = plane.at(s_.points[v[1]]),
-                              c = plane.at(s_.points[p]);
-  if (orient2d(a.data(), b.data(), c.data()) <= 0) return true;
+  using Point2 = std::array<double, 2>;
+  std::array<Point2, 2> a, b, c;  // the face's corners in each plane
+  for (std::size_t k = 0; k < planes.size(); ++k) {
+    a[k] = planes[k].at(s_.points[v[0]]);
+    b[k] = planes[k].at(s_.points[v[1]]);
+    c[k] = planes[k].at(s_.points[p]);
+    if (orient2d(a[k].data(), b[k].data(), c[k].data()) <= 0) return true;
+  }
   // A new side that is already on the front the same way round has the patch's meshed part
   // on the new face's side: the face would lie over a triangle built before. The crossing test
   // below cannot see it (a front side sharing an end with a new side is not tested).
@@ -560,24 +579,31 @@ bool PatchFront::face_crosses_front(Index f, const Side& v, Index p, const SideP
       covered = true;
       return;
     }
-    if (!faces_plane(q, plane)) return;
-    const std::array<double, 2> x = plane.at(xq);
-    covered = orient2d(a.data(), b.data(), x.data()) >= 0 &&
-              orient2d(b.data(), c.data(), x.data()) >= 0 &&
-              orient2d(c.data(), a.data(), x.data()) >= 0;
+    const std::uint32_t faced = planes_faced(q, planes);
+    for (std::size_t k = 0; k < planes.size() && !covered; ++k) {
+      if (!(faced >> k & 1)) continue;
+      const Point2 x = planes[k].at(xq);
+      covered = orient2d(a[k].data(), b[k].data(), x.data()) >= 0 &&
+                orient2d(b[k].data(), c[k].data(), x.data()) >= 0 &&
+                orient2d(c[k].data(), a[k].data(), x.data()) >= 0;
+    }
   });
   if (covered) return true;
   // S6: the new sides (a, p) and (p, b) against every front side near them.
   return front_.bins().find_item_near(box, [&](Index g) {
     if (g == f) return false;
     const Side& w = front_.item(g).v;
-    if (!faces_plane(w[0], plane) && !faces_plane(w[1], plane)) return false;
-    const std::array<double, 2> x = plane.at(s_.points[w[0]]), y = plane.at(s_.points[w[1]]);
+    std::uint32_t faced = planes_faced(w[0], planes);
+    if (faced != (1u << planes.size()) - 1) faced |= planes_faced(w[1], planes);
     const auto shares = [&](Index e0, Index e1) {
       return w[0] == e0 || w[0] == e1 || w[1] == e0 || w[1] == e1;
     };
-    if (!shares(v[0], p) && segments_cross(a, c, x, y)) return true;
-    if (!shares(p, v[1]) && segments_cross(c, b, x, y)) return true;
+    for (std::size_t k = 0; k < planes.size(); ++k) {
+      if (!(faced >> k & 1)) continue;
+      const Point2 x = planes[k].at(s_.points[w[0]]), y = planes[k].at(s_.points[w[1]]);
+      if (!shares(v[0], p) && segments_cross(a[k], c[k], x, y)) return true;
+      if (!shares(p, v[1]) && segments_cross(c[k], b[k], x, y)) return true;
+    }
     return false;
   });
 }
@@ -791,8 +817,7 @@ bool PatchFront::delete_side(Index f) {
         continue;
       }
     }
-    if (!face_crosses_front(f, v, p, plane, rules.side_clearance * d) &&   // S6
-        !face_crosses_front(f, v, p, face_plane(v, p), rules.side_clearance * d) &&
+    if (!face_crosses_front(f, v, p, {plane, face_plane(v, p)}, rules.side_clearance * d) &&  // S6
         !lies_over_a_triangle(v, p) && fits_the_gaps(v, p) &&
         !folds_over_a_neighbour({v[0], v[1], p})) {
       add_face(f, v, p);
