@@ -174,11 +174,32 @@ double DiscreteSurface::squared_distance_to_face(const Point& x, FaceId f, Point
   return squared_distance_to(x, f, closest, unused);
 }
 
+double DiscreteSurface::ball_margin(const Point& x) const {
+  return kBallMargin * (size_ + std::max({std::abs(x[0]), std::abs(x[1]), std::abs(x[2])}));
+}
+
 bool DiscreteSurface::cannot_be_nearer(const Point& x, FaceId f, double squared_distance) const {
   const Ball& ball = balls_[index_of(f)];
-  const double magnitude = size_ + std::max({std::abs(x[0]), std::abs(x[1]), std::abs(x[2])});
-  const double gap = distance(x, ball.centroid) - ball.radius - kBallMargin * magnitude;
+  const double gap = distance(x, ball.centroid) - ball.radius - ball_margin(x);
   return gap > 0.0 && gap * gap * (1.0 - 1e-9) > squared_distance;
+}
+
+Box DiscreteSurface::ball_box(FaceId f) const {
+  const Ball& ball = balls_[index_of(f)];
+  Box box{ball.centroid, ball.centroid};
+  for (int k = 0; k < 3; ++k) box.lo[k] -= ball.radius, box.hi[k] += ball.radius;
+  return box;
+}
+
+// cannot_be_nearer is false only where the gap from x to the ball is at most
+// sqrt(squared_distance / (1 - 1e-9)) (or not positive): the ball then comes within
+// sqrt(squared_distance) (1 + 1e-9) + the margin of x, which the box's half-width exceeds by
+// far more than the roundings of the gap's few operations.
+Box DiscreteSurface::reach_box(const Point& x, double squared_distance) const {
+  const double reach = std::sqrt(squared_distance) * (1.0 + 1e-6) + 2.0 * ball_margin(x);
+  Box box{x, x};
+  for (int k = 0; k < 3; ++k) box.lo[k] -= reach, box.hi[k] += reach;
+  return box;
 }
 
 Located DiscreteSurface::nearest_face(const Point& x) const {

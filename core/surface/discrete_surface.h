@@ -127,6 +127,14 @@ class DiscreteSurface {
   // round off it. A fraction of the distance's cost: a walk uses it to pass over the faces
   // round it that cannot be nearer. False says nothing.
   bool cannot_be_nearer(const Point& x, FaceId f, double squared_distance) const;
+  // The bounding box of the ball of face f that cannot_be_nearer tests (its centroid, out to
+  // its farthest corner): all of space for a sliver.
+  Box ball_box(FaceId f) const;
+  // A box round x that the ball_box of every face for which cannot_be_nearer(x, f,
+  // squared_distance) is false meets: x ± (sqrt(squared_distance) + twice the test's margin),
+  // widened by a relative 1e-6 for rounding. So the faces that can be as near to x as a face
+  // known to be sqrt(squared_distance) away (the nearest among them) have their balls there.
+  Box reach_box(const Point& x, double squared_distance) const;
 
   // The face nearest to x (local frame) by the AABB tree, ties to the smaller face id.
   // O(log M) for x near the surface. Without the tree (params.tree false, build_tree not
@@ -148,6 +156,8 @@ class DiscreteSurface {
 
  private:
   DiscreteSurface() = default;
+  // The margin of cannot_be_nearer at x: kBallMargin of the coordinates' magnitude.
+  double ball_margin(const Point& x) const;
   // Squared distance from x to face f and its closest point; counts into at.evaluations.
   double squared_distance_to(const Point& x, FaceId f, Point& closest, Located& at) const;
   // Walk as far as a local minimum; false when it took more than max_walk_steps moves.
