@@ -130,6 +130,7 @@ Located locate_in_patch(const DiscreteSurface& surface, const SurfaceFeatures& f
   at.squared_distance = surface.squared_distance_to_face(x, hint, at.closest);
   ++at.evaluations;
   Triangle previous{kInvalidIndex, kInvalidIndex, kInvalidIndex};  // the corners of the last face
+  const double margin = surface.ball_margin(x);
   for (int step = 0; step < max_steps; ++step) {
     Index best = kInvalidIndex;
     double best_distance = at.squared_distance;
@@ -142,7 +143,7 @@ Located locate_in_patch(const DiscreteSurface& surface, const SurfaceFeatures& f
         if (g == face || !in_patch(features, patch, g)) continue;
         const Triangle& t = surface.triangles()[g];
         if (uses_any(t, std::span<const Index>(corners.data(), k)) || uses_any(t, previous) ||
-            surface.cannot_be_nearer(x, FaceId{g}, best_distance))
+            surface.cannot_be_nearer(x, margin, FaceId{g}, best_distance))
           continue;
         Point closest;
         const double d = surface.squared_distance_to_face(x, FaceId{g}, closest);
