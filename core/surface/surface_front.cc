@@ -455,15 +455,28 @@ bool PatchFront::fits_the_gap_at(Index apex, Index from, Index p, bool at_start)
     if (!at_start) angle = -angle;
     return angle <= 0 ? angle + 2 * std::numbers::pi : angle;
   };
-  Index bound = kInvalidIndex;
-  double smallest = std::numeric_limits<double>::infinity();
-  front_.for_each_item_at(apex, [&](Index g) {
+  const auto far_end = [&](Index g) {  // the side's other point, if it bounds on that side
     const Side& w = front_.item(g).v;
     const Index q = at_start ? (w[1] == apex ? w[0] : kInvalidIndex)
                              : (w[0] == apex ? w[1] : kInvalidIndex);
-    if (q == kInvalidIndex || q == from) return;
-    if (const double angle = turn(q); angle < smallest) smallest = angle, bound = q;
+    return q == from ? kInvalidIndex : q;
+  };
+  // Where one side can bound the gap (the front passes the apex once), it does, whatever its
+  // angle (finite: the points are): the angles only choose among several.
+  Index bound = kInvalidIndex;
+  int sides = 0;
+  front_.for_each_item_at(apex, [&](Index g) {
+    if (const Index q = far_end(g); q != kInvalidIndex && sides++ == 0) bound = q;
   });
+  if (sides > 1) {
+    double smallest = std::numeric_limits<double>::infinity();
+    bound = kInvalidIndex;
+    front_.for_each_item_at(apex, [&](Index g) {
+      const Index q = far_end(g);
+      if (q == kInvalidIndex) return;
+      if (const double angle = turn(q); angle < smallest) smallest = angle, bound = q;
+    });
+  }
   if (bound == kInvalidIndex || bound == p) return true;  // p closes the gap
   // Within the wedge from `from` to `bound` (counter-clockwise at the start, clockwise at the
   // end), strictly.
