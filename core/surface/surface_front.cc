@@ -305,6 +305,13 @@ class PatchFront {
     const Point normal = cross(sub(s_.points[v[1]], s_.points[v[0]]), sub(x, s_.points[v[0]]));
     return dot(normal, plane.n) >= kMinFaceCosine * norm(normal);
   }
+  // Whether face (v, x) has a shape the rules take: its smallest angle not under
+  // rules.min_angle_deg, and lying along the plane.
+  bool takes_shape(const Side& v, const Point& x, const SidePlane& plane,
+                   const SideRules& rules) const {
+    return !(triangle_min_angle_deg(s_.points[v[0]], s_.points[v[1]], x) < rules.min_angle_deg) &&
+           lies_along(v, x, plane);
+  }
   // The unit normal of triangle t of s_.points (zero for a degenerate one).
   Point triangle_normal(const Triangle& t) const {
     return unit_normal(s_.points[t[0]], s_.points[t[1]], s_.points[t[2]]);
@@ -506,14 +513,11 @@ void PatchFront::gather(const Side& v, const SidePlane& plane, const Point& best
     if (r > reach || !faces_plane(q, plane)) return;
     const std::array<double, 2> q2 = plane.at(s_.points[q]);
     if (orient2d(a2.data(), b2.data(), q2.data()) <= 0) return;  // not left of the side
-    if (triangle_quality(s_.points[v[0]], s_.points[v[1]], s_.points[q]).min_angle_deg <
-            rules.min_angle_deg ||
-        !lies_along(v, s_.points[q], plane))
-      return;
     candidates_.push_back({q, r / d});
   });
   // S5: a front point nearer to the best point than the spacing a new point must keep is used
-  // in lieu of it; farther ones come after it.
+  // in lieu of it; farther ones come after it. Each face's shape (takes_shape) is judged when
+  // its candidate is tried: most candidates come after a new point that is taken.
   candidates_.push_back({kInvalidIndex, rules.point_spacing});
   std::stable_sort(candidates_.begin(), candidates_.end(),
                    [](const Candidate& x, const Candidate& y) {
@@ -739,8 +743,8 @@ bool PatchFront::fill_hole(Index f) {
       }
       if (!empty) continue;
       const double angle =
-          triangle_quality(s_.points[corners[a]], s_.points[corners[b]], s_.points[corners[c]])
-              .min_angle_deg;
+          triangle_min_angle_deg(s_.points[corners[a]], s_.points[corners[b]],
+                                 s_.points[corners[c]]);
       if (angle > best_angle) best_angle = angle, best = i;
     }
     if (best_angle < 0) return false;
@@ -775,7 +779,7 @@ Index PatchFront::closing_point(const Side& v, const SidePlane& plane) {
   if (turn < 0) {
     const bool built = !initial_.contains({v[0], v[1]}) && !initial_.contains({v[1], closing}) &&
                        !initial_.contains({closing, v[0]});
-    if (triangle_quality(s_.points[v[0]], s_.points[v[1]], s_.points[closing]).min_angle_deg >=
+    if (triangle_min_angle_deg(s_.points[v[0]], s_.points[v[1]], s_.points[closing]) >=
             kSliverHoleDeg ||
         has_edge(v[1], v[0], closing) || !(built || front_.size() == 3))
       return kInvalidIndex;
@@ -824,12 +828,12 @@ bool PatchFront::delete_side(Index f) {
         continue;
       p = s_.add_point(best, new_point_size(s_.field_size(best), s_.growth, s_.point_size, v),
                        on.face, kInvalidIndex);
-      if (triangle_quality(s_.points[v[0]], s_.points[v[1]], best).min_angle_deg <
-              rules.min_angle_deg ||
-          !lies_along(v, best, plane)) {
+      if (!takes_shape(v, best, plane, rules)) {
         s_.drop_last_point();
         continue;
       }
+    } else if (!takes_shape(v, s_.points[p], plane, rules)) {
+      continue;
     }
     if (!face_crosses_front(f, v, p, {plane, face_plane(v, p)}, rules.side_clearance * d) &&  // S6
         !lies_over_a_triangle(v, p) && fits_the_gaps(v, p) &&
