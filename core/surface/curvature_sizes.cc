@@ -13,6 +13,7 @@
 
 #include "absl/container/flat_hash_set.h"
 #include "core/geometry/vec.h"
+#include "core/spatial/box.h"
 
 namespace afmesh {
 namespace {
@@ -240,6 +241,22 @@ void grade_point_sizes(const DiscreteSurface& surface, double growth, std::vecto
   }
 }
 
+namespace {
+
+// The grid of CurvatureLimitedSize: about one cell per kFacesPerCell faces of the input. A face
+// whose ball meets more than kMaxFaceCells cells (a sliver, whose ball is all of space, or a
+// face far larger than the cells) is kept out of the cells and bounds every query instead; a
+// query whose reach meets more than kMaxReachCells cells is left to the tree.
+constexpr double kFacesPerCell = 2.0;
+constexpr std::int64_t kMaxFaceCells = 64;
+constexpr std::int64_t kMaxReachCells = 64;
+
+std::int64_t cell_count(const std::array<std::array<std::int64_t, 2>, 3>& r) {
+  return (r[0][1] - r[0][0] + 1) * (r[1][1] - r[1][0] + 1) * (r[2][1] - r[2][0] + 1);
+}
+
+}  // namespace
+
 CurvatureLimitedSize::CurvatureLimitedSize(const SizeField& base, const DiscreteSurface& surface,
                                            std::vector<double> point_sizes)
     : base_(base),
@@ -247,15 +264,97 @@ CurvatureLimitedSize::CurvatureLimitedSize(const SizeField& base, const Discrete
       point_sizes_(std::move(point_sizes)),
       smallest_(std::accumulate(point_sizes_.begin(), point_sizes_.end(),
                                 std::numeric_limits<double>::infinity(),
-                                [](double a, double b) { return std::min(a, b); })) {}
+                                [](double a, double b) { return std::min(a, b); })) {
+  const double infinity = std::numeric_limits<double>::infinity();
+  if (!(smallest_ < infinity)) return;  // size_at never searches
+  Box bounds = empty_box();
+  for (const Point& p : surface_.local_points()) enclose(bounds, p);
+  double largest = 0.0;
+  for (int k = 0; k < 3; ++k) largest = std::max(largest, bounds.hi[k] - bounds.lo[k]);
+  if (!(largest > 0.0)) return;
+  // Cells of equal edges, about face_count / kFacesPerCell of them over the box (a flat box
+  // counted a thousandth of its largest extent thick).
+  const double wanted = std::max(1.0, surface_.face_count() / kFacesPerCell);
+  double volume = 1.0;
+  for (int k = 0; k < 3; ++k) volume *= std::max(bounds.hi[k] - bounds.lo[k], 1e-3 * largest);
+  const double cell = std::cbrt(volume / wanted);
+  origin_ = bounds.lo;
+  inverse_cell_ = 1.0 / cell;
+  for (int k = 0; k < 3; ++k)
+    dims_[k] = static_cast<std::int64_t>(std::floor((bounds.hi[k] - bounds.lo[k]) / cell)) + 1;
+  const auto cells = static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]);
+  cell_smallest_.assign(cells, infinity);
+  cell_face_.assign(cells, kInvalidIndex);
+  double large = infinity;  // the faces kept out of the cells
+  for (Index f = 0; f < surface_.face_count(); ++f) {
+    double corner = infinity;  // as size_at takes it
+    for (const Index v : surface_.triangle(FaceId{f})) corner = std::min(corner, point_sizes_[v]);
+    const Box ball = surface_.ball_box(FaceId{f});
+    const CellRange r = cells_of(ball.lo, ball.hi);
+    if (cell_count(r) > kMaxFaceCells) {
+      large = std::min(large, corner);
+    } else {
+      for (std::int64_t k = r[2][0]; k <= r[2][1]; ++k)
+        for (std::int64_t j = r[1][0]; j <= r[1][1]; ++j)
+          for (std::int64_t i = r[0][0]; i <= r[0][1]; ++i) {
+            double& smallest = cell_smallest_[cell_index(i, j, k)];
+            smallest = std::min(smallest, corner);
+          }
+    }
+    const Point& c = surface_.centroid(FaceId{f});
+    const CellRange at = cells_of(c, c);
+    Index& face = cell_face_[cell_index(at[0][0], at[1][0], at[2][0])];
+    if (face == kInvalidIndex) face = f;
+  }
+  // The faces kept out bound every cell.
+  for (double& smallest : cell_smallest_) smallest = std::min(smallest, large);
+}
+
+CurvatureLimitedSize::CellRange CurvatureLimitedSize::cells_of(const Point& lo,
+                                                               const Point& hi) const {
+  // floor of the scaled coordinate, clamped into the grid: monotone in the coordinate, so boxes
+  // that overlap have cell ranges that overlap.
+  const auto cell = [&](double x, int axis) -> std::int64_t {
+    const double c = std::floor((x - origin_[axis]) * inverse_cell_);
+    if (!(c > 0.0)) return 0;  // also NaN
+    return std::min(static_cast<std::int64_t>(std::min(c, 9e18)), dims_[axis] - 1);
+  };
+  CellRange r;
+  for (int a = 0; a < 3; ++a) r[a] = {cell(lo[a], a), cell(hi[a], a)};
+  return r;
+}
+
+FaceId CurvatureLimitedSize::face_near(const Point& x) const {
+  if (cell_face_.empty()) return kNoFace;
+  const CellRange at = cells_of(x, x);
+  return FaceId{cell_face_[cell_index(at[0][0], at[1][0], at[2][0])]};
+}
+
+double CurvatureLimitedSize::smallest_near(const Point& x, double squared_distance) const {
+  const Box reach = surface_.reach_box(x, squared_distance);
+  const CellRange r = cells_of(reach.lo, reach.hi);
+  if (cell_count(r) > kMaxReachCells) return -std::numeric_limits<double>::infinity();
+  double smallest = std::numeric_limits<double>::infinity();
+  for (std::int64_t k = r[2][0]; k <= r[2][1]; ++k)
+    for (std::int64_t j = r[1][0]; j <= r[1][1]; ++j)
+      for (std::int64_t i = r[0][0]; i <= r[0][1]; ++i)
+        smallest = std::min(smallest, cell_smallest_[cell_index(i, j, k)]);
+  return smallest;
+}
 
 double CurvatureLimitedSize::size_at(const Point& x) const {
   const double base = base_.size_at(x);
   // min(base, curvature) is base whenever curvature >= smallest_ >= base: the same double.
   if (base <= smallest_) return base;
-  const Located at = surface_.nearest_face(surface_.to_local(x));
+  // Likewise when curvature >= smallest_near >= base, from a face of x's cell.
+  const Point local = surface_.to_local(x);
+  if (const FaceId g = face_near(local);
+      g != kNoFace &&
+      base <= smallest_near(local, surface_.squared_distance_to_face(local, g)))
+    return base;
+  const FaceId nearest = surface_.nearest_face(local).face;
   double curvature = std::numeric_limits<double>::infinity();
-  for (const Index v : surface_.triangle(at.face)) curvature = std::min(curvature, point_sizes_[v]);
+  for (const Index v : surface_.triangle(nearest)) curvature = std::min(curvature, point_sizes_[v]);
   return std::min(base, curvature);
 }
 

@@ -29,6 +29,8 @@
 // once, on the input.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -56,6 +58,10 @@ void grade_point_sizes(const DiscreteSurface& surface, double growth, std::vecto
 // Where base(x) is at or below the smallest delta_i of all, the nearest face cannot lower it
 // and is not searched for: the search (an AABB tree query, ~4000 instructions) is the surface
 // front's costliest lookup, and at sizes well below the input's curvature radii it never binds.
+// Elsewhere it is not searched for either where base(x) is at or below the smallest delta_i of
+// the faces that can be nearest to x, which a grid over the surface bounds (smallest_near) from
+// the distance to a face of x's cell: the curvature binds in some places of a surface (a
+// bunny's ears), not all over it. Every answer is the one the tree alone gives, bit for bit.
 class CurvatureLimitedSize final : public SizeField {
  public:
   CurvatureLimitedSize(const SizeField& base, const DiscreteSurface& surface,
@@ -63,10 +69,33 @@ class CurvatureLimitedSize final : public SizeField {
   double size_at(const Point& x) const override;
 
  private:
+  // A face whose centroid shares x's cell (local frame), or kNoFace.
+  FaceId face_near(const Point& x) const;
+  // The smallest delta_i of the corners of the faces that may be nearest to x (local frame)
+  // when some face is sqrt(squared_distance) from x, by the grid: a lower bound on what the
+  // nearest face gives (-infinity when the grid cannot bound it cheaply). The nearest face's
+  // ball meets DiscreteSurface::reach_box(x, squared_distance), so its ball's box meets the
+  // cells that box meets. O(1): at most kMaxReachCells cells.
+  double smallest_near(const Point& x, double squared_distance) const;
+  using CellRange = std::array<std::array<std::int64_t, 2>, 3>;  // [axis][lo, hi], inclusive
+  CellRange cells_of(const Point& lo, const Point& hi) const;
+  std::int64_t cell_index(std::int64_t i, std::int64_t j, std::int64_t k) const {
+    return (k * dims_[1] + j) * dims_[0] + i;
+  }
+
   const SizeField& base_;
   const DiscreteSurface& surface_;
   std::vector<double> point_sizes_;
   double smallest_;  // the smallest of point_sizes_ (+infinity when empty)
+  // A dense grid over the surface's bounding box (local frame), about one cell per two faces:
+  // per cell, the smallest delta_i of the corners of the faces whose ball_box meets it and of
+  // the faces too large to be kept by cell (+infinity for none), and a face near it (the first
+  // whose centroid is in it; kInvalidIndex for none), whose distance bounds a query's reach.
+  Point origin_{0.0, 0.0, 0.0};
+  double inverse_cell_ = 0.0;
+  std::array<std::int64_t, 3> dims_{0, 0, 0};
+  std::vector<double> cell_smallest_;
+  std::vector<Index> cell_face_;
 };
 
 }  // namespace afmesh

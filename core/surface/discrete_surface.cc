@@ -75,11 +75,8 @@ struct Move {
 };
 
 // cannot_be_nearer: faces whose doubled area is under this times their ball's squared radius (an
-// equilateral face has 2.6; this is a face ~130 times flatter) get no ball; the ball's margin,
-// in units of the coordinates' magnitude, is ~10^7 times the rounding of the distances of the
-// faces that have one.
+// equilateral face has 2.6; this is a face ~130 times flatter) get no ball.
 constexpr double kBallShape = 0.02;
-constexpr double kBallMargin = 1e-9;
 
 }  // namespace
 
@@ -174,11 +171,22 @@ double DiscreteSurface::squared_distance_to_face(const Point& x, FaceId f, Point
   return squared_distance_to(x, f, closest, unused);
 }
 
-bool DiscreteSurface::cannot_be_nearer(const Point& x, FaceId f, double squared_distance) const {
+Box DiscreteSurface::ball_box(FaceId f) const {
   const Ball& ball = balls_[index_of(f)];
-  const double magnitude = size_ + std::max({std::abs(x[0]), std::abs(x[1]), std::abs(x[2])});
-  const double gap = distance(x, ball.centroid) - ball.radius - kBallMargin * magnitude;
-  return gap > 0.0 && gap * gap * (1.0 - 1e-9) > squared_distance;
+  Box box{ball.centroid, ball.centroid};
+  for (int k = 0; k < 3; ++k) box.lo[k] -= ball.radius, box.hi[k] += ball.radius;
+  return box;
+}
+
+// cannot_be_nearer is false only where the gap from x to the ball is at most
+// sqrt(squared_distance / (1 - 1e-9)) (or not positive): the ball then comes within
+// sqrt(squared_distance) (1 + 1e-9) + the margin of x, which the box's half-width exceeds by
+// far more than the roundings of the gap's few operations.
+Box DiscreteSurface::reach_box(const Point& x, double squared_distance) const {
+  const double reach = std::sqrt(squared_distance) * (1.0 + 1e-6) + 2.0 * ball_margin(x);
+  Box box{x, x};
+  for (int k = 0; k < 3; ++k) box.lo[k] -= reach, box.hi[k] += reach;
+  return box;
 }
 
 Located DiscreteSurface::nearest_face(const Point& x) const {
@@ -192,8 +200,9 @@ Located DiscreteSurface::nearest_face(const Point& x) const {
   } else {
     // Every face in id order, the strictly nearer kept: the tree's answer, ties to the smaller
     // id. A face whose ball is farther than the best so far is passed over, as in the walk.
+    const double margin = ball_margin(x);
     for (Index f = 0; f < face_count(); ++f) {
-      if (cannot_be_nearer(x, FaceId{f}, found.squared_distance)) continue;
+      if (cannot_be_nearer(x, margin, FaceId{f}, found.squared_distance)) continue;
       Point closest;
       const double d = squared_distance_to(x, FaceId{f}, closest, at);
       if (d < found.squared_distance) found = {f, d};
@@ -218,10 +227,12 @@ bool DiscreteSurface::step_around_vertices(const Point& x, Located& at) const {
     if (across[k] == kInvalidIndex) look[k] = look[(k + 1) % 3] = true;
   }
   Move move{kNoFace, {}, at.squared_distance};
+  const double margin = ball_margin(x);
   for (int k = 0; k < 3; ++k) {
     if (!look[k]) continue;
     for (Index g : faces_at(t[k])) {
-      if (FaceId{g} == at.face || cannot_be_nearer(x, FaceId{g}, move.squared_distance)) continue;
+      if (FaceId{g} == at.face || cannot_be_nearer(x, margin, FaceId{g}, move.squared_distance))
+        continue;
       Point closest;
       const double d = squared_distance_to(x, FaceId{g}, closest, at);
       move.offer(FaceId{g}, closest, d);
@@ -232,12 +243,13 @@ bool DiscreteSurface::step_around_vertices(const Point& x, Located& at) const {
 
 bool DiscreteSurface::walk(const Point& x, Located& at) const {
   FaceId previous = kNoFace;  // strictly farther than at.face: not worth a look
+  const double margin = ball_margin(x);
   while (true) {
     // Across the edges: the strictly nearest neighbour.
     Move move{kNoFace, {}, at.squared_distance};
     for (Index g : neighbours_.across[index_of(at.face)]) {
       if (g == kInvalidIndex || FaceId{g} == previous ||
-          cannot_be_nearer(x, FaceId{g}, move.squared_distance))
+          cannot_be_nearer(x, margin, FaceId{g}, move.squared_distance))
         continue;  // no nearer than where the walk is, or the best offer: Move would not take it
       Point closest;
       const double d = squared_distance_to(x, FaceId{g}, closest, at);

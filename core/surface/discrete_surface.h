@@ -31,11 +31,14 @@
 // is exact there.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <span>
 #include <vector>
 
 #include "absl/status/statusor.h"
 #include "core/common/progress.h"
+#include "core/geometry/vec.h"
 #include "core/mesh/mesh.h"
 #include "core/quality/mesh_topology.h"
 #include "core/spatial/aabb_tree.h"
@@ -126,7 +129,28 @@ class DiscreteSurface {
   // round by a few units in their last place); never for a sliver face, whose closest point can
   // round off it. A fraction of the distance's cost: a walk uses it to pass over the faces
   // round it that cannot be nearer. False says nothing.
-  bool cannot_be_nearer(const Point& x, FaceId f, double squared_distance) const;
+  bool cannot_be_nearer(const Point& x, FaceId f, double squared_distance) const {
+    return cannot_be_nearer(x, ball_margin(x), f, squared_distance);
+  }
+  // The same test with the margin at x, ball_margin(x), worked out by the caller: a search that
+  // tests many faces against one x works it out once.
+  bool cannot_be_nearer(const Point& x, double margin, FaceId f, double squared_distance) const {
+    const Ball& ball = balls_[index_of(f)];
+    const double gap = distance(x, ball.centroid) - ball.radius - margin;
+    return gap > 0.0 && gap * gap * (1.0 - 1e-9) > squared_distance;
+  }
+  // The margin of cannot_be_nearer at x: kBallMargin of the coordinates' magnitude.
+  double ball_margin(const Point& x) const {
+    return kBallMargin * (size_ + std::max({std::abs(x[0]), std::abs(x[1]), std::abs(x[2])}));
+  }
+  // The bounding box of the ball of face f that cannot_be_nearer tests (its centroid, out to
+  // its farthest corner): all of space for a sliver.
+  Box ball_box(FaceId f) const;
+  // A box round x that the ball_box of every face for which cannot_be_nearer(x, f,
+  // squared_distance) is false meets: x ± (sqrt(squared_distance) + twice the test's margin),
+  // widened by a relative 1e-6 for rounding. So the faces that can be as near to x as a face
+  // known to be sqrt(squared_distance) away (the nearest among them) have their balls there.
+  Box reach_box(const Point& x, double squared_distance) const;
 
   // The face nearest to x (local frame) by the AABB tree, ties to the smaller face id.
   // O(log M) for x near the surface. Without the tree (params.tree false, build_tree not
@@ -148,6 +172,9 @@ class DiscreteSurface {
 
  private:
   DiscreteSurface() = default;
+  // The ball's margin, in units of the coordinates' magnitude: ~10^7 times the rounding of the
+  // distances of the faces that have a ball.
+  static constexpr double kBallMargin = 1e-9;
   // Squared distance from x to face f and its closest point; counts into at.evaluations.
   double squared_distance_to(const Point& x, FaceId f, Point& closest, Located& at) const;
   // Walk as far as a local minimum; false when it took more than max_walk_steps moves.

@@ -131,6 +131,7 @@ Located locate_in_patch(const DiscreteSurface& surface, const SurfaceFeatures& f
   at.squared_distance = surface.squared_distance_to_face(x, hint, at.closest);
   ++at.evaluations;
   Triangle previous{kInvalidIndex, kInvalidIndex, kInvalidIndex};  // the corners of the last face
+  const double margin = surface.ball_margin(x);
   for (int step = 0; step < max_steps; ++step) {
     Index best = kInvalidIndex;
     double best_distance = at.squared_distance;
@@ -143,7 +144,7 @@ Located locate_in_patch(const DiscreteSurface& surface, const SurfaceFeatures& f
         if (g == face || !in_patch(features, patch, g)) continue;
         const Triangle& t = surface.triangles()[g];
         if (uses_any(t, std::span<const Index>(corners.data(), k)) || uses_any(t, previous) ||
-            surface.cannot_be_nearer(x, FaceId{g}, best_distance))
+            surface.cannot_be_nearer(x, margin, FaceId{g}, best_distance))
           continue;
         Point closest;
         const double d = surface.squared_distance_to_face(x, FaceId{g}, closest);
@@ -305,6 +306,13 @@ class PatchFront {
     const Point normal = cross(sub(s_.points[v[1]], s_.points[v[0]]), sub(x, s_.points[v[0]]));
     return dot(normal, plane.n) >= kMinFaceCosine * norm(normal);
   }
+  // Whether face (v, x) has a shape the rules take: its smallest angle not under
+  // rules.min_angle_deg, and lying along the plane.
+  bool takes_shape(const Side& v, const Point& x, const SidePlane& plane,
+                   const SideRules& rules) const {
+    return !(triangle_min_angle_deg(s_.points[v[0]], s_.points[v[1]], x) < rules.min_angle_deg) &&
+           lies_along(v, x, plane);
+  }
   // The unit normal of triangle t of s_.points (zero for a degenerate one).
   Point triangle_normal(const Triangle& t) const {
     return unit_normal(s_.points[t[0]], s_.points[t[1]], s_.points[t[2]]);
@@ -316,13 +324,24 @@ class PatchFront {
   // A line point that the patch lies on both sides of (a crease that ends inside the patch)
   // faces the plane when a face of the patch around it does: its host may be on either side.
   bool faces_plane(Index q, const SidePlane& plane) const {
-    if (dot(s_.surface.normal(patch_hint(s_, patch_, q)), plane.n) > kFacingCosine) return true;
-    if (s_.anchor[q] == kInvalidIndex) return false;
-    for (const Index g : s_.surface.faces_at(s_.anchor[q]))
-      if (in_patch(s_.features, patch_, g) &&
-          dot(s_.surface.normal(FaceId{g}), plane.n) > kFacingCosine)
-        return true;
-    return false;
+    return planes_faced(q, std::span<const SidePlane>(&plane, 1)) != 0;
+  }
+  // faces_plane for each of `planes` (at most 32) at once, bit k for planes[k]: the normals of
+  // q's faces are looked up once for all of them.
+  std::uint32_t planes_faced(Index q, std::span<const SidePlane> planes) const {
+    const std::uint32_t all = (std::uint32_t{1} << planes.size()) - 1;
+    std::uint32_t faced = 0;
+    const Point& n = s_.surface.normal(patch_hint(s_, patch_, q));
+    for (std::size_t k = 0; k < planes.size(); ++k)
+      if (dot(n, planes[k].n) > kFacingCosine) faced |= std::uint32_t{1} << k;
+    if (faced == all || s_.anchor[q] == kInvalidIndex) return faced;
+    for (const Index g : s_.surface.faces_at(s_.anchor[q])) {
+      if (!in_patch(s_.features, patch_, g)) continue;
+      for (std::size_t k = 0; k < planes.size(); ++k)
+        if (dot(s_.surface.normal(FaceId{g}), planes[k].n) > kFacingCosine)
+          faced |= std::uint32_t{1} << k;
+    }
+    return faced;
   }
   // The plane of the surface at front point a: through a, normal to the mean of the unit
   // normals of the patch's triangles at a and of a's host face. Where the surface turns fast
@@ -340,8 +359,10 @@ class PatchFront {
   void gather(const Side& v, const SidePlane& plane, const Point& best, double d,
               const SideRules& rules);
   bool new_point_is_clear(const Point& x, double d, const SideRules& rules, Index f) const;
-  bool face_crosses_front(Index f, const Side& v, Index p, const SidePlane& plane,
-                          double clearance) const;
+  // S6 for new face (v, p) in each of `planes` (the side's plane and the face's own): whether
+  // it crosses the front in any of them. One pass over the front near the face serves both.
+  bool face_crosses_front(Index f, const Side& v, Index p,
+                          const std::array<SidePlane, 2>& planes, double clearance) const;
   void add_face(Index f, const Side& v, Index p);
   // Every triangle of the front goes through here: into s_ and into the incidence.
   void add_triangle(const Triangle& t);
@@ -442,15 +463,28 @@ bool PatchFront::fits_the_gap_at(Index apex, Index from, Index p, bool at_start)
     if (!at_start) angle = -angle;
     return angle <= 0 ? angle + 2 * std::numbers::pi : angle;
   };
-  Index bound = kInvalidIndex;
-  double smallest = std::numeric_limits<double>::infinity();
-  front_.for_each_item_at(apex, [&](Index g) {
+  const auto far_end = [&](Index g) {  // the side's other point, if it bounds on that side
     const Side& w = front_.item(g).v;
     const Index q = at_start ? (w[1] == apex ? w[0] : kInvalidIndex)
                              : (w[0] == apex ? w[1] : kInvalidIndex);
-    if (q == kInvalidIndex || q == from) return;
-    if (const double angle = turn(q); angle < smallest) smallest = angle, bound = q;
+    return q == from ? kInvalidIndex : q;
+  };
+  // Where one side can bound the gap (the front passes the apex once), it does, whatever its
+  // angle (finite: the points are): the angles only choose among several.
+  Index bound = kInvalidIndex;
+  int sides = 0;
+  front_.for_each_item_at(apex, [&](Index g) {
+    if (const Index q = far_end(g); q != kInvalidIndex && sides++ == 0) bound = q;
   });
+  if (sides > 1) {
+    double smallest = std::numeric_limits<double>::infinity();
+    bound = kInvalidIndex;
+    front_.for_each_item_at(apex, [&](Index g) {
+      const Index q = far_end(g);
+      if (q == kInvalidIndex) return;
+      if (const double angle = turn(q); angle < smallest) smallest = angle, bound = q;
+    });
+  }
   if (bound == kInvalidIndex || bound == p) return true;  // p closes the gap
   // Within the wedge from `from` to `bound` (counter-clockwise at the start, clockwise at the
   // end), strictly.
@@ -480,14 +514,11 @@ void PatchFront::gather(const Side& v, const SidePlane& plane, const Point& best
     if (r > reach || !faces_plane(q, plane)) return;
     const std::array<double, 2> q2 = plane.at(s_.points[q]);
     if (orient2d(a2.data(), b2.data(), q2.data()) <= 0) return;  // not left of the side
-    if (triangle_quality(s_.points[v[0]], s_.points[v[1]], s_.points[q]).min_angle_deg <
-            rules.min_angle_deg ||
-        !lies_along(v, s_.points[q], plane))
-      return;
     candidates_.push_back({q, r / d});
   });
   // S5: a front point nearer to the best point than the spacing a new point must keep is used
-  // in lieu of it; farther ones come after it.
+  // in lieu of it; farther ones come after it. Each face's shape (takes_shape) is judged when
+  // its candidate is tried: most candidates come after a new point that is taken.
   candidates_.push_back({kInvalidIndex, rules.point_spacing});
   std::stable_sort(candidates_.begin(), candidates_.end(),
                    [](const Candidate& x, const Candidate& y) {
@@ -532,11 +563,17 @@ bool segments_cross(const std::array<double, 2>& p, const std::array<double, 2>&
          (o4 == 0 && on(r, s, q));
 }
 
-bool PatchFront::face_crosses_front(Index f, const Side& v, Index p, const SidePlane& plane,
+bool PatchFront::face_crosses_front(Index f, const Side& v, Index p,
+                                    const std::array<SidePlane, 2>& planes,
                                     double clearance) const {
-  const std::array<double, 2> a = plane.at(s_.points[v[0]]), b = plane.at(s_.points[v[1]]),
-                              c = plane.at(s_.points[p]);
-  if (orient2d(a.data(), b.data(), c.data()) <= 0) return true;
+  using Point2 = std::array<double, 2>;
+  std::array<Point2, 2> a, b, c;  // the face's corners in each plane
+  for (std::size_t k = 0; k < planes.size(); ++k) {
+    a[k] = planes[k].at(s_.points[v[0]]);
+    b[k] = planes[k].at(s_.points[v[1]]);
+    c[k] = planes[k].at(s_.points[p]);
+    if (orient2d(a[k].data(), b[k].data(), c[k].data()) <= 0) return true;
+  }
   // A new side that is already on the front the same way round has the patch's meshed part
   // on the new face's side: the face would lie over a triangle built before. The crossing test
   // below cannot see it (a front side sharing an end with a new side is not tested).
@@ -561,24 +598,31 @@ bool PatchFront::face_crosses_front(Index f, const Side& v, Index p, const SideP
       covered = true;
       return;
     }
-    if (!faces_plane(q, plane)) return;
-    const std::array<double, 2> x = plane.at(xq);
-    covered = orient2d(a.data(), b.data(), x.data()) >= 0 &&
-              orient2d(b.data(), c.data(), x.data()) >= 0 &&
-              orient2d(c.data(), a.data(), x.data()) >= 0;
+    const std::uint32_t faced = planes_faced(q, planes);
+    for (std::size_t k = 0; k < planes.size() && !covered; ++k) {
+      if (!(faced >> k & 1)) continue;
+      const Point2 x = planes[k].at(xq);
+      covered = orient2d(a[k].data(), b[k].data(), x.data()) >= 0 &&
+                orient2d(b[k].data(), c[k].data(), x.data()) >= 0 &&
+                orient2d(c[k].data(), a[k].data(), x.data()) >= 0;
+    }
   });
   if (covered) return true;
   // S6: the new sides (a, p) and (p, b) against every front side near them.
   return front_.bins().find_item_near(box, [&](Index g) {
     if (g == f) return false;
     const Side& w = front_.item(g).v;
-    if (!faces_plane(w[0], plane) && !faces_plane(w[1], plane)) return false;
-    const std::array<double, 2> x = plane.at(s_.points[w[0]]), y = plane.at(s_.points[w[1]]);
+    std::uint32_t faced = planes_faced(w[0], planes);
+    if (faced != (1u << planes.size()) - 1) faced |= planes_faced(w[1], planes);
     const auto shares = [&](Index e0, Index e1) {
       return w[0] == e0 || w[0] == e1 || w[1] == e0 || w[1] == e1;
     };
-    if (!shares(v[0], p) && segments_cross(a, c, x, y)) return true;
-    if (!shares(p, v[1]) && segments_cross(c, b, x, y)) return true;
+    for (std::size_t k = 0; k < planes.size(); ++k) {
+      if (!(faced >> k & 1)) continue;
+      const Point2 x = planes[k].at(s_.points[w[0]]), y = planes[k].at(s_.points[w[1]]);
+      if (!shares(v[0], p) && segments_cross(a[k], c[k], x, y)) return true;
+      if (!shares(p, v[1]) && segments_cross(c[k], b[k], x, y)) return true;
+    }
     return false;
   });
 }
@@ -702,18 +746,17 @@ bool PatchFront::fill_hole(Index f) {
           empty = false;
       }
       if (!empty) continue;
-      double angle =
-          triangle_quality(s_.points[corners[a]], s_.points[corners[b]], s_.points[corners[c]])
-              .min_angle_deg;
+      double angle = triangle_min_angle_deg(s_.points[corners[a]], s_.points[corners[b]],
+                                            s_.points[corners[c]]);
       // With four corners left, the ear decides the last triangle too: both are judged, so
       // that three points along a straight line are not left as the last one (cgal_homer at
       // half its mean edge: a last triangle of 1e-13 degrees).
       if (ring.size() == 4) {
         const std::size_t d = ring[(i + 2) % ring.size()];
         if (orient2d(xy[c].data(), xy[d].data(), xy[a].data()) <= 0) continue;
-        angle = std::min(angle, triangle_quality(s_.points[corners[c]], s_.points[corners[d]],
-                                                 s_.points[corners[a]])
-                                    .min_angle_deg);
+        angle = std::min(angle, triangle_min_angle_deg(s_.points[corners[c]],
+                                                       s_.points[corners[d]],
+                                                       s_.points[corners[a]]));
       }
       if (angle > best_angle) best_angle = angle, best = i;
     }
@@ -749,7 +792,7 @@ Index PatchFront::closing_point(const Side& v, const SidePlane& plane) {
   if (turn < 0) {
     const bool built = !initial_.contains({v[0], v[1]}) && !initial_.contains({v[1], closing}) &&
                        !initial_.contains({closing, v[0]});
-    if (triangle_quality(s_.points[v[0]], s_.points[v[1]], s_.points[closing]).min_angle_deg >=
+    if (triangle_min_angle_deg(s_.points[v[0]], s_.points[v[1]], s_.points[closing]) >=
             kSliverHoleDeg ||
         has_edge(v[1], v[0], closing) || !(built || front_.size() == 3))
       return kInvalidIndex;
@@ -798,15 +841,14 @@ bool PatchFront::delete_side(Index f) {
         continue;
       p = s_.add_point(best, new_point_size(s_.field_size(best), s_.growth, s_.point_size, v),
                        on.face, kInvalidIndex);
-      if (triangle_quality(s_.points[v[0]], s_.points[v[1]], best).min_angle_deg <
-              rules.min_angle_deg ||
-          !lies_along(v, best, plane)) {
+      if (!takes_shape(v, best, plane, rules)) {
         s_.drop_last_point();
         continue;
       }
+    } else if (!takes_shape(v, s_.points[p], plane, rules)) {
+      continue;
     }
-    if (!face_crosses_front(f, v, p, plane, rules.side_clearance * d) &&   // S6
-        !face_crosses_front(f, v, p, face_plane(v, p), rules.side_clearance * d) &&
+    if (!face_crosses_front(f, v, p, {plane, face_plane(v, p)}, rules.side_clearance * d) &&  // S6
         !lies_over_a_triangle(v, p) && fits_the_gaps(v, p) &&
         !folds_over_a_neighbour({v[0], v[1], p})) {
       add_face(f, v, p);

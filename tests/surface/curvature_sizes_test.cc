@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <random>
+#include <vector>
 
 #include "core/geometry/vec.h"
 #include "core/shapes/shapes.h"
@@ -109,6 +111,52 @@ TEST(CurvatureSizes, ANoisySphereAtTheDefaultAngleGetsTheCountTheSizeAsks) {
   EXPECT_NEAR(static_cast<double>(bound->mesh.triangles.size()),
               static_cast<double>(unbound->mesh.triangles.size()),
               0.05 * static_cast<double>(unbound->mesh.triangles.size()));
+}
+
+// CurvatureLimitedSize skips the nearest-face search where its grid shows that no face that can be
+// nearest asks for less than the base size; every answer must still be min(base, the smallest
+// size at the corners of the nearest face), bit for bit. Random sizes at the points of a noisy
+// sphere (faces of even shape) and of a cylinder of slivers (whose balls the grid keeps apart),
+// on one side of each, asked at points on, near, inside and far outside the surface.
+TEST(CurvatureSizes, TheLimitedSizeIsTheNearestFacesEverywhere) {
+  for (const Mesh& mesh : {testing::jittered(sphere_surface({0, 0, 0}, 1.0, 0.1), 0.01, 3),
+                           testing::sliver_cylinder(0.5, 2.0, 48)}) {
+    const testing::SurfaceModel model = testing::surface_model(mesh);
+    const DiscreteSurface& surface = model.surface;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<double> point_sizes(static_cast<std::size_t>(surface.point_count()));
+    for (Index v = 0; v < surface.point_count(); ++v)  // on one side only: the grid skips
+      point_sizes[v] = surface.local_points()[v][0] > 0.0 && unit(rng) < 0.5
+                           ? 0.2 + 2.0 * unit(rng)
+                           : std::numeric_limits<double>::infinity();
+    const UniformSize base(1.0);
+    const CurvatureLimitedSize limited(base, surface, point_sizes);
+    int skipped_would_bind = 0, asked = 0;
+    for (int i = 0; i < 4000; ++i) {
+      Point x;
+      if (i % 2 == 0) {  // on a face, moved off it by up to a tenth of the model
+        const Triangle& t = surface.triangles()[rng() % surface.triangles().size()];
+        double u = unit(rng), v = unit(rng);
+        if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
+        const std::vector<Point>& p = surface.local_points();
+        x = add(p[t[0]], add(scale(sub(p[t[1]], p[t[0]]), u), scale(sub(p[t[2]], p[t[0]]), v)));
+        x = add(x, scale(testing::random_direction(rng), 0.1 * surface.size() * unit(rng) *
+                                                              unit(rng) * unit(rng)));
+      } else {  // anywhere in the box, and beyond it
+        for (double& c : x) c = (unit(rng) - 0.5) * 1.5 * surface.size();
+      }
+      const Point global = surface.to_global(x);
+      double corners = std::numeric_limits<double>::infinity();
+      for (const Index v : surface.triangle(surface.nearest_face(surface.to_local(global)).face))
+        corners = std::min(corners, point_sizes[v]);
+      const double expected = std::min(1.0, corners);
+      ASSERT_EQ(limited.size_at(global), expected) << "point " << i;
+      ++asked;
+      skipped_would_bind += corners < 1.0;
+    }
+    std::printf("%d queries, %d where the corners bind\n", asked, skipped_would_bind);
+  }
 }
 
 }  // namespace
