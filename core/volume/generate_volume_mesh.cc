@@ -468,7 +468,7 @@ VolumeBudget volume_budget(double expected_tets, std::int64_t input_triangles) {
   const double n = expected_tets + static_cast<double>(input_triangles);
   return {.searches = static_cast<std::int64_t>(40 * n + 20000),
           .tets_built = static_cast<std::int64_t>(6 * n + 20000),
-          .face_tests = static_cast<std::int64_t>(1000 * n + 5e6),
+          .face_tests = static_cast<std::int64_t>(500 * n + 5e6),
           .reopenings_without_progress = static_cast<std::int64_t>(16 + n / 25000)};
 }
 

@@ -138,8 +138,8 @@ std::int64_t count_before(std::string_view message, std::string_view what) {
 // Regression for issue 10, part 2 (never hang): the same part at 0.5 x its mean edge cannot be
 // closed among its slivers; the back-off re-opened 43 regions, the whole mesh twice, building
 // 56k tets (19x the 3k expected) in 101k steps and 18-45 s before the ring limit stopped it.
-// It stops within its VolumeBudget (now when its crossing tests run out, after about 50k steps
-// and 10k tets), naming where, in counts of steps and tets, not seconds.
+// It stops within its VolumeBudget (now when its crossing tests run out, in about 1 s), naming
+// where; checked in counts of steps and tets, not seconds.
 TEST(Regression, Issue10SliverFrontThatCannotCloseStopsWithinItsBudget) {
   const Mesh front = corpus_front("netgen_part1.stl");
   ASSERT_FALSE(front.triangles.empty());
