@@ -256,12 +256,12 @@ absl::Status back_off(MesherState& s, const Mesh& input, Index face, RepairCount
     return stuck_report(
         s, input, v, x,
         absl::StrFormat("after re-opening its surroundings %d times", kMaxCavityRings));
-  if (const std::int64_t reopenings = watch.reopened(); reopenings > max_reopenings)
+  if (watch.reopened() > max_reopenings)
     return stuck_report(
         s, input, v, x,
-        absl::StrFormat("after %d re-openings in a row (its budget: %d) left the meshed volume "
-                        "no larger than at its best",
-                        reopenings - 1, max_reopenings));
+        absl::StrFormat("after re-opening elements %d times in a row (its budget) without "
+                        "meshing more of the volume than at its best",
+                        max_reopenings));
   ++count;
   volume::open_cavity(s, face, rings);
   const FrontItem<3>& f = s.front.item(face);
