@@ -107,6 +107,7 @@ bool element_crosses_front(MesherState& s, Index face, Index p) {
   TetPlanes planes(s, tet);
   // Does the element meet front face g improperly?
   const auto crosses_face = [&](Index g) {
+    ++s.face_tests;
     if (g == face) return false;
     const Triangle& w = s.front.item(g).v;
     // A front face on p and two corners of `face` is the face one side of the element closes.
@@ -157,6 +158,7 @@ bool element_crosses_front(MesherState& s, Index face, Index p) {
   const bool positive = planes.positive();
   bool contains_point = false;
   s.front.bins().for_each_point_near(box, [&](Index q) {
+    ++s.face_tests;
     if (contains_point || is_corner(tet, q) || !point_visible(s, env, q)) return;
     // In the closed positive element: on no face plane's outer side (the barycentric signs of
     // point_in_tet are the face planes' sides, negated).

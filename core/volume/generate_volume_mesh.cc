@@ -91,6 +91,7 @@ absl::Status check_face_environments(const Mesh& front, const std::vector<std::i
 // failed `attempts` times (strictness_for); adds the first element that does not cross the front
 // (F8–F10). Returns false when none fits.
 bool delete_face(MesherState& s, Index face, int attempts) {
+  ++s.searches;
   const Triangle v = s.front.item(face).v;
   const volume::Strictness rules = volume::strictness_for(attempts);
   const double target = volume::target_size_for_face(s, v);           // F5/F9, eq. 15
@@ -186,12 +187,53 @@ std::string describe_input_near_face(const MesherState& s, const Mesh& input, co
   return describe_input_near(input, x, 3.0 * std::max(d, target), target);
 }
 
+// Not in the paper: whether the back-off makes progress. Re-opening elements (F11) gives up
+// meshed volume to mesh it again; a front that re-opens again and again without its meshed
+// volume ever passing its best so far is going round in circles, even when each re-opening is
+// in a new region (netgen_part1 at 0.5 x its mean edge: 43 re-openings, the whole mesh
+// re-opened twice, 19x its expected tets built before the ring limit stopped it).
+class ReopeningWatch {
+ public:
+  explicit ReopeningWatch(double domain_volume) : tolerance_(kRecordShare * domain_volume) {}
+  // Call once per step.
+  void step(const MesherState& s) {
+    if (s.meshed_volume <= record_ + tolerance_) return;
+    record_ = s.meshed_volume;
+    since_record_ = 0;
+  }
+  // Counts a re-opening; returns how many there have been since the last record.
+  std::int64_t reopened() { return ++since_record_; }
+
+ private:
+  // A record beats the last by more than this share of the enclosed volume: the running sum of
+  // the tets' volumes drifts by rounding as elements come and go.
+  static constexpr double kRecordShare = 1e-12;
+  double tolerance_;
+  double record_ = 0;
+  std::int64_t since_record_ = 0;
+};
+
+// FAILED_PRECONDITION for the back-off: the front got stuck at face v (centroid x) `how`, with
+// what the input looks like there (describe_input_near_face).
+absl::Status stuck_report(const MesherState& s, const Mesh& input, const Triangle& v,
+                          const Point& x, const std::string& how) {
+  return absl::FailedPreconditionError(absl::StrCat(
+      absl::StrFormat("the front got stuck at face (%d, %d, %d) near (%g, %g, %g) %s; %d tets "
+                      "built (%d of them since re-opened), %d front faces left",
+                      v[0], v[1], v[2], x[0], x[1], x[2], how, s.tets.size(),
+                      static_cast<std::int64_t>(s.tets.size()) - s.live_tets, s.front.size()),
+      describe_input_near_face(s, input, v, x)));
+}
+
 // The back-off for a face that failed in every queue class (F11): fill the small pocket it
 // bounds from one kernel point, or, when it has none, the part of it about `face` that one point
 // sees (at most kMaxPartFills times per region, counted in `part_fills`); failing that, re-open
-// the elements around it, one ring more each time the same region needs it again.
+// the elements around it, one ring more each time the same region needs it again. Stops the job
+// when the region has been re-opened kMaxCavityRings times, or when the front has re-opened
+// `max_reopenings` times in a row without progress (ReopeningWatch).
 absl::Status back_off(MesherState& s, const Mesh& input, Index face, RepairCounts& repairs,
-                      RepairCounts& part_fills) {
+                      RepairCounts& part_fills, ReopeningWatch& watch,
+                      std::int64_t max_reopenings) {
   const Triangle v = s.front.item(face).v;
   const std::uint32_t stamp = s.front.item(face).stamp;
   const Point centroid =
@@ -210,14 +252,16 @@ absl::Status back_off(MesherState& s, const Mesh& input, Index face, RepairCount
   int& count = repairs.at(centroid, volume::element_size_for_face(s, v));
   const int rings = 1 + count;
   const Point& x = centroid;
-  if (rings > kMaxCavityRings) {
-    return absl::FailedPreconditionError(absl::StrCat(
-        absl::StrFormat(
-            "the front got stuck at face (%d, %d, %d) near (%g, %g, %g) after re-opening its "
-            "surroundings %d times; %d tets built, %d front faces left",
-            v[0], v[1], v[2], x[0], x[1], x[2], kMaxCavityRings, s.live_tets, s.front.size()),
-        describe_input_near_face(s, input, v, x)));
-  }
+  if (rings > kMaxCavityRings)
+    return stuck_report(
+        s, input, v, x,
+        absl::StrFormat("after re-opening its surroundings %d times", kMaxCavityRings));
+  if (watch.reopened() > max_reopenings)
+    return stuck_report(
+        s, input, v, x,
+        absl::StrFormat("after re-opening elements %d times in a row (its budget) without "
+                        "meshing more of the volume than at its best",
+                        max_reopenings));
   ++count;
   volume::open_cavity(s, face, rings);
   const FrontItem<3>& f = s.front.item(face);
@@ -286,14 +330,7 @@ absl::Status end_game_report(const MesherState& s, const Mesh& input, Index face
           1.0 - s.meshed_volume / domain_volume, s.front.size(), smallest_front, s.live_tets));
 }
 
-// Not in the paper: a front that has built many times the elements the size field asks for
-// (estimate_volume_mesh) is making them far smaller than asked, wherever it is stuck; it stops
-// with a report instead of filling memory. The estimate is within 0.9-1.5x of the real count on
-// the bench shapes and the thin examples (estimate_elements_test.cc), so only a front that has
-// gone wrong reaches this. VolumeParams::max_tets can set a lower limit.
-constexpr double kMaxTetsOverEstimate = 10.0;
-constexpr double kMaxTetsSlack = 100000;
-
+// VolumeParams::max_tets: the server's limit on the mesh it will send.
 absl::Status overbuilt_report(const MesherState& s, const Mesh& input, Index face,
                               double expected_tets, std::int64_t max_tets) {
   return failure_at_face(
@@ -303,12 +340,26 @@ absl::Status overbuilt_report(const MesherState& s, const Mesh& input, Index fac
                       s.live_tets, max_tets, expected_tets, s.front.size()));
 }
 
-absl::Status stuck_report(const MesherState& s, const Mesh& input, Index face,
-                          std::int64_t steps) {
-  return failure_at_face(s, input, face,
-                         absl::StrFormat("the front did not close after %d steps: %d tets built, "
-                                         "%d front faces left",
-                                         steps, s.live_tets, s.front.size()));
+// The job's VolumeBudget used up: a front that builds and re-opens many times the elements
+// the size field asks for (estimate_volume_mesh), or keeps searching without closing, is making
+// them far smaller than asked or going round in circles, wherever it is stuck; it stops with a
+// report instead of running on.
+std::string budget_overrun(const MesherState& s, const VolumeBudget& budget,
+                           double expected_tets) {
+  const auto tets_built = static_cast<std::int64_t>(s.tets.size());
+  if (tets_built > budget.tets_built)
+    return absl::StrFormat(
+        "the front built %d tets (%d of them since re-opened), over its budget of %d (the size "
+        "field asks for about %.0f), with %d front faces left",
+        tets_built, tets_built - s.live_tets, budget.tets_built, expected_tets, s.front.size());
+  if (s.searches > budget.searches || s.face_tests > budget.face_tests)
+    return absl::StrFormat(
+        "the front did not close within its budget of %d face deletions and %d crossing tests "
+        "(it tried %d and made %d): %d tets built (%d of them since re-opened; the size field "
+        "asks for about %.0f), %d front faces left",
+        budget.searches, budget.face_tests, s.searches, s.face_tests, tets_built,
+        tets_built - s.live_tets, expected_tets, s.front.size());
+  return {};
 }
 
 
@@ -358,21 +409,24 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
                 padded_bounds(front.points), h);
   const double expected_tets =
       std::max(1.0, estimate_volume_mesh(front, size_field, max_size, growth).tets);
-  const std::int64_t max_tets = static_cast<std::int64_t>(std::min(
-      static_cast<double>(params.max_tets), kMaxTetsOverEstimate * expected_tets + kMaxTetsSlack));
-  s.tets.reserve(static_cast<std::size_t>(std::min(expected_tets * 1.3, 1.0 * max_tets)));
+  const VolumeBudget budget =
+      volume_budget(expected_tets, static_cast<std::int64_t>(front.triangles.size()));
+  const std::int64_t max_tets = params.max_tets;
+  s.tets.reserve(static_cast<std::size_t>(
+      std::min({expected_tets * 1.3, 1.0 * max_tets, 1.0 * budget.tets_built})));
   s.points.reserve(front.points.size() + static_cast<std::size_t>(expected_tets / 4));
   if (absl::Status st = load_initial_front(s, front, params.face_environments); !st.ok())
     return st;
 
   RepairCounts repairs, part_fills;
   EndGameWatch end_game;
+  ReopeningWatch reopenings(domain_volume);
   std::int64_t steps = 0;
-  // A face is taken from the queue a little more than once per element it builds; a front that
-  // keeps failing and re-opening without building stops here with a report instead of running on.
-  const std::int64_t slack = 20 * static_cast<std::int64_t>(front.triangles.size()) + 100000;
   while (std::optional<Index> face = s.front.pop()) {                  // F6, F11
-    if (++steps > 6 * s.live_tets + slack) return stuck_report(s, front, *face, steps);
+    ++steps;
+    reopenings.step(s);
+    if (std::string overrun = budget_overrun(s, budget, expected_tets); !overrun.empty())
+      return failure_at_face(s, front, *face, overrun);
     if (end_game.stalled(s, domain_volume, steps))
       return end_game_report(s, front, *face, domain_volume, end_game.smallest_front());
     if (steps % kCancelCheckInterval == 0) {
@@ -392,7 +446,10 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
       s.front.defer(*face, volume::queue_size_for_face(s, f.v));
       continue;
     }
-    if (absl::Status st = back_off(s, front, *face, repairs, part_fills); !st.ok()) return st;
+    if (absl::Status st = back_off(s, front, *face, repairs, part_fills, reopenings,
+                                   budget.reopenings_without_progress);
+        !st.ok())
+      return st;
   }
   if (s.front.size() != 0)  // every live face is queued; an empty queue means an empty front
     return absl::InternalError(absl::StrFormat(
@@ -406,6 +463,14 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
 }
 
 }  // namespace
+
+VolumeBudget volume_budget(double expected_tets, std::int64_t input_triangles) {
+  const double n = expected_tets + static_cast<double>(input_triangles);
+  return {.searches = static_cast<std::int64_t>(40 * n + 20000),
+          .tets_built = static_cast<std::int64_t>(6 * n + 20000),
+          .face_tests = static_cast<std::int64_t>(500 * n + 5e6),
+          .reopenings_without_progress = static_cast<std::int64_t>(16 + n / 25000)};
+}
 
 // F2: the size in space: the specification's sources and background grid (eq. 1–14), or one
 // uniform size.

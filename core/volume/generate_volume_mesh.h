@@ -43,15 +43,37 @@ struct VolumeParams {
   // core/quality/optimise.h). The boundary is never changed.
   bool optimise = true;
   std::vector<std::int32_t> face_environments;  // LFACR per input triangle (paper §2); empty = none
-  // The front stops with FAILED_PRECONDITION once it has built more tets than this (> 0; the
-  // server's --max-elements), or than 10 times the estimate (estimate_elements.h) plus 100000:
-  // a front that far over the size asked for is making elements far smaller than asked.
+  // The front stops with FAILED_PRECONDITION once it holds more tets than this (> 0; the
+  // server's --max-elements), or once it has used up its VolumeBudget.
   std::int64_t max_tets = std::numeric_limits<std::int64_t>::max();
   // Diagnostics only, never set from the wire: false skips the input check's self-intersection
   // rule, so that a front whose faces cross can be given to the loop without environments, to
   // show how the advancing front fails on it (paper §2, Figure 1). The other rules still apply.
   bool check_self_intersections = true;
 };
+
+// Not in the paper: the most work one run of the front loop may do before it stops with
+// FAILED_PRECONDITION (saying where it was), so that a front that cannot close ends in time
+// proportional to its size n = the expected tets (estimate_volume_mesh) + the input triangles.
+// Each limit is at least twice (re-openings: about three times) the most a closing front used in
+// the tests and on the corpus and raw CAD fronts of issue 10; the most was netgen_part1 at its
+// mean edge (n = 1101: 20 n searches, 3 n tets built, 2200 n face tests, 2 re-openings in a row
+// without progress). Fronts of well-shaped triangles use about 1-2 n searches and 40-100 n face
+// tests.
+struct VolumeBudget {
+  // Face deletions tried (F7, one candidate search under one class's rules each): 40 n + 20000.
+  std::int64_t searches = 0;
+  // Tets built, re-opened ones included (F8): 6 n + 20000.
+  std::int64_t tets_built = 0;
+  // Front faces and points tested by the crossing check (F7.3), where most of the time goes
+  // (0.1-0.3 us each): 500 n + 5 10^6. The closing fronts used at most 230 n beyond the
+  // 5 10^6 (occt sh1, n = 13658); netgen_part1's 2200 n are 2.4 10^6.
+  std::int64_t face_tests = 0;
+  // Re-openings (F11 back-off) in a row while the meshed volume sets no new record:
+  // 16 + n / 25000.
+  std::int64_t reopenings_without_progress = 0;
+};
+VolumeBudget volume_budget(double expected_tets, std::int64_t input_triangles);
 
 struct VolumeResult {
   // points: the front's points first, in input order, then the new interior points;

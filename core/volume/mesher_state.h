@@ -59,6 +59,10 @@ struct MesherState {
   // the low 8 bits, valid when the high 24 bits equal side_epoch.
   std::vector<std::uint32_t> side_codes;
   std::uint32_t side_epoch = 0;
+  // Front faces and points element_crosses_front (F7.3) has tested: the job's work, most of its
+  // time, counted against its budget (VolumeBudget).
+  std::int64_t face_tests = 0;
+  std::int64_t searches = 0;  // face deletions tried (F7), also counted against the budget
 };
 
 }  // namespace afmesh::volume

@@ -1,9 +1,12 @@
 // The size asked for is the size built (issue 10, part 5): with a uniform size h the interior
 // edges average h within 10%, whether the front's edges match h, are finer or are coarser; and
 // real closed surfaces of other people mesh at the default growth 1.
+#include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "absl/container/flat_hash_set.h"
 #include "core/geometry/vec.h"
@@ -12,6 +15,7 @@
 #include "core/quality/validate.h"
 #include "core/shapes/shapes.h"
 #include "core/volume/generate_volume_mesh.h"
+#include "core/volume/estimate_elements.h"
 #include "core/volume/repair_front.h"
 #include "gtest/gtest.h"
 #include "tests/volume/mesh_and_check.h"
@@ -115,6 +119,50 @@ TEST(Regression, Issue10CorpusPart1MeshesAsGiven) {
   mesh_valid(front, mean_edge_length(front));
 }
 
+// Counts the front loop's steps: it reports its progress once every 256 steps.
+class StepCounter : public Progress {
+ public:
+  void report(std::string_view stage, double) override { front_reports += stage == "front"; }
+  std::int64_t front_reports = 0;
+};
+
+// The number before `what` in `message` (-1 when absent).
+std::int64_t count_before(std::string_view message, std::string_view what) {
+  const std::size_t at = message.find(what);
+  if (at == std::string_view::npos || at < 2) return -1;
+  std::size_t from = at - 1;
+  while (from > 0 && std::isdigit(static_cast<unsigned char>(message[from - 1]))) --from;
+  return std::stoll(std::string(message.substr(from, at - 1 - from)));
+}
+
+// Regression for issue 10, part 2 (never hang): the same part at 0.5 x its mean edge cannot be
+// closed among its slivers; the back-off re-opened 43 regions, the whole mesh twice, building
+// 56k tets (19x the 3k expected) in 101k steps and 18-45 s before the ring limit stopped it.
+// It stops within its VolumeBudget (now when its crossing tests run out, in about 1 s), naming
+// where; checked in counts of steps and tets, not seconds.
+TEST(Regression, Issue10SliverFrontThatCannotCloseStopsWithinItsBudget) {
+  const Mesh front = corpus_front("netgen_part1.stl");
+  ASSERT_FALSE(front.triangles.empty());
+  VolumeParams params;
+  params.size = 0.5 * mean_edge_length(front);
+  params.optimise = false;
+  absl::StatusOr<VolumeEstimate> estimate = estimate_volume_mesh(front, params);
+  ASSERT_TRUE(estimate.ok()) << estimate.status();
+  const VolumeBudget budget =
+      volume_budget(estimate->tets, static_cast<std::int64_t>(front.triangles.size()));
+  StepCounter steps;
+  absl::StatusOr<VolumeResult> result = generate_volume_mesh(front, params, steps);
+  ASSERT_FALSE(result.ok()) << "meshes now: make this a test that it is valid";
+  EXPECT_EQ(result.status().code(), absl::StatusCode::kFailedPrecondition);
+  const std::string message(result.status().message());
+  EXPECT_NE(message.find(" near ("), std::string::npos) << message;
+  EXPECT_NE(message.find("sliver triangles"), std::string::npos) << message;
+  const std::int64_t built = count_before(message, "tets built");
+  EXPECT_GT(built, 0) << message;
+  EXPECT_LE(built, budget.tets_built) << message;
+  EXPECT_LE(256 * steps.front_reports, budget.searches);
+}
+
 // A knot (libcgal-demo), closed and clean, at the same defaults.
 TEST(RealSurfaces, CorpusKnotMeshesAtGrowthOne) {
   const Mesh front = corpus_front("cgal_knot1.stl");
@@ -127,8 +175,9 @@ TEST(RealSurfaces, CorpusKnotMeshesAtGrowthOne) {
 // the message must say so instead of advising "a size near the input's edge lengths" (the size
 // already was). When sliver fronts mesh (issue 10, part 3), this becomes a test that it meshes;
 // meanwhile the place it stops moves on as the back-off gets further (at its fans of 0.008-degree
-// triangles first, now in its plate, among triangles down to 0.087 degrees), so the test asks for
-// the sliver diagnosis, not for one angle.
+// triangles first, then in its plate, among triangles down to 0.087 degrees, now where its
+// VolumeBudget runs out, among triangles down to 1.3 degrees), so the test asks for the sliver
+// diagnosis, not for one angle.
 TEST(Regression, Issue10StuckFrontOnSliversNamesThem) {
   const Mesh front = corpus_front("gmsh_lever.stl");
   ASSERT_FALSE(front.triangles.empty());
@@ -137,8 +186,6 @@ TEST(Regression, Issue10StuckFrontOnSliversNamesThem) {
   absl::StatusOr<VolumeResult> result = generate_volume_mesh(front, params, no_progress());
   ASSERT_FALSE(result.ok());
   EXPECT_EQ(result.status().code(), absl::StatusCode::kFailedPrecondition);
-  EXPECT_NE(result.status().message().find("angles down to 0.0"), std::string::npos)
-      << result.status();
   EXPECT_NE(result.status().message().find("sliver triangles"), std::string::npos)
       << result.status();
   EXPECT_EQ(result.status().message().find("give a size near"), std::string::npos);
