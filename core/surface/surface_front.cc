@@ -12,6 +12,7 @@
 #include "absl/container/flat_hash_map.h"
 #include "absl/strings/str_format.h"
 #include "core/front/advancing_front.h"
+#include "core/front/front_bins.h"
 #include "core/front/front_sizes.h"
 #include "core/front/repair_counts.h"
 #include "core/geometry/closest_points.h"
@@ -1087,33 +1088,19 @@ std::vector<std::pair<std::size_t, std::size_t>> crossing_sides(const SurfaceMes
   for (const Side& v : sides) total += norm(sub(s.points[v[1]], s.points[v[0]]));
   const double cell = total / static_cast<double>(sides.size());
   if (!(cell > 0.0)) return crossing;
-  using Cell = std::array<std::int64_t, 3>;
-  const auto cell_of = [&](const Point& x) {
-    return Cell{static_cast<std::int64_t>(std::floor(x[0] / cell)),
-                static_cast<std::int64_t>(std::floor(x[1] / cell)),
-                static_cast<std::int64_t>(std::floor(x[2] / cell))};
+  const auto side_box = [&](const Side& v) {
+    Box box{s.points[v[0]], s.points[v[0]]};
+    enclose(box, s.points[v[1]]);
+    return box;
   };
-  // The cells a side passes through, sampled every half cell along it.
-  std::vector<Cell> along;
-  const auto cells_along = [&](const Side& v) {
-    along.clear();
-    const Point& a = s.points[v[0]];
-    const Point& b = s.points[v[1]];
-    const int samples = 1 + static_cast<int>(std::ceil(2.0 * norm(sub(b, a)) / cell));
-    for (int k = 0; k <= samples; ++k) {
-      const Cell c = cell_of(lerp(a, b, static_cast<double>(k) / samples));
-      if (along.empty() || along.back() != c) along.push_back(c);
-    }
-  };
-  absl::flat_hash_map<Cell, std::vector<std::size_t>> grid;
-  for (std::size_t i = 0; i < sides.size(); ++i) {
-    cells_along(sides[i]);
-    for (const Cell& c : along) {
-      std::vector<std::size_t>& in = grid[c];
-      if (in.empty() || in.back() != i) in.push_back(i);
-    }
-  }
-  std::vector<std::size_t> seen(sides.size(), sides.size());  // the last i that met side j
+  Box domain = empty_box();
+  for (const Side& v : sides) enclose(domain, side_box(v));
+  // Cells of the sides' mean length, at most a few per side: O(n) memory and, for sides of
+  // similar lengths, O(1) sides per query.
+  FrontBins bins(domain, cell, 16 * static_cast<std::int64_t>(sides.size()) + 4096);
+  for (std::size_t i = 0; i < sides.size(); ++i)
+    bins.insert_item(static_cast<Index>(i), side_box(sides[i]));
+  std::vector<Index> near;
   for (std::size_t i = 0; i < sides.size(); ++i) {
     const Side& v = sides[i];
     const Point& a = s.points[v[0]];
@@ -1130,25 +1117,23 @@ std::vector<std::pair<std::size_t, std::size_t>> crossing_sides(const SurfaceMes
       return std::array<double, 2>{dot(r, u), dot(r, w)};
     };
     const std::array<double, 2> p = in_plane(a), q = in_plane(b);
-    cells_along(v);
-    for (const Cell& c : along) {
-      for (std::int64_t dx = -1; dx <= 1; ++dx)
-        for (std::int64_t dy = -1; dy <= 1; ++dy)
-          for (std::int64_t dz = -1; dz <= 1; ++dz) {
-            const auto it = grid.find(Cell{c[0] + dx, c[1] + dy, c[2] + dz});
-            if (it == grid.end()) continue;
-            for (const std::size_t j : it->second) {
-              if (j <= i || seen[j] == i) continue;
-              seen[j] = i;
-              const Side& x = sides[j];
-              if (x[0] == v[0] || x[0] == v[1] || x[1] == v[0] || x[1] == v[1]) continue;
-              const Point& c0 = s.points[x[0]];
-              const Point& c1 = s.points[x[1]];
-              if (std::abs(dot(sub(c0, a), n)) > length || std::abs(dot(sub(c1, a), n)) > length)
-                continue;
-              if (segments_cross(p, q, in_plane(c0), in_plane(c1))) crossing.push_back({i, j});
-            }
-          }
+    // A side whose points lie within `length` of v's plane and that crosses v in that plane
+    // passes within `length` of v: its box meets v's box grown by `length`.
+    Box reach = side_box(v);
+    for (int k = 0; k < 3; ++k) reach.lo[k] -= length, reach.hi[k] += length;
+    near.clear();
+    bins.items_near(reach, near);  // each side once
+    std::sort(near.begin(), near.end());
+    for (const Index found : near) {
+      const auto j = static_cast<std::size_t>(found);
+      if (j <= i) continue;
+      const Side& x = sides[j];
+      if (x[0] == v[0] || x[0] == v[1] || x[1] == v[0] || x[1] == v[1]) continue;
+      const Point& c0 = s.points[x[0]];
+      const Point& c1 = s.points[x[1]];
+      if (std::abs(dot(sub(c0, a), n)) > length || std::abs(dot(sub(c1, a), n)) > length)
+        continue;
+      if (segments_cross(p, q, in_plane(c0), in_plane(c1))) crossing.push_back({i, j});
     }
   }
   return crossing;

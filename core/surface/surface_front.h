@@ -113,8 +113,8 @@ FaceId patch_hint(const SurfaceMeshState& s, PatchId patch, Index p);
 // side i is long are another sheet and are not compared. Not in the paper: the chords of two
 // lines running closer than their sides' sagitta (a ledge narrower than the size, gmsh_lever)
 // pass beyond each other's points, and a front that starts folded cannot close. Sides are
-// found through a hash grid of cells of their mean length, each side entered along its length:
-// O(n) for sides of similar lengths.
+// found through FrontBins of cells of their mean length, by their bounding boxes: O(n) for
+// sides of similar lengths.
 std::vector<std::pair<std::size_t, std::size_t>> crossing_sides(const SurfaceMeshState& s,
                                                                 PatchId patch,
                                                                 std::span<const Side> sides);
