@@ -261,6 +261,11 @@ def plan(args):
     return jobs
 
 
+def refused_as_dirty(r):
+    """True for a run the server refused as a bad front (exit 3, the message names the problem)."""
+    return r["rc"] == 3 and r.get("message", "").startswith("invalid front")
+
+
 def reference(results):
     """log-log interpolation of the reference spheres' wall time against their tet count."""
     pts = sorted((r["tets"], r["wall"]) for r in results if r["group"] == "calibration" and r["rc"] == 0)
@@ -295,7 +300,12 @@ def summarise(results, t_of):
             continue
         valid = sum(r["valid"] for r in rs)
         to = sum(bool(r["timeout"]) for r in rs)
-        lines.append(f"\n== {group}: {len(rs)} runs, {valid} valid, {len(rs) - valid} not valid, {to} timeouts")
+        # A dirty input (open, non-manifold, self-intersecting) must be refused, naming the
+        # problem (issue 10, part 1): exit 3 with "invalid front: ..." is that answer.
+        refused = [r for r in rs if refused_as_dirty(r)]
+        lines.append(f"\n== {group}: {len(rs)} runs, {valid} valid, {len(rs) - valid} not valid, {to} timeouts"
+                     + (f"; of the not valid, {len(refused)} refused as dirty input (exit 3, 'invalid front', "
+                        f"at most {max(r['wall'] for r in refused):.1f} s)" if refused else ""))
         causes = {}
         for r in rs:
             if not r["valid"]:
