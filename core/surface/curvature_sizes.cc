@@ -258,10 +258,12 @@ std::int64_t cell_count(const std::array<std::array<std::int64_t, 2>, 3>& r) {
 }  // namespace
 
 CurvatureLimitedSize::CurvatureLimitedSize(const SizeField& base, const DiscreteSurface& surface,
-                                           std::vector<double> point_sizes)
+                                           std::vector<double> point_sizes,
+                                           std::vector<bool> held)
     : base_(base),
       surface_(surface),
       point_sizes_(std::move(point_sizes)),
+      held_(std::move(held)),
       smallest_(std::accumulate(point_sizes_.begin(), point_sizes_.end(),
                                 std::numeric_limits<double>::infinity(),
                                 [](double a, double b) { return std::min(a, b); })) {
@@ -342,6 +344,30 @@ double CurvatureLimitedSize::smallest_near(const Point& x, double squared_distan
   return smallest;
 }
 
+double CurvatureLimitedSize::interpolated(FaceId face, const Point& y) const {
+  const Triangle& t = surface_.triangle(face);
+  const std::vector<Point>& p = surface_.local_points();
+  const double d[3] = {point_sizes_[t[0]], point_sizes_[t[1]], point_sizes_[t[2]]};
+  const double smallest = std::min({d[0], d[1], d[2]});
+  // Grading reaches every point of a component that has a size, so the corners are all finite
+  // or all not.
+  if (!std::isfinite(std::max({d[0], d[1], d[2]}))) return smallest;
+  if (!held_.empty() && (held_[t[0]] || held_[t[1]] || held_[t[2]])) return smallest;
+  const Point n = cross(sub(p[t[1]], p[t[0]]), sub(p[t[2]], p[t[0]]));
+  const double n2 = squared_norm(n);
+  if (!(n2 > 0.0)) return smallest;
+  double weighted = 0.0, total = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    // The area of the sub-triangle opposite corner k, over the face's (y is on the face).
+    const double lambda = std::max(
+        0.0, dot(cross(sub(p[t[(k + 2) % 3]], p[t[(k + 1) % 3]]), sub(y, p[t[(k + 1) % 3]])), n) /
+                 n2);
+    weighted += lambda * d[k];
+    total += lambda;
+  }
+  return total > 0.0 ? std::max(smallest, weighted / total) : smallest;
+}
+
 double CurvatureLimitedSize::size_at(const Point& x) const {
   const double base = base_.size_at(x);
   // min(base, curvature) is base whenever curvature >= smallest_ >= base: the same double.
@@ -352,10 +378,8 @@ double CurvatureLimitedSize::size_at(const Point& x) const {
       g != kNoFace &&
       base <= smallest_near(local, surface_.squared_distance_to_face(local, g)))
     return base;
-  const FaceId nearest = surface_.nearest_face(local).face;
-  double curvature = std::numeric_limits<double>::infinity();
-  for (const Index v : surface_.triangle(nearest)) curvature = std::min(curvature, point_sizes_[v]);
-  return std::min(base, curvature);
+  const Located nearest = surface_.nearest_face(local);
+  return std::min(base, interpolated(nearest.face, nearest.closest));
 }
 
 }  // namespace afmesh

@@ -53,8 +53,16 @@ std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
 // growth >= 1.
 void grade_point_sizes(const DiscreteSurface& surface, double growth, std::vector<double>& size);
 
-// min(base(x), the size attached to the input's points at x): the smallest delta_i of the
-// corners of the input face nearest to x (x in global coordinates, as every SizeField).
+// min(base(x), the size attached to the input's points at x): the linear interpolation of the
+// delta_i at the corners of the input face nearest to x, at the closest point of that face to x
+// (x in global coordinates, as every SizeField). The input surface serves as a background grid
+// for its attached sizes, interpolated as the tetrahedral grid is (background_grid.h; paper
+// §4.4 grades through such a grid); the graded delta_i grow at c_i - 1 along the edges, and so
+// inside the faces too. The smallest corner alone put a long face's finest corner along all of
+// it: of_bullet's cylinder is 41 strips 0.013 long whose back ends touch faces 6.6e-5 wide, and
+// the whole body came out at 8.7e-5 where 4e-4 was asked. A face with no area, or with a corner
+// whose size holds over its faces (`held`: the gaps between lines, gap_sizes.h, where a face at
+// a line point spans the narrow strip), gives its smallest corner.
 // Where base(x) is at or below the smallest delta_i of all, the nearest face cannot lower it
 // and is not searched for: the search (an AABB tree query, ~4000 instructions) is the surface
 // front's costliest lookup, and at sizes well below the input's curvature radii it never binds.
@@ -64,11 +72,14 @@ void grade_point_sizes(const DiscreteSurface& surface, double growth, std::vecto
 // bunny's ears), not all over it. Every answer is the one the tree alone gives, bit for bit.
 class CurvatureLimitedSize final : public SizeField {
  public:
+  // held: empty, or a flag per point (see above).
   CurvatureLimitedSize(const SizeField& base, const DiscreteSurface& surface,
-                       std::vector<double> point_sizes);
+                       std::vector<double> point_sizes, std::vector<bool> held = {});
   double size_at(const Point& x) const override;
 
  private:
+  // The corners' delta_i of `face` interpolated linearly at y, a point of the face (local frame).
+  double interpolated(FaceId face, const Point& y) const;
   // A face whose centroid shares x's cell (local frame), or kNoFace.
   FaceId face_near(const Point& x) const;
   // The smallest delta_i of the corners of the faces that may be nearest to x (local frame)
@@ -86,6 +97,7 @@ class CurvatureLimitedSize final : public SizeField {
   const SizeField& base_;
   const DiscreteSurface& surface_;
   std::vector<double> point_sizes_;
+  std::vector<bool> held_;
   double smallest_;  // the smallest of point_sizes_ (+infinity when empty)
   // A dense grid over the surface's bounding box (local frame), about one cell per two faces:
   // per cell, the smallest delta_i of the corners of the faces whose ball_box meets it and of

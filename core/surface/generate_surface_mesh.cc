@@ -506,13 +506,16 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
                                 std::numeric_limits<double>::infinity());
   const std::vector<double> gaps = line_gap_sizes(*surface, *features, **field);
   bool attached = false;
+  std::vector<bool> at_gap(point_sizes.size(), false);
   for (std::size_t v = 0; v < point_sizes.size(); ++v) {
     point_sizes[v] = std::min(point_sizes[v], gaps[v]);
+    at_gap[v] = std::isfinite(gaps[v]);
     attached = attached || std::isfinite(point_sizes[v]);
   }
   if (attached) {
     grade_point_sizes(*surface, growth, point_sizes);
-    limited = std::make_unique<CurvatureLimitedSize>(**field, *surface, std::move(point_sizes));
+    limited = std::make_unique<CurvatureLimitedSize>(**field, *surface, std::move(point_sizes),
+                                                     std::move(at_gap));
     sizes = limited.get();
   }
   clock.lap("curvature");
