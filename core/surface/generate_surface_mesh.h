@@ -57,7 +57,7 @@ struct SurfaceParams {
   // field and the sizes attached to the surface (its curvature and the gaps between its lines)
   // ask for; a status other than OK ends the job with it. The server re-admits the job by this
   // count against its memory budget, since its own estimate sees the size field only (of_bullet:
-  // 40k estimated, 427k made). Not in the paper.
+  // 40k estimated, 148k made). Not in the paper.
   std::function<absl::Status(double expected_triangles)> admit_expected;
 };
 

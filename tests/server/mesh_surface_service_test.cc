@@ -520,7 +520,7 @@ TEST_F(MeshSurfaceServiceTest, AJobNeedingMoreThanTheWholeMemoryBudgetIsRefused)
 }
 
 // The estimate before meshing sees the size field only; the sizes attached to the surface
-// (curvature, gaps) can ask for ten times more (of_bullet: 40k estimated, 427k made). The core
+// (curvature, gaps) can ask for several times more (of_bullet: 40k estimated, 148k made). The core
 // hands its own count to params.admit_expected, and the server admits the job again by it.
 SurfaceJob job_whose_attached_sizes_ask_for(double triangles) {
   return [triangles](const Mesh&, const SurfaceParams& params,
