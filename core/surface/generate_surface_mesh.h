@@ -51,6 +51,11 @@ struct SurfaceParams {
   // faster, so that small holes and fillets are not meshed over. 30° gives about 12 elements
   // round a circle.
   double curvature_angle_deg = 30.0;
+  // Where the input curves with radius r (eq. 20), the size is also at most sqrt(8 r epsilon),
+  // the length of a chord whose midpoint lies epsilon from its arc; epsilon is this fraction of
+  // the model size (the input's bounding-box diagonal; in [0, 1), or 0: no such bound). Not in
+  // the paper, whose §4.4 leaves "other measures of surface accuracy" open (curvature_sizes.h).
+  double curvature_deviation = 0.0;
   // Stop with RESOURCE_EXHAUSTED past this many output triangles (the server's --max-elements).
   std::int64_t max_triangles = std::numeric_limits<std::int64_t>::max();
   // When set, called once before the front runs with the number of triangles that the size
