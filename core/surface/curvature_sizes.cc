@@ -63,9 +63,14 @@ double turn_size(const Point& n_1, const Point& n_2, bool reversed, double l,
 // a CAD tessellation's slivers the centroids lie far apart along the edge and a third of the
 // faces' width across it, and only the width bends: part1's 10° facets of a hole of radius 0.5,
 // 2 long and 0.087 wide, are 0.67 apart and 0.058 across, and eq. 21 over 0.67 let elements
-// of twelve times eq. 21's length span the hole.
-double across_edge(const Point& c_1, const Point& c_2, const Point& edge) {
+// of twelve times eq. 21's length span the hole. Only with the chord bound (bound.deviation >
+// 0); without it the whole distance, as eq. 20 takes it, so that the default output is what it
+// was: the across reading alone moved the front on cgal_bones (dirty: 366 crossing pairs) to a
+// non-manifold vertex, by a margin that moves with any change of the sizes.
+double turn_distance(const Point& c_1, const Point& c_2, const Point& edge,
+                     const TurnBound& bound) {
   const Point d = sub(c_2, c_1);
+  if (!(bound.deviation > 0.0)) return norm(d);
   return norm(sub(d, scale(edge, dot(d, edge) / squared_norm(edge))));
 }
 
@@ -129,7 +134,8 @@ class HalfDisks {
       if (!(area[half] > 0.0) || !(norm(normal[half]) >= kMinCoherence * area[half]))
         return std::numeric_limits<double>::quiet_NaN();
     const double l =
-        across_edge(scale(moment[0], 1.0 / area[0]), scale(moment[1], 1.0 / area[1]), edge);
+        turn_distance(scale(moment[0], 1.0 / area[0]), scale(moment[1], 1.0 / area[1]), edge,
+                      bound_);
     return turn_size(normal[0], normal[1], false, l, bound_);
   }
 
@@ -222,10 +228,10 @@ std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
       const Point& c_f = surface.centroid(FaceId{f});
       const Point& c_g = surface.centroid(FaceId{g});
       const double l_g = distance(c_f, c_g);
-      // Eq. 21 between the two faces, over their distance across the edge; normals of faces
-      // that traverse the edge the same way disagree in orientation.
+      // Eq. 21 between the two faces, over their distance (across the edge with the chord
+      // bound); normals of faces that traverse the edge the same way disagree in orientation.
       double l_p = turn_size(surface.normal(FaceId{f}), surface.normal(FaceId{g}),
-                             neighbours.same_way[f][k], across_edge(c_f, c_g, sub(p[b], p[a])),
+                             neighbours.same_way[f][k], turn_distance(c_f, c_g, sub(p[b], p[a]), bound),
                              bound);
       // Where that asks for less than the base size (and than the largest scale tried), the
       // turn at the element's scale. The base size is asked only then: most edges turn slowly.

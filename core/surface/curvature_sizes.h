@@ -7,15 +7,16 @@
 // long, and the points of the edge take delta_i = min(delta_i, l_p) (eq. 22). Edges on discrete
 // lines (ridges, boundaries, tag changes) are features, not curvature, and are left out.
 //
-// Two readings are ours, not the paper's. The distance l_g is taken across the edge (the part of
-// the centroids' distance normal to the edge): only that part bends, and a sliver's centroid
-// lies far along its edge. And the angle bound is joined by a chord bound, one of the "other
+// Two readings are ours, not the paper's, both with `deviation` > 0 only (without it the sizes
+// are as before). The distance l_g is taken across the edge (the part of the centroids' distance
+// normal to the edge): only that part bends, and a sliver's centroid lies far along its edge.
+// And the angle bound is joined by a chord bound, one of the "other
 // measures of surface accuracy" §4.4 leaves open: eq. 20 gives the radius r = l_g / (2
 // tan(alpha_g / 2)), and an element sqrt(8 r epsilon) long has its midpoint epsilon from the arc
 // (the sagitta l^2 / 8r). Eq. 21 alone lets an element of length l lie l tan(alpha_p / 2) / 4
 // from the arc, 0.067 l at 30°: at the sizes of a CAD part (diag / 40) that is 0.17% of the
 // model. The chord bound is the finer one wherever eq. 21's length is over 4 epsilon /
-// tan(alpha_p / 2) (at 30° and epsilon = diag / 4000: diag / 268). The two-sided distance then
+// tan(alpha_p / 2) (at 30° and epsilon = 0.0003 diag: diag / 223). The two-sided distance then
 // measured is about twice epsilon: the front's edges run up to ~1.3 times the size, a
 // triangle's centroid lies deeper than an edge's midpoint, and a chord across the crease
 // between two facets of a coarse tessellation cuts it.
