@@ -23,7 +23,7 @@ namespace afmesh::bench {
 namespace {
 
 int run(const std::string& input, double size, double ridge_angle, double curvature_angle,
-        const std::string& out, bool json) {
+        double curvature_deviation, const std::string& out, bool json) {
   absl::StatusOr<Mesh> surface = read_mesh(input);
   if (!surface.ok()) {
     std::fprintf(stderr, "afmesh-bench-surface: %s\n", surface.status().ToString().c_str());
@@ -33,6 +33,7 @@ int run(const std::string& input, double size, double ridge_angle, double curvat
   params.size = size > 0 ? size : mean_edge_length(*surface);
   params.ridge_angle_deg = ridge_angle;
   params.curvature_angle_deg = curvature_angle;
+  params.curvature_deviation = curvature_deviation;
   PeakMemoryProbe memory;
   memory.start();
   const auto start = std::chrono::steady_clock::now();
@@ -121,14 +122,19 @@ int main(int argc, char** argv) {
   CLI::App app{"The core surface mesher on one surface (one thread)"};
   std::string input, out;
   double size = 0, ridge_angle = 30, curvature_angle = afmesh::SurfaceParams{}.curvature_angle_deg;
+  double curvature_deviation = afmesh::SurfaceParams{}.curvature_deviation;
   bool json = false;
   app.add_option("--input", input, "surface file (.stl, .obj, .off, .mesh, .msh)")->required();
   app.add_option("--size", size, "target edge length h (default: the input's mean edge)");
   app.add_option("--ridge-angle", ridge_angle, "ridge angle, degrees");
   app.add_option("--curvature-angle", curvature_angle,
                  "largest turn of an element where the input curves, degrees (0: off)");
+  app.add_option("--curvature-deviation", curvature_deviation,
+                 "largest distance of an element from the input where it curves, as a fraction "
+                 "of the bounding-box diagonal (0: off)");
   app.add_option("--out", out, "write the surface (format by extension)");
   app.add_flag("--json", json, "one JSON object");
   CLI11_PARSE(app, argc, argv);
-  return afmesh::bench::run(input, size, ridge_angle, curvature_angle, out, json);
+  return afmesh::bench::run(input, size, ridge_angle, curvature_angle, curvature_deviation, out,
+                                 json);
 }

@@ -38,6 +38,8 @@ struct MeshCommandOptions {
   double corner_angle_deg = 0.0;  // --corner-angle; 0: the server's default
   std::optional<double> curvature_angle_deg;  // --curvature-angle; unset: the server's default
   double curvature_angle_flag = 0.0;          // its parsed value (note_given_flags)
+  std::optional<double> curvature_deviation;  // --curvature-deviation; unset: the server's default
+  double curvature_deviation_flag = 0.0;      // its parsed value (note_given_flags)
 };
 
 // Adds the shared flags to `command`, with the help texts of IN and -o.

@@ -63,6 +63,9 @@ v1::MeshSurfaceRequest header_request(const Mesh& front, const VolumeCallOptions
   if (options.curvature_angle_deg) {
     header.mutable_options()->set_curvature_angle_deg(*options.curvature_angle_deg);
   }
+  if (options.curvature_deviation) {
+    header.mutable_options()->set_curvature_deviation(*options.curvature_deviation);
+  }
   return request;
 }
 
@@ -77,6 +80,9 @@ v1::MeshVolumeRequest header_request(const Mesh& front, const VolumeCallOptions&
     header.mutable_options()->set_corner_angle_deg(options.corner_angle_deg);
     if (options.curvature_angle_deg) {
       header.mutable_options()->set_curvature_angle_deg(*options.curvature_angle_deg);
+    }
+    if (options.curvature_deviation) {
+      header.mutable_options()->set_curvature_deviation(*options.curvature_deviation);
     }
   }
   switch (options.environments) {

@@ -29,7 +29,8 @@ class SurfaceInput {
   // As VolumeInput::add (the same errors, named alike: "options.size.max_size ...",
   // "message 3 ..."), and INVALID_ARGUMENT for options.ridge_angle_deg outside (0, 180),
   // options.corner_angle_deg outside (0, 180] (0 means the default) or
-  // options.curvature_angle_deg outside [0, 180) (surface_options.h).
+  // options.curvature_angle_deg outside [0, 180) or options.curvature_deviation outside [0, 1)
+  // (surface_options.h).
   absl::Status add(const v1::MeshSurfaceRequest& request);
   // As VolumeInput::finish.
   absl::Status finish() { return volume_.finish(); }

@@ -8,13 +8,15 @@ namespace afmesh::server {
 
 namespace {
 
-// SurfaceOptions and VolumeOptions carry the same three angle fields.
+// SurfaceOptions and VolumeOptions carry the same three angle fields and the deviation.
 template <typename Options>
 SurfaceAngles angles_in(const Options& options) {
   SurfaceAngles angles;
   angles.ridge_deg = options.ridge_angle_deg();
   angles.corner_deg = options.corner_angle_deg();
   if (options.has_curvature_angle_deg()) angles.curvature_deg = options.curvature_angle_deg();
+  if (options.has_curvature_deviation())
+    angles.curvature_deviation = options.curvature_deviation();
   return angles;
 }
 
@@ -25,7 +27,8 @@ SurfaceAngles angles_of(const v1::SurfaceOptions& options) { return angles_in(op
 SurfaceAngles angles_of(const v1::VolumeOptions& options) { return angles_in(options); }
 
 bool any_angle_given(const SurfaceAngles& angles) {
-  return angles.ridge_deg != 0.0 || angles.corner_deg != 0.0 || angles.curvature_deg.has_value();
+  return angles.ridge_deg != 0.0 || angles.corner_deg != 0.0 || angles.curvature_deg.has_value() ||
+         angles.curvature_deviation.has_value();
 }
 
 absl::Status surface_params_from(const VolumeParams& size, const SurfaceAngles& angles,
@@ -49,12 +52,21 @@ absl::Status surface_params_from(const VolumeParams& size, const SurfaceAngles& 
         "got %g",
         prefix, SurfaceParams{}.curvature_angle_deg, *angles.curvature_deg));
   }
+  if (angles.curvature_deviation &&
+      !(std::isfinite(*angles.curvature_deviation) && *angles.curvature_deviation >= 0.0 &&
+        *angles.curvature_deviation < 1.0)) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "%scurvature_deviation must be in [0, 1) of the bounding-box diagonal (0: no deviation "
+        "bound; unset: %g), got %g",
+        prefix, SurfaceParams{}.curvature_deviation, *angles.curvature_deviation));
+  }
   params.size = size.size;
   params.growth = size.growth;
   params.spec = size.spec;
   if (ridge != 0.0) params.ridge_angle_deg = ridge;
   if (corner != 0.0) params.corner_angle_deg = corner;
   if (angles.curvature_deg) params.curvature_angle_deg = *angles.curvature_deg;
+  if (angles.curvature_deviation) params.curvature_deviation = *angles.curvature_deviation;
   return absl::OkStatus();
 }
 

@@ -1,5 +1,5 @@
 // SurfaceParams from the wire's options, shared by MeshSurface (SurfaceOptions) and MeshVolume
-// with remesh_surface (VolumeOptions' ridge, corner and curvature angles).
+// with remesh_surface (VolumeOptions' ridge, corner and curvature angles and curvature deviation).
 #pragma once
 
 #include <optional>
@@ -13,21 +13,23 @@
 namespace afmesh::server {
 
 // The surface step's angles as the wire gives them: ridge and corner 0 for their default,
-// curvature unset for its default (0 is "no curvature bound").
+// curvature unset for its default (0 is "no curvature bound"); with them the curvature's
+// deviation bound (a fraction of the model size; unset for its default, 0 for none).
 struct SurfaceAngles {
   double ridge_deg = 0.0;
   double corner_deg = 0.0;
   std::optional<double> curvature_deg;
+  std::optional<double> curvature_deviation;
 };
 SurfaceAngles angles_of(const v1::SurfaceOptions& options);
 SurfaceAngles angles_of(const v1::VolumeOptions& options);
-// True when any angle is given (not its default).
+// True when any angle or the deviation is given (not its default).
 bool any_angle_given(const SurfaceAngles& angles);
 
 // `params` with the size of `size` (its size, growth and specification, already checked by
 // VolumeInput) and `angles` (defaults as SurfaceParams'). INVALID_ARGUMENT naming
 // "<prefix>ridge_angle_deg" outside (0, 180), "<prefix>corner_angle_deg" outside (0, 180] or
-// "<prefix>curvature_angle_deg" outside [0, 180).
+// "<prefix>curvature_angle_deg" outside [0, 180) or "<prefix>curvature_deviation" outside [0, 1).
 absl::Status surface_params_from(const VolumeParams& size, const SurfaceAngles& angles,
                                  std::string_view prefix, SurfaceParams& params);
 

@@ -169,9 +169,10 @@ absl::Status VolumeInput::surface_options(const v1::VolumeOptions& options) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "options.%s is set, but options.remesh_surface is not: the angles only apply when the "
         "surface is re-triangulated first",
-        angles_.ridge_deg != 0.0    ? "ridge_angle_deg"
-        : angles_.corner_deg != 0.0 ? "corner_angle_deg"
-                                    : "curvature_angle_deg"));
+        angles_.ridge_deg != 0.0            ? "ridge_angle_deg"
+        : angles_.corner_deg != 0.0         ? "corner_angle_deg"
+        : angles_.curvature_deg.has_value() ? "curvature_angle_deg"
+                                            : "curvature_deviation"));
   }
   SurfaceParams checked;
   return surface_params_from(params_, angles_, "options.", checked);

@@ -52,9 +52,9 @@ class VolumeInput {
 
   const VolumeParams& params() const { return params_; }
   // options.remesh_surface of the header: re-triangulate the front first, with
-  // surface_params() (the size of params() and the header's two angles, checked when it came:
-  // INVALID_ARGUMENT naming options.ridge_angle_deg / corner_angle_deg /
-  // curvature_angle_deg, or any given without options.remesh_surface).
+  // surface_params() (the size of params() and the header's angles and curvature deviation,
+  // checked when it came: INVALID_ARGUMENT naming options.ridge_angle_deg / corner_angle_deg /
+  // curvature_angle_deg / curvature_deviation, or any given without options.remesh_surface).
   bool remesh_surface() const { return remesh_surface_; }
   SurfaceParams surface_params() const;
   // options.environments of the header (crossing environments, paper §2).

@@ -37,15 +37,41 @@ constexpr double kMinCoherence = 0.5;
 // Bit k of a face's mask: edge k of the face lies on a discrete line.
 using LineMask = std::vector<std::uint8_t>;
 
-// Eq. 21: l_p = l tan(alpha_p / 2) / tan(alpha / 2) for normals n_1, n_2 (any length; the second
-// counted reversed when `reversed`) l apart. +infinity where they agree.
-double eq21_size(const Point& n_1, const Point& n_2, bool reversed, double l, double tan_p) {
+// What a turn allows: the angle bound and the chord bound (see the header).
+struct TurnBound {
+  double tan_p;      // tan(alpha_p / 2); +infinity: no angle bound
+  double deviation;  // epsilon; 0: no chord bound
+};
+
+// The size for normals n_1, n_2 (any length; the second counted reversed when `reversed`) that
+// turn by alpha over a distance l: eq. 21, l_p = l tan(alpha_p / 2) / tan(alpha / 2), and the chord
+// bound sqrt(8 r epsilon) with r = l / (2 tan(alpha / 2)) from eq. 20. +infinity where they agree.
+double turn_size(const Point& n_1, const Point& n_2, bool reversed, double l,
+                 const TurnBound& bound) {
   const double cosine = std::clamp(
       (reversed ? -1.0 : 1.0) * dot(n_1, n_2) / (norm(n_1) * norm(n_2)), -1.0, 1.0);
   const double alpha = std::acos(cosine);
   if (!(alpha > 1e-9)) return std::numeric_limits<double>::infinity();
   const double tan_alpha = std::tan(0.5 * std::min(alpha, 0.99 * std::numbers::pi));
-  return l * tan_p / tan_alpha;
+  const double l_p = l * bound.tan_p / tan_alpha;
+  if (!(bound.deviation > 0.0)) return l_p;
+  return std::min(l_p, std::sqrt(4.0 * l * bound.deviation / tan_alpha));
+}
+
+// The distance over which normals at c_1 and c_2 turn about an edge along `edge`: its part across
+// the edge (not in the paper, whose eq. 20 takes the whole distance). Between the long sides of
+// a CAD tessellation's slivers the centroids lie far apart along the edge and a third of the
+// faces' width across it, and only the width bends: part1's 10° facets of a hole of radius 0.5,
+// 2 long and 0.087 wide, are 0.67 apart and 0.058 across, and eq. 21 over 0.67 let elements
+// of twelve times eq. 21's length span the hole. Only with the chord bound (bound.deviation >
+// 0); without it the whole distance, as eq. 20 takes it, so that the default output is what it
+// was: the across reading alone moved the front on cgal_bones (dirty: 366 crossing pairs) to a
+// non-manifold vertex, by a margin that moves with any change of the sizes.
+double turn_distance(const Point& c_1, const Point& c_2, const Point& edge,
+                     const TurnBound& bound) {
+  const Point d = sub(c_2, c_1);
+  if (!(bound.deviation > 0.0)) return norm(d);
+  return norm(sub(d, scale(edge, dot(d, edge) / squared_norm(edge))));
 }
 
 // Eq. 20–21 across one edge at scale rho (not in the paper): the faces whose centroids lie within
@@ -58,8 +84,8 @@ double eq21_size(const Point& n_1, const Point& n_2, bool reversed, double l, do
 // eq. 21 between the faces themselves.
 class HalfDisks {
  public:
-  HalfDisks(const DiscreteSurface& surface, const LineMask& line_mask, double tan_p)
-      : surface_(surface), line_mask_(line_mask), tan_p_(tan_p) {}
+  HalfDisks(const DiscreteSurface& surface, const LineMask& line_mask, const TurnBound& bound)
+      : surface_(surface), line_mask_(line_mask), bound_(bound) {}
 
   // l_p across edge k of face f (whose other face is g) at scale rho; NaN when a half is empty,
   // not coherent, or the disk holds more than kMaxDiskFaces faces.
@@ -107,8 +133,10 @@ class HalfDisks {
     for (int half = 0; half < 2; ++half)
       if (!(area[half] > 0.0) || !(norm(normal[half]) >= kMinCoherence * area[half]))
         return std::numeric_limits<double>::quiet_NaN();
-    const double l = distance(scale(moment[0], 1.0 / area[0]), scale(moment[1], 1.0 / area[1]));
-    return eq21_size(normal[0], normal[1], false, l, tan_p_);
+    const double l =
+        turn_distance(scale(moment[0], 1.0 / area[0]), scale(moment[1], 1.0 / area[1]), edge,
+                      bound_);
+    return turn_size(normal[0], normal[1], false, l, bound_);
   }
 
  private:
@@ -144,7 +172,7 @@ class HalfDisks {
 
   const DiscreteSurface& surface_;
   const LineMask& line_mask_;
-  double tan_p_;
+  TurnBound bound_;
   std::vector<Face> faces_;  // gathered at the first edge judged
   std::vector<std::uint32_t> stamp_;
   std::uint32_t visit_ = 0;
@@ -172,7 +200,7 @@ double turn_at_element_scale(HalfDisks& disks, Index f, int k, Index g, double l
 
 std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
                                           const SurfaceFeatures& features, double alpha_p_deg,
-                                          const SizeField& base) {
+                                          double deviation, const SizeField& base) {
   const std::vector<Point>& p = surface.local_points();
   const std::vector<Triangle>& t = surface.triangles();
   std::vector<double> size(p.size(), std::numeric_limits<double>::infinity());
@@ -185,9 +213,12 @@ std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
     for (int k = 0; k < 3; ++k)
       if (line_edges.contains(edge_key(t[f][k], t[f][(k + 1) % 3])))
         line_mask[f] |= static_cast<std::uint8_t>(1u << k);
-  const double tan_p = std::tan(0.5 * alpha_p_deg * std::numbers::pi / 180.0);
+  const TurnBound bound{alpha_p_deg > 0.0
+                            ? std::tan(0.5 * alpha_p_deg * std::numbers::pi / 180.0)
+                            : std::numeric_limits<double>::infinity(),
+                        deviation};
   const EdgeNeighbours& neighbours = surface.neighbours();
-  HalfDisks disks(surface, line_mask, tan_p);
+  HalfDisks disks(surface, line_mask, bound);
   // Eq. 20–22 over each edge between two faces, once (from its lower face).
   for (Index f = 0; f < surface.face_count(); ++f) {
     for (int k = 0; k < 3; ++k) {
@@ -197,10 +228,11 @@ std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
       const Point& c_f = surface.centroid(FaceId{f});
       const Point& c_g = surface.centroid(FaceId{g});
       const double l_g = distance(c_f, c_g);
-      // Eq. 21 between the two faces; normals of faces that traverse the edge the same way
-      // disagree in orientation.
-      double l_p = eq21_size(surface.normal(FaceId{f}), surface.normal(FaceId{g}),
-                             neighbours.same_way[f][k], l_g, tan_p);
+      // Eq. 21 between the two faces, over their distance (across the edge with the chord
+      // bound); normals of faces that traverse the edge the same way disagree in orientation.
+      double l_p = turn_size(surface.normal(FaceId{f}), surface.normal(FaceId{g}),
+                             neighbours.same_way[f][k], turn_distance(c_f, c_g, sub(p[b], p[a]), bound),
+                             bound);
       // Where that asks for less than the base size (and than the largest scale tried), the
       // turn at the element's scale. The base size is asked only then: most edges turn slowly.
       if (l_p < kTopScaleInSpacings * l_g) {

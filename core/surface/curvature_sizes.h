@@ -7,6 +7,20 @@
 // long, and the points of the edge take delta_i = min(delta_i, l_p) (eq. 22). Edges on discrete
 // lines (ridges, boundaries, tag changes) are features, not curvature, and are left out.
 //
+// Two readings are ours, not the paper's, both with `deviation` > 0 only (without it the sizes
+// are as before). The distance l_g is taken across the edge (the part of the centroids' distance
+// normal to the edge): only that part bends, and a sliver's centroid lies far along its edge.
+// And the angle bound is joined by a chord bound, one of the "other
+// measures of surface accuracy" §4.4 leaves open: eq. 20 gives the radius r = l_g / (2
+// tan(alpha_g / 2)), and an element sqrt(8 r epsilon) long has its midpoint epsilon from the arc
+// (the sagitta l^2 / 8r). Eq. 21 alone lets an element of length l lie l tan(alpha_p / 2) / 4
+// from the arc, 0.067 l at 30°: at the sizes of a CAD part (diag / 40) that is 0.17% of the
+// model. The chord bound is the finer one wherever eq. 21's length is over 4 epsilon /
+// tan(alpha_p / 2) (at 30° and epsilon = 0.0003 diag: diag / 223). The two-sided distance then
+// measured is about twice epsilon: the front's edges run up to ~1.3 times the size, a
+// triangle's centroid lies deeper than an edge's midpoint, and a chord across the crease
+// between two facets of a coarse tessellation cuts it.
+//
 // The turn is read at the element's scale (not in the paper, which measures it between the faces
 // of a grid of about the size in force). On a scan whose faces are smaller than the size, noise
 // turns neighbouring faces by degrees over a fraction of an element, and eq. 21 between the faces
@@ -42,11 +56,12 @@
 namespace afmesh {
 
 // delta_i for every input point of `surface` (N values; +infinity where the surface is flat or
-// only meets lines), not graded. `alpha_p_deg` in (0, 180); `base` is the size in force without
-// the curvature (the largest scale at which a turn is read).
+// only meets lines), not graded. `alpha_p_deg` in (0, 180), or 0: no angle bound; `deviation`
+// (epsilon, in the units of the points) > 0, or 0: no chord bound; `base` is the size in force
+// without the curvature (the largest scale at which a turn is read).
 std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
                                           const SurfaceFeatures& features, double alpha_p_deg,
-                                          const SizeField& base);
+                                          double deviation, const SizeField& base);
 
 // Grades point sizes (N values, +infinity for none) in place: each becomes the smallest
 // delta_i + (c_i - 1) |x_j - x_i| over paths along the surface's edges (Dijkstra, O(N log N)).

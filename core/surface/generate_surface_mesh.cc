@@ -46,6 +46,10 @@ absl::Status check_params(const SurfaceParams& params) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "curvature angle must be in (0, 180) degrees, or 0 for none; got %g",
         params.curvature_angle_deg));
+  if (!(params.curvature_deviation >= 0.0 && params.curvature_deviation < 1.0))
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "curvature deviation must be in [0, 1) of the model size (0: no chord bound); got %g",
+        params.curvature_deviation));
   return absl::OkStatus();
 }
 
@@ -500,8 +504,9 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   const SizeField* sizes = field->get();
   std::unique_ptr<CurvatureLimitedSize> limited;
   std::vector<double> point_sizes =
-      params.curvature_angle_deg > 0
-          ? curvature_point_sizes(*surface, *features, params.curvature_angle_deg, **field)
+      params.curvature_angle_deg > 0 || params.curvature_deviation > 0
+          ? curvature_point_sizes(*surface, *features, params.curvature_angle_deg,
+                                  params.curvature_deviation * surface->size(), **field)
           : std::vector<double>(surface->local_points().size(),
                                 std::numeric_limits<double>::infinity());
   const std::vector<double> gaps = line_gap_sizes(*surface, *features, **field);

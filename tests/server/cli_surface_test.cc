@@ -82,6 +82,12 @@ TEST_F(CliSurfaceTest, CurvatureAngleOutsideZeroTo180IsAUsageError) {
   EXPECT_EQ(run("surface " + in() + out() + " --curvature-angle -1"), 2);
 }
 
+TEST_F(CliSurfaceTest, CurvatureDeviationOutsideZeroToOneIsAUsageError) {
+  EXPECT_EQ(run("surface " + in() + out() + " --curvature-deviation 1"), 2);
+  EXPECT_THAT(stderr_text(), HasSubstr("--curvature-deviation"));
+  EXPECT_EQ(run("surface " + in() + out() + " --curvature-deviation -0.001"), 2);
+}
+
 TEST_F(CliSurfaceTest, NonPositiveSizeAndGrowthBelowOneAreUsageErrors) {
   EXPECT_EQ(run("surface " + in() + out() + " --size 0"), 2);
   EXPECT_EQ(run("surface " + in() + out() + " --growth 0.5"), 2);
@@ -109,12 +115,14 @@ TEST_F(CliSurfaceTest, VolumeAnglesNeedRemeshSurface) {
   EXPECT_EQ(run("volume " + in() + out("v.msh") + " --corner-angle 40"), 2);
   EXPECT_EQ(run("volume " + in() + out("v.msh") + " --curvature-angle 0"), 2);
   EXPECT_THAT(stderr_text(), HasSubstr("--remesh-surface"));
+  EXPECT_EQ(run("volume " + in() + out("v.msh") + " --curvature-deviation 0.001"), 2);
+  EXPECT_THAT(stderr_text(), HasSubstr("--remesh-surface"));
 }
 
 TEST_F(CliSurfaceTest, HelpListsTheSurfaceCommandAndItsFlags) {
   EXPECT_EQ(run("surface --help"), 0);
   for (const char* flag : {"--size", "--growth", "--spec", "--ridge-angle", "--corner-angle",
-                           "--curvature-angle", "--server", "--json", "--quiet", "--timeout",
+                           "--curvature-angle", "--curvature-deviation", "--server", "--json", "--quiet", "--timeout",
                            "--retries", "--tls-ca", "--token-file"}) {
     EXPECT_THAT(stdout_text(), HasSubstr(flag));
   }
@@ -170,7 +178,9 @@ TEST_F(CliSurfaceTest, EndToEndCubeIsClosedManifoldOrientedWithCornersKeptAndOnT
 
 // --curvature-angle through the CLI, the wire and the core: on a sphere of radius 1 at size 0.6
 // the default bound (30°: edges of about 2 tan 15° = 0.54) asks for more triangles than the
-// size alone (--curvature-angle 0), and a tighter bound (15°) for more still.
+// size alone (--curvature-angle 0), and a tighter bound (15°) for more still, all with the chord
+// bound off (--curvature-deviation 0, its default). The chord bound at 0.0003 of the diagonal
+// 3.46 (edges of sqrt(8 × 0.00104) = 0.091) asks for more than either angle.
 TEST_F(CliSurfaceTest, CurvatureAngleSetsHowFineACurvedSurfaceIsMeshed) {
   ASSERT_TRUE(write_mesh(sphere_surface({0, 0, 0}, 1.0, 0.1), (dir_ / "ball.stl").string()).ok());
   const auto triangles = [&](const std::string& flags) -> std::size_t {
@@ -185,13 +195,16 @@ TEST_F(CliSurfaceTest, CurvatureAngleSetsHowFineACurvedSurfaceIsMeshed) {
     EXPECT_TRUE(validate_surface(*mesh).valid()) << flags;
     return mesh->triangles.size();
   };
-  const std::size_t off = triangles(" --curvature-angle 0");
-  const std::size_t by_default = triangles("");
-  const std::size_t tight = triangles(" --curvature-angle 15");
-  std::printf("sphere at 0.6: %zu triangles with the bound off, %zu at 30 deg, %zu at 15 deg\n",
-              off, by_default, tight);
+  const std::size_t off = triangles(" --curvature-angle 0 --curvature-deviation 0");
+  const std::size_t by_default = triangles(" --curvature-deviation 0");
+  const std::size_t tight = triangles(" --curvature-angle 15 --curvature-deviation 0");
+  const std::size_t chord = triangles(" --curvature-deviation 0.0003");
+  std::printf("sphere at 0.6: %zu triangles with the bounds off, %zu at 30 deg, %zu at 15 deg, "
+              "%zu with the chord bound at 0.0003\n",
+              off, by_default, tight, chord);
   EXPECT_LT(off, by_default);
   EXPECT_LT(by_default, tight);
+  EXPECT_LT(tight, chord);
 }
 
 }  // namespace

@@ -341,6 +341,35 @@ TEST_F(MeshSurfaceServiceTest, UnsetAnglesMeanTheCoreDefaults) {
   EXPECT_EQ(probe_->params.ridge_angle_deg, SurfaceParams{}.ridge_angle_deg);
   EXPECT_EQ(probe_->params.corner_angle_deg, SurfaceParams{}.corner_angle_deg);
   EXPECT_EQ(probe_->params.curvature_angle_deg, SurfaceParams{}.curvature_angle_deg);
+  EXPECT_EQ(probe_->params.curvature_deviation, SurfaceParams{}.curvature_deviation);
+}
+
+// curvature_deviation likewise: unset is the default (above), 0 turns the chord bound off, any
+// other value in (0, 1) is the bound; outside [0, 1) it is refused, naming the field.
+TEST_F(MeshSurfaceServiceTest, CurvatureDeviationReachesTheJob) {
+  start(fixed_job(probe_, tetrahedron_front()));
+  Request head = header(0.25);
+  head.mutable_header()->mutable_options()->set_curvature_deviation(0.002);
+  ASSERT_TRUE(call(requests_for(tetrahedron_front(), head)).status.ok());
+  EXPECT_EQ(probe_->params.curvature_deviation, 0.002);
+}
+
+TEST_F(MeshSurfaceServiceTest, CurvatureDeviationOfZeroReachesTheJob) {
+  start(fixed_job(probe_, tetrahedron_front()));
+  Request head = header(0.25);
+  head.mutable_header()->mutable_options()->set_curvature_deviation(0.0);
+  ASSERT_TRUE(call(requests_for(tetrahedron_front(), head)).status.ok());
+  EXPECT_EQ(probe_->params.curvature_deviation, 0.0);
+}
+
+TEST_F(MeshSurfaceServiceTest, RejectsCurvatureDeviationsOutsideZeroToOne) {
+  start(fixed_job(probe_, tetrahedron_front()));
+  for (const double deviation : {1.0, -1e-4, std::nan(""), HUGE_VAL}) {
+    Request head = header(0.25);
+    head.mutable_header()->mutable_options()->set_curvature_deviation(deviation);
+    expect_rejected(requests_for(tetrahedron_front(), head), grpc::StatusCode::INVALID_ARGUMENT,
+                    {"options.curvature_deviation must be in [0, 1)"});
+  }
 }
 
 // curvature_angle_deg is optional on the wire: unset is the default (above), 0 turns the
@@ -656,6 +685,27 @@ TEST_F(MeshSurfaceServiceTest, VolumeCarriesTheCurvatureAngleOnlyWithRemeshSurfa
   EXPECT_EQ(outcome.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_THAT(outcome.status.error_message(),
               HasSubstr("options.curvature_angle_deg is set, but options.remesh_surface is not"));
+  requests = remesh_requests(0.0, 0.0, false);
+  requests[0].mutable_header()->mutable_options()->set_curvature_deviation(0.001);
+  const Outcome deviation = call_volume(requests, responses);
+  EXPECT_EQ(deviation.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(deviation.status.error_message(),
+              HasSubstr("options.curvature_deviation is set, but options.remesh_surface is not"));
+}
+
+TEST_F(MeshSurfaceServiceTest, VolumeCarriesTheCurvatureDeviationWithRemeshSurface) {
+  start(fixed_job(probe_, tetrahedron_front()));
+  std::vector<v1::MeshVolumeResponse> responses;
+  std::vector<v1::MeshVolumeRequest> requests = remesh_requests(0.0, 0.0, true);
+  requests[0].mutable_header()->mutable_options()->set_curvature_deviation(0.001);
+  ASSERT_TRUE(call_volume(requests, responses).status.ok());
+  EXPECT_EQ(probe_->params.curvature_deviation, 0.001);
+  requests = remesh_requests(0.0, 0.0, true);
+  requests[0].mutable_header()->mutable_options()->set_curvature_deviation(1.5);
+  const Outcome outcome = call_volume(requests, responses);
+  EXPECT_EQ(outcome.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(outcome.status.error_message(),
+              HasSubstr("options.curvature_deviation must be in [0, 1)"));
 }
 
 TEST_F(MeshSurfaceServiceTest, VolumeRejectsABadRidgeAngleWithRemeshSurface) {

@@ -51,7 +51,7 @@ Range finite_range(const std::vector<double>& sizes) {
 TEST(CurvatureSizes, ASphereAsksEq21AndItsNoiseAsksNothing) {
   const Mesh smooth = sphere_surface({0, 0, 0}, 1.0, 0.05);
   const testing::SurfaceModel model = testing::surface_model(smooth);
-  const Range sphere = finite_range(curvature_point_sizes(model.surface, model.features, 30.0,
+  const Range sphere = finite_range(curvature_point_sizes(model.surface, model.features, 30.0, 0.0,
                                                           UniformSize(1.0)));
   std::printf("sphere: %d points, sizes %.4f to %.4f (eq. 21: %.4f)\n", sphere.finite,
               sphere.smallest, sphere.largest, eq21_on_radius(1.0));
@@ -62,7 +62,7 @@ TEST(CurvatureSizes, ASphereAsksEq21AndItsNoiseAsksNothing) {
   const Mesh noisy = testing::jittered(smooth, 0.0075, 7);
   const testing::SurfaceModel noisy_model = testing::surface_model(noisy);
   const Range noise = finite_range(curvature_point_sizes(noisy_model.surface, noisy_model.features,
-                                                         30.0, UniformSize(0.15)));
+                                                         30.0, 0.0, UniformSize(0.15)));
   std::printf("noisy sphere: %zu lines, sizes from %.4f\n", noisy_model.features.lines.size(),
               noise.smallest);
   EXPECT_GE(noise.smallest, 0.15);
@@ -77,7 +77,7 @@ TEST(CurvatureSizes, ARoundingNarrowerThanTheSizeKeepsItsSize) {
   const testing::SurfaceModel model =
       testing::surface_model(testing::closed_cylinder(0.05, 1.0, 64, 40));
   const std::vector<double> sizes =
-      curvature_point_sizes(model.surface, model.features, 30.0, UniformSize(0.5));
+      curvature_point_sizes(model.surface, model.features, 30.0, 0.0, UniformSize(0.5));
   const std::vector<Point>& p = model.surface.local_points();
   Range lateral;
   for (Index v = 0; v < model.surface.point_count(); ++v) {
@@ -92,6 +92,43 @@ TEST(CurvatureSizes, ARoundingNarrowerThanTheSizeKeepsItsSize) {
   EXPECT_GT(lateral.finite, 64 * 40);
   EXPECT_GT(lateral.smallest, 0.8 * eq21_on_radius(0.05));
   EXPECT_LT(lateral.largest, 1.2 * eq21_on_radius(0.05));
+}
+
+// A hole of radius 0.5 faceted as CAD tessellations are (netgen_part1's): 36 facets of 10°, each
+// a 0.087 × 2 rectangle halved into two slivers. The slivers' centroids are 0.67 apart but only
+// 0.058 across the edge they share, and only that bends: eq. 21 over it asks 0.177 (it reads the
+// faces' turn over two thirds of a facet, so a little below eq. 21 on the radius, 0.268). Over
+// the centroids' whole distance it asked 2.05, and at part1's size (0.209) elements spanned the
+// hole with nothing to stop them (0.24% of the diagonal from the input). The turn is read across
+// the edge with a chord bound only; this one (epsilon = 1, sizes of ~1.6) is too loose to bind.
+TEST(CurvatureSizes, SliversOfAFacetedHoleTurnAcrossTheirEdge) {
+  const testing::SurfaceModel model =
+      testing::surface_model(testing::closed_cylinder(0.5, 2.0, 36, 1));
+  const std::vector<double> sizes =
+      curvature_point_sizes(model.surface, model.features, 30.0, 1.0, UniformSize(0.209));
+  const Range r = finite_range(sizes);
+  std::printf("faceted hole: %d points, sizes %.4f to %.4f (eq. 21: %.4f)\n", r.finite,
+              r.smallest, r.largest, eq21_on_radius(0.5));
+  EXPECT_GE(r.finite, 72);
+  EXPECT_GT(r.smallest, 0.5 * eq21_on_radius(0.5));
+  EXPECT_LT(r.largest, eq21_on_radius(0.5));
+}
+
+// The chord bound alone (no angle bound) on the unit sphere of faces 0.05: every point takes the
+// length whose chord's midpoint lies epsilon = 0.001 from the circle, sqrt(8 r epsilon) = 0.089,
+// and with both bounds the smaller one (eq. 21's 0.536 is larger).
+TEST(CurvatureSizes, TheChordBoundAsksTheLengthOfItsSagitta) {
+  const testing::SurfaceModel model = testing::surface_model(sphere_surface({0, 0, 0}, 1.0, 0.05));
+  const double chord = std::sqrt(8.0 * 1.0 * 0.001);
+  for (const double angle : {0.0, 30.0}) {
+    const Range r = finite_range(curvature_point_sizes(model.surface, model.features, angle,
+                                                       0.001, UniformSize(1.0)));
+    std::printf("sphere, angle %g, epsilon 0.001: sizes %.4f to %.4f (sqrt(8 r e): %.4f)\n",
+                angle, r.smallest, r.largest, chord);
+    EXPECT_EQ(r.finite, model.surface.point_count());
+    EXPECT_GT(r.smallest, 0.85 * chord);
+    EXPECT_LT(r.largest, 1.15 * chord);
+  }
 }
 
 // End to end, as a user meshes a scan at the default angles: the noisy sphere above at 0.15 gives
