@@ -365,4 +365,29 @@ EdgeNeighbours triangle_edge_neighbours(const std::vector<Triangle>& triangles,
   return result;
 }
 
+Index label_components(const EdgeNeighbours& neighbours,
+                       absl::FunctionRef<bool(Index t, int k)> joins, std::vector<Index>& label) {
+  const auto m = static_cast<Index>(neighbours.across.size());
+  label.assign(static_cast<std::size_t>(m), kInvalidIndex);
+  Index count = 0;
+  std::vector<Index> stack;
+  for (Index seed = 0; seed < m; ++seed) {
+    if (label[seed] != kInvalidIndex) continue;
+    label[seed] = count;
+    stack.assign(1, seed);
+    while (!stack.empty()) {
+      const Index t = stack.back();
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k) {
+        const Index g = neighbours.across[t][k];
+        if (g == kInvalidIndex || label[g] != kInvalidIndex || !joins(t, k)) continue;
+        label[g] = count;
+        stack.push_back(g);
+      }
+    }
+    ++count;
+  }
+  return count;
+}
+
 }  // namespace afmesh

@@ -122,4 +122,11 @@ struct EdgeNeighbours {
 EdgeNeighbours triangle_edge_neighbours(const std::vector<Triangle>& triangles,
                                         CancelCheck* cancel = nullptr);
 
+// Labels the triangles by connected component, joined across the edges of `neighbours` for
+// which joins(t, k) is true (edge k of triangle t; never across kInvalidIndex): label[t] in
+// [0, count), numbered in the order of each component's lowest triangle. Returns the count.
+// O(M).
+Index label_components(const EdgeNeighbours& neighbours,
+                       absl::FunctionRef<bool(Index t, int k)> joins, std::vector<Index>& label);
+
 }  // namespace afmesh

@@ -192,26 +192,17 @@ DiscreteLine chain(const LineGraph& graph, const std::vector<std::uint8_t>& corn
 
 // Step 4: patches as connected components across edges that are not line edges.
 void find_patches(const DiscreteSurface& s, double cos_ridge, SurfaceFeatures& out) {
+  std::vector<Index> label;
+  const Index count = label_components(
+      s.neighbours(), [&](Index t, int k) { return two_face_edge_kinds(s, cos_ridge, t, k) == 0; },
+      label);
   out.face_patch.assign(s.face_count(), PatchId{kInvalidIndex});
-  std::vector<Index> stack;
-  for (Index seed = 0; seed < s.face_count(); ++seed) {
-    if (out.face_patch[seed] != PatchId{kInvalidIndex}) continue;
-    const PatchId id{static_cast<Index>(out.patches.size())};
-    out.patches.push_back({s.tags()[seed], 0, FaceId{seed}, {}});
-    out.face_patch[seed] = id;
-    stack.assign(1, seed);
-    while (!stack.empty()) {
-      const Index t = stack.back();
-      stack.pop_back();
-      ++out.patches.back().face_count;
-      for (int k = 0; k < 3; ++k) {
-        const Index g = s.neighbours().across[t][k];
-        if (g == kInvalidIndex || out.face_patch[g] != PatchId{kInvalidIndex}) continue;
-        if (two_face_edge_kinds(s, cos_ridge, t, k) != 0) continue;
-        out.face_patch[g] = id;
-        stack.push_back(g);
-      }
-    }
+  out.patches.reserve(static_cast<std::size_t>(count));
+  for (Index f = 0; f < s.face_count(); ++f) {
+    if (label[f] == static_cast<Index>(out.patches.size()))  // the component's lowest face
+      out.patches.push_back({s.tags()[f], 0, FaceId{f}, {}});
+    out.face_patch[f] = PatchId{label[f]};
+    ++out.patches[label[f]].face_count;
   }
 }
 
