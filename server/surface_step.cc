@@ -44,6 +44,13 @@ void add_repair_notes(const SurfaceReport& report, std::vector<std::string>& not
   note(report.short_ridges_dropped,
        "ridges of the input that end freely and are shorter than twice the size were not kept as "
        "lines");
+  if (report.input_crossing_pairs > 0) {
+    const Point& c = report.first_input_crossing;
+    notes.push_back(absl::StrFormat(
+        "%d pairs of the input's triangles cross, the first near (%g, %g, %g): its %d components "
+        "were re-triangulated each on its own, and the result crosses where they do",
+        report.input_crossing_pairs, c[0], c[1], c[2], report.components));
+  }
 }
 
 // Memory for a job with `input_triangles` in and `triangles` out (surface_step.h's figures).

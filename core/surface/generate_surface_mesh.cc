@@ -445,25 +445,50 @@ std::vector<FaceId> output_faces_near_input_points(const DiscreteSurface& input,
   return hint;
 }
 
+// The report's components: joined across edges of two triangles, closed when none of their
+// triangles has an edge without exactly one other triangle across it (open or non-manifold).
+void count_components(const DiscreteSurface& surface, SurfaceReport& report) {
+  const EdgeNeighbours& neighbours = surface.neighbours();
+  std::vector<Index> label;
+  const Index count =
+      label_components(neighbours, [](Index, int) { return true; }, label);
+  std::vector<bool> open(static_cast<std::size_t>(count), false);
+  for (std::size_t t = 0; t < label.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      if (neighbours.across[t][k] == kInvalidIndex) open[label[t]] = true;
+  report.components = count;
+  report.closed_components = std::count(open.begin(), open.end(), false);
+}
+
 }  // namespace
 
-absl::Status explain_stuck(absl::Status stuck, const Mesh& clean, Progress& progress) {
-  if (stuck.code() != absl::StatusCode::kFailedPrecondition) return stuck;
+absl::StatusOr<InputCrossings> input_crossings(const Mesh& clean, Progress& progress) {
   ValidationParams params;
   params.max_findings_per_check = 1;
   const absl::StatusOr<ValidationReport> report = validate_surface(clean, params, progress);
   if (!report.ok()) return report.status();
+  InputCrossings crossings;
   const Check* crossing = report->find(check::kNoSelfIntersections);
   if (crossing == nullptr || crossing->outcome != CheckOutcome::kFailed ||
       crossing->findings.empty() || crossing->findings[0].triangles.empty())
-    return stuck;
+    return crossings;
   const Triangle& t = clean.triangles[crossing->findings[0].triangles[0]];
-  const Point c =  // `clean` is in the input's (global) frame
+  crossings.pairs = crossing->finding_count;
+  crossings.first =  // `clean` is in the input's (global) frame
       scale(add(clean.points[t[0]], add(clean.points[t[1]], clean.points[t[2]])), 1.0 / 3.0);
+  return crossings;
+}
+
+absl::Status explain_stuck(absl::Status stuck, const Mesh& clean, Progress& progress) {
+  if (stuck.code() != absl::StatusCode::kFailedPrecondition) return stuck;
+  const absl::StatusOr<InputCrossings> crossings = input_crossings(clean, progress);
+  if (!crossings.ok()) return crossings.status();
+  if (crossings->pairs == 0) return stuck;
+  const Point& c = crossings->first;
   return absl::FailedPreconditionError(absl::StrFormat(
       "%s. The input surface intersects itself: %d pairs of its triangles cross, the first near "
       "(%g, %g, %g); repair the crossings (or re-export the surface) and send it again",
-      stuck.message(), crossing->finding_count, c[0], c[1], c[2]));
+      stuck.message(), crossings->pairs, c[0], c[1], c[2]));
 }
 
 absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const SurfaceParams& params,
@@ -481,6 +506,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   // S2, S3
   absl::StatusOr<DiscreteSurface> surface = DiscreteSurface::build(*clean, {}, progress);
   if (!surface.ok()) return surface.status();
+  count_components(*surface, result.report);
   clock.lap("surface");
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
   FeatureParams feature_params;
@@ -612,6 +638,15 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   if (!hausdorff.ok()) return hausdorff.status();
   result.report.hausdorff = *hausdorff;
   clock.lap("distance");
+  // Not in the paper: an assembly's components that cross each other are each re-triangulated
+  // on its own (issue 11), and the result crosses where they do; the report says so.
+  if (result.report.components > 1) {
+    const absl::StatusOr<InputCrossings> crossings = input_crossings(*clean, progress);
+    if (!crossings.ok()) return crossings.status();
+    result.report.input_crossing_pairs = crossings->pairs;
+    result.report.first_input_crossing = crossings->first;
+    clock.lap("crossings");
+  }
 
   result.mesh = std::move(local);
   for (Point& x : result.mesh.points) x = surface->to_global(x);

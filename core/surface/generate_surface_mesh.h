@@ -94,6 +94,12 @@ struct SurfaceReport {
   double hausdorff = 0.0;
   double max_vertex_distance = 0.0;
   double model_size = 0.0;  // the input's bounding-box diagonal
+  // With more than one component (an assembly): the pairs of input triangles that cross, and
+  // the centroid of the first pair's first triangle (global frame). Each component is
+  // re-triangulated on its own, so the result crosses where the input does. Not counted for a
+  // single component (the check costs O(M log M)).
+  std::int64_t input_crossing_pairs = 0;
+  Point first_input_crossing{0.0, 0.0, 0.0};
 };
 
 struct SurfaceResult {
@@ -118,5 +124,14 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
 // it is; CANCELLED when progress is. O(M log M), run only after a failure.
 absl::Status explain_stuck(absl::Status stuck, const Mesh& clean,
                            Progress& progress = no_progress());
+
+// The pairs of triangles of `clean` that cross (validate_surface's no_self_intersections) and
+// the centroid of the first pair's first triangle; 0 pairs when none cross. O(M log M).
+struct InputCrossings {
+  std::int64_t pairs = 0;
+  Point first{0.0, 0.0, 0.0};
+};
+absl::StatusOr<InputCrossings> input_crossings(const Mesh& clean,
+                                               Progress& progress = no_progress());
 
 }  // namespace afmesh

@@ -3,6 +3,7 @@
 // a user knows to repair the input rather than to change the size (explain_stuck).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "core/quality/measures.h"
@@ -52,6 +53,38 @@ TEST(DirtyInput, BonesAreReTriangulatedComponentByComponent) {
   const Check* crossings = report.find(check::kNoSelfIntersections);
   ASSERT_NE(crossings, nullptr);
   EXPECT_FALSE(crossings->passed()) << "the input's 366 crossing pairs are gone from the output";
+  // The report says so: the input's crossing pairs and where the first is.
+  EXPECT_EQ(result->report.components, 26);
+  EXPECT_EQ(result->report.input_crossing_pairs, 366);
+  const absl::StatusOr<InputCrossings> input = input_crossings(bones);
+  ASSERT_TRUE(input.ok()) << input.status();
+  EXPECT_EQ(input->pairs, 366);
+  EXPECT_EQ(result->report.first_input_crossing, input->first);
+}
+
+// Components that do not cross are not reported as crossing; one component is not checked.
+TEST(DirtyInput, ComponentsApartReportNoCrossing) {
+  Mesh two = sphere_surface({0, 0, 0}, 1.0, 0.2);
+  const Mesh other = sphere_surface({3, 0, 0}, 1.0, 0.2);
+  const auto offset = static_cast<Index>(two.points.size());
+  two.points.insert(two.points.end(), other.points.begin(), other.points.end());
+  for (const Triangle& t : other.triangles)
+    two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  two.triangle_tags.clear();
+  SurfaceParams params;
+  params.size = 0.2;
+  const absl::StatusOr<SurfaceResult> apart = generate_surface_mesh(two, params);
+  ASSERT_TRUE(apart.ok()) << apart.status();
+  EXPECT_EQ(apart->report.components, 2);
+  EXPECT_EQ(apart->report.input_crossing_pairs, 0);
+  // The same two spheres overlapping: their triangles cross, and the report counts them.
+  for (std::size_t i = static_cast<std::size_t>(offset); i < two.points.size(); ++i)
+    two.points[i][0] -= 1.5;
+  const absl::StatusOr<SurfaceResult> crossing = generate_surface_mesh(two, params);
+  ASSERT_TRUE(crossing.ok()) << crossing.status();
+  EXPECT_GT(crossing->report.input_crossing_pairs, 0);
+  EXPECT_LT(std::abs(crossing->report.first_input_crossing[0] - 0.75), 0.3)
+      << "the spheres cross on the plane x = 0.75";
 }
 
 }  // namespace
