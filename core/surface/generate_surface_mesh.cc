@@ -163,7 +163,7 @@ absl::Status sides_along_lines(SurfaceMeshState& s, std::span<const Index> more_
                                std::vector<Index>& side_count) {
   const DiscreteSurface& surface = s.surface;
   const SurfaceFeatures& features = s.features;
-  const std::vector<LineEndSizes> ends = line_end_sizes(surface, features);
+  const std::vector<LineEndSizes> ends = line_end_sizes(surface, features, more_sides);
   const std::vector<bool> sharing = lines_sharing_their_corners(features);
   absl::flat_hash_map<Index, Index> corner_point;  // input vertex -> output point
   auto corner = [&](Index vertex) {
