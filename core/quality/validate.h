@@ -186,5 +186,12 @@ ValidationReport validate_surface(const Mesh& surface, const ValidationParams& p
 absl::StatusOr<ValidationReport> validate_surface(const Mesh& surface,
                                                   const ValidationParams& params,
                                                   Progress& progress);
+// validate_surface's no_self_intersections alone (face_environments not read), for callers that
+// want only where a surface crosses itself (MeshSurface on an assembly or a stuck front): the
+// topology checks are skipped. not_run when an index is out of range or a coordinate is not
+// finite; CANCELLED as above.
+absl::StatusOr<Check> check_surface_self_intersections(const Mesh& surface,
+                                                       const ValidationParams& params,
+                                                       Progress& progress);
 
 }  // namespace afmesh

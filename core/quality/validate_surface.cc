@@ -341,4 +341,19 @@ absl::StatusOr<ValidationReport> validate_surface(const Mesh& surface,
   return report;
 }
 
+absl::StatusOr<Check> check_surface_self_intersections(const Mesh& surface,
+                                                       const ValidationParams& params,
+                                                       Progress& progress) {
+  if (!all_indices_in_range(surface.triangles, surface.points.size()))
+    return not_run(check::kNoSelfIntersections, "the triangles' indices are invalid");
+  const bool finite = check_finite_coordinates(surface.points, params).passed();
+  if (!finite) return not_run(check::kNoSelfIntersections, "some point coordinates are not finite");
+  ProperTriangles proper;
+  check_non_degenerate(surface, finite, params, proper);
+  CancelCheck stop(progress);
+  Check check = check_self_intersections(surface, proper, {}, params, stop);
+  if (stop.stopped()) return absl::CancelledError("validation of the surface cancelled");
+  return check;
+}
+
 }  // namespace afmesh

@@ -465,15 +465,14 @@ void count_components(const DiscreteSurface& surface, SurfaceReport& report) {
 absl::StatusOr<InputCrossings> input_crossings(const Mesh& clean, Progress& progress) {
   ValidationParams params;
   params.max_findings_per_check = 1;
-  const absl::StatusOr<ValidationReport> report = validate_surface(clean, params, progress);
-  if (!report.ok()) return report.status();
+  const absl::StatusOr<Check> check = check_surface_self_intersections(clean, params, progress);
+  if (!check.ok()) return check.status();
   InputCrossings crossings;
-  const Check* crossing = report->find(check::kNoSelfIntersections);
-  if (crossing == nullptr || crossing->outcome != CheckOutcome::kFailed ||
-      crossing->findings.empty() || crossing->findings[0].triangles.empty())
+  if (check->outcome != CheckOutcome::kFailed || check->findings.empty() ||
+      check->findings[0].triangles.empty())
     return crossings;
-  const Triangle& t = clean.triangles[crossing->findings[0].triangles[0]];
-  crossings.pairs = crossing->finding_count;
+  const Triangle& t = clean.triangles[check->findings[0].triangles[0]];
+  crossings.pairs = check->finding_count;
   crossings.first =  // `clean` is in the input's (global) frame
       scale(add(clean.points[t[0]], add(clean.points[t[1]], clean.points[t[2]])), 1.0 / 3.0);
   return crossings;

@@ -6,6 +6,7 @@
 #include <limits>
 #include <utility>
 
+#include "core/common/progress.h"
 #include "core/quality/validate.h"
 #include "tests/quality/report_helpers.h"
 #include "tests/quality/test_meshes.h"
@@ -197,6 +198,39 @@ TEST(ValidateSurface, TrianglePokingThroughIsFound) {
     pierces_bottom = pierces_bottom || f.triangles[0] <= 1;
   }
   EXPECT_TRUE(pierces_bottom);
+}
+
+// check_surface_self_intersections is validate_surface's check alone: the same findings on
+// the pierced cube and on the overlapping cubes, passed on an octahedron, not run on bad input.
+TEST(ValidateSurface, TheSelfIntersectionCheckAloneFindsWhatTheReportFinds) {
+  Mesh pierced = testing::five_tet_cube_boundary();
+  pierced.points[7] = {0.5, 0.5, -0.5};
+  const Mesh overlapping =
+      testing::merge(testing::five_tet_cube_boundary(),
+                     testing::translated(testing::five_tet_cube_boundary(), {0.5, 0.5, 0.5}));
+  for (const Mesh* surface : {static_cast<const Mesh*>(&pierced), &overlapping}) {
+    const Check full = check_of(validate_surface(*surface), check::kNoSelfIntersections);
+    const absl::StatusOr<Check> alone =
+        check_surface_self_intersections(*surface, ValidationParams{}, no_progress());
+    ASSERT_TRUE(alone.ok()) << alone.status();
+    EXPECT_EQ(alone->outcome, CheckOutcome::kFailed);
+    EXPECT_EQ(alone->finding_count, full.finding_count);
+    ASSERT_EQ(alone->findings.size(), full.findings.size());
+    for (std::size_t i = 0; i < full.findings.size(); ++i)
+      EXPECT_EQ(alone->findings[i].triangles, full.findings[i].triangles);
+  }
+  const absl::StatusOr<Check> clean =
+      check_surface_self_intersections(testing::octahedron(), ValidationParams{}, no_progress());
+  ASSERT_TRUE(clean.ok());
+  EXPECT_EQ(clean->outcome, CheckOutcome::kPassed);
+  Mesh bad = testing::octahedron();
+  bad.points[4][2] = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(check_surface_self_intersections(bad, ValidationParams{}, no_progress())->outcome,
+            CheckOutcome::kNotRun);
+  bad = testing::octahedron();
+  bad.triangles[2][1] = -3;
+  EXPECT_EQ(check_surface_self_intersections(bad, ValidationParams{}, no_progress())->outcome,
+            CheckOutcome::kNotRun);
 }
 
 TEST(ValidateSurface, OutOfRangeIndexStopsTheOtherChecks) {
