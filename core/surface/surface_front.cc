@@ -1123,7 +1123,6 @@ std::vector<std::pair<std::size_t, std::size_t>> crossing_sides(const SurfaceMes
     for (int k = 0; k < 3; ++k) reach.lo[k] -= length, reach.hi[k] += length;
     near.clear();
     bins.items_near(reach, near);  // each side once
-    std::sort(near.begin(), near.end());
     for (const Index found : near) {
       const auto j = static_cast<std::size_t>(found);
       if (j <= i) continue;
