@@ -1,6 +1,8 @@
 #include "server/surface_options.h"
 
 #include <cmath>
+#include <optional>
+#include <string_view>
 
 #include "absl/strings/str_format.h"
 
@@ -18,6 +20,25 @@ SurfaceAngles angles_in(const Options& options) {
   if (options.has_curvature_deviation())
     angles.curvature_deviation = options.curvature_deviation();
   return angles;
+}
+
+// An optional bound of the surface options: unset keeps the default, 0 turns it off, and
+// otherwise it lies in [0, upper).
+struct OptionalBound {
+  std::string_view field;
+  double upper;
+  std::string_view units;
+  std::string_view zero_means;
+  double default_value;
+};
+
+absl::Status check_optional_bound(const std::optional<double>& value, std::string_view prefix,
+                                  const OptionalBound& bound) {
+  if (!value || (std::isfinite(*value) && *value >= 0.0 && *value < bound.upper))
+    return absl::OkStatus();
+  return absl::InvalidArgumentError(absl::StrFormat(
+      "%s%s must be in [0, %g) %s (0: %s; unset: %g), got %g", prefix, bound.field, bound.upper,
+      bound.units, bound.zero_means, bound.default_value, *value));
 }
 
 }  // namespace
@@ -44,22 +65,18 @@ absl::Status surface_params_from(const VolumeParams& size, const SurfaceAngles& 
         absl::StrFormat("%scorner_angle_deg must be in (0, 180] degrees (or 0 for %g), got %g",
                         prefix, SurfaceParams{}.corner_angle_deg, corner));
   }
-  if (angles.curvature_deg &&
-      !(std::isfinite(*angles.curvature_deg) && *angles.curvature_deg >= 0.0 &&
-        *angles.curvature_deg < 180.0)) {
-    return absl::InvalidArgumentError(absl::StrFormat(
-        "%scurvature_angle_deg must be in [0, 180) degrees (0: no curvature bound; unset: %g), "
-        "got %g",
-        prefix, SurfaceParams{}.curvature_angle_deg, *angles.curvature_deg));
-  }
-  if (angles.curvature_deviation &&
-      !(std::isfinite(*angles.curvature_deviation) && *angles.curvature_deviation >= 0.0 &&
-        *angles.curvature_deviation < 1.0)) {
-    return absl::InvalidArgumentError(absl::StrFormat(
-        "%scurvature_deviation must be in [0, 1) of the bounding-box diagonal (0: no deviation "
-        "bound; unset: %g), got %g",
-        prefix, SurfaceParams{}.curvature_deviation, *angles.curvature_deviation));
-  }
+  if (absl::Status st = check_optional_bound(angles.curvature_deg, prefix,
+                                              {"curvature_angle_deg", 180.0, "degrees",
+                                               "no curvature bound",
+                                               SurfaceParams{}.curvature_angle_deg});
+      !st.ok())
+    return st;
+  if (absl::Status st = check_optional_bound(
+          angles.curvature_deviation, prefix,
+          {"curvature_deviation", 1.0, "of the bounding-box diagonal", "no deviation bound",
+           SurfaceParams{}.curvature_deviation});
+      !st.ok())
+    return st;
   params.size = size.size;
   params.growth = size.growth;
   params.spec = size.spec;
