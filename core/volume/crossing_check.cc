@@ -92,7 +92,8 @@ bool side_is_a_meshed_face(MesherState& s, const Triangle (&sides)[3], Index p) 
 
 }  // namespace
 
-bool element_crosses_front(MesherState& s, Index face, Index p) {
+bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed) {
+  if (crossed) *crossed = kInvalidIndex;
   const Triangle v = s.front.item(face).v;
   const Index env = s.front.item(face).env;
   const std::vector<Point>& x = s.points;
@@ -153,7 +154,12 @@ bool element_crosses_front(MesherState& s, Index face, Index p) {
     }
     return false;
   };
-  if (s.front.bins().find_item_near(box, crosses_face)) return true;
+  if (s.front.bins().find_item_near(box, [&](Index g) {
+        if (!crosses_face(g)) return false;
+        if (crossed) *crossed = g;
+        return true;
+      }))
+    return true;
 
   const bool positive = planes.positive();
   bool contains_point = false;

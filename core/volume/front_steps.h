@@ -94,8 +94,10 @@ bool new_point_is_clear(MesherState& s, const Point& x, double spacing_size,
 
 // F7.3: true when tet (v[0], v[1], v[2], p) would cross the front: it intersects a front face
 // other than those it shares properly, or contains a front point. `p` is an index into
-// s.points (a new point is appended before the check). Exact predicates only.
-bool element_crosses_front(MesherState& s, Index face, Index p);
+// s.points (a new point is appended before the check). Exact predicates only. When it crosses
+// and `crossed` is given, *crossed is the front face it meets improperly, or kInvalidIndex when
+// it crosses for another reason (a front point inside it, a meshed face).
+bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed = nullptr);
 
 // F8–F10: adds tet (v, p), deletes the face and every front face the tet closes, and puts the
 // tet's other faces on the front with their element sizes.
