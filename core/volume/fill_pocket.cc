@@ -261,6 +261,48 @@ std::int64_t add_part_elements(MesherState& s, const std::vector<Index>& part, I
   return added;
 }
 
+// fill_grown_part_of_pocket's growth. From `face` alone, while the element of `face` and the
+// part's deepest point crosses a front face g, the part grows: by g, or, when g is in it already
+// (the point lies above g's plane, yet the element meets g: the pocket folds at an edge of g), by
+// the faces of `pocket` (sorted) across g's edges. The point is sought in the box of the part's
+// corners, which grows with it: over the box of the whole pocket, a bent pocket puts it far from
+// `face`, outside the domain (seen on OCCT's shape.stl). True when the element crosses
+// nothing; s.points[x] is then the point. False when the part cannot grow, exceeds `max_faces`,
+// or has no point above all its faces.
+bool grow_part_about_face(MesherState& s, Index face, const std::vector<Index>& pocket, Index x,
+                          std::size_t max_faces, std::vector<Index>& part) {
+  const auto in_part = [&](Index g) {
+    return std::find(part.begin(), part.end(), g) != part.end();
+  };
+  Box box = empty_box();
+  for (Index q : s.front.item(face).v) enclose(box, s.points[q]);
+  part.assign(1, face);
+  while (part.size() <= max_faces) {
+    double depth = 0;
+    if (!deepest_point(s, part, box, s.points[x], depth)) return false;
+    const Triangle& v = s.front.item(face).v;
+    if (orient3d(s.points[v[0]], s.points[v[1]], s.points[v[2]], s.points[x]) <= 0) return false;
+    Index crossed = kInvalidIndex;
+    if (!element_crosses_front(s, face, x, &crossed)) return true;
+    if (crossed == kInvalidIndex) return false;  // a front point inside, or a meshed face
+    const std::size_t before = part.size();
+    if (!in_part(crossed)) {
+      part.push_back(crossed);
+    } else {
+      const Triangle w = s.front.item(crossed).v;
+      for (Index g : pocket) {
+        const Triangle& u = s.front.item(g).v;
+        if (has_corner(u, w[0]) + has_corner(u, w[1]) + has_corner(u, w[2]) == 2 && !in_part(g))
+          part.push_back(g);
+      }
+    }
+    if (part.size() == before) return false;
+    for (std::size_t i = before; i < part.size(); ++i)
+      for (Index q : s.front.item(part[i]).v) enclose(box, s.points[q]);
+  }
+  return false;
+}
+
 }  // namespace
 
 std::int64_t fill_part_of_pocket(MesherState& s, Index face, std::size_t max_faces) {
@@ -285,6 +327,21 @@ std::int64_t fill_part_of_pocket(MesherState& s, Index face, std::size_t max_fac
   }
   s.points.pop_back();
   return 0;
+}
+
+std::int64_t fill_grown_part_of_pocket(MesherState& s, Index face, std::size_t max_faces) {
+  if (!s.point_env.empty()) return 0;  // thin regions keep the back-off they had
+  std::vector<Index> pocket, part;
+  if (!collect_pocket(s, face, max_faces, pocket)) return 0;
+  const Index x = static_cast<Index>(s.points.size());
+  s.points.push_back(Point{0, 0, 0});
+  if (!grow_part_about_face(s, face, pocket, x, max_faces, part)) {
+    s.points.pop_back();
+    return 0;
+  }
+  // x closes `face`; the faces that joined the part may lie behind x or block its elements.
+  std::erase_if(part, [&](Index g) { return g != face && !closes_face(s, g, x); });
+  return add_part_elements(s, part, x);
 }
 
 bool collect_pocket(MesherState& s, Index face, std::size_t max_faces,

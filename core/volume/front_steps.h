@@ -129,4 +129,21 @@ std::int64_t fill_pocket(MesherState& s, Index face, std::size_t max_faces);
 // a front with crossing environments, whose thin regions keep the back-off they had).
 std::int64_t fill_part_of_pocket(MesherState& s, Index face, std::size_t max_faces);
 
+// Not in the paper: the last back-off for a face whose pocket is not star-shaped, when
+// fill_part_of_pocket and re-opening its surroundings have failed (F11 has no answer then). In a
+// pocket that bends, the faces far from `face` decide where the deepest point of the whole lies,
+// and fill_part_of_pocket's shrinking can drop the faces near `face` that block its element
+// before the others, leaving `face` alone with no point; re-opening rebuilds the same pocket
+// (Regression.Issue10BentPocketClosesTheFaceItWasStuckAt). Here the part grows from `face`
+// instead, so it does not depend on an order of shrinking: while the element of `face` and the
+// part's deepest point (over the box of the part's corners) crosses a front face (F7.3), that
+// face joins the part, or, when it is in the part already, the pocket's faces across its edges
+// do; then the point is found again. Once the element crosses nothing, the point closes `face`
+// and every other face of the part above whose plane it lies and whose element crosses nothing.
+// Returns the number of elements added: 0 when the part cannot grow (the element contains a
+// front point, or meets a part face whose neighbours are all in the part), grows past
+// `max_faces`, or has no point above all its faces; and, as fill_part_of_pocket, on a front with
+// crossing environments.
+std::int64_t fill_grown_part_of_pocket(MesherState& s, Index face, std::size_t max_faces);
+
 }  // namespace afmesh::volume
