@@ -123,5 +123,41 @@ TEST(Regression, Issue10BentPocketClosesTheFaceItWasStuckAt) {
     EXPECT_GT(orient3d(s.points[t[0]], s.points[t[1]], s.points[t[2]], s.points[t[3]]), 0);
 }
 
+// F7.3 tests the face that met the last crossing element first (element_crosses_front): the
+// answer must not depend on which face that is. On the bent pocket of shape.stl (many elements
+// cross, by many faces), every element (face 0, point p) gets the same answer whatever face,
+// live or deleted, is remembered.
+TEST(CrossingCheck, RememberedCrossingFaceChangesNoAnswer) {
+  absl::StatusOr<Mesh> input = read_mesh(
+      (std::filesystem::path(AFMESH_SOURCE_DIR) / "tests" / "data" / "shape_bent_pocket.mesh")
+          .string());
+  ASSERT_TRUE(input.ok()) << input.status();
+  const UniformSize size(26.108);
+  Box box = empty_box();
+  for (const Point& p : input->points) enclose(box, p);
+  volume::MesherState s(*input, 1.0, size, box, 26.108);
+  s.point_size.assign(input->points.size(), 26.108);
+  for (const Triangle& t : input->triangles) s.front.add({t[0], t[2], t[1]}, 1.0);
+  const Index dead = s.front.add({0, 1, 2}, 1.0);
+  s.front.remove(dead);
+  const auto faces = static_cast<Index>(input->triangles.size());
+  int crossing = 0;
+  for (Index f = 0; f < faces; f += 5) {
+    const Triangle v = s.front.item(f).v;
+    for (Index p = 0; p < static_cast<Index>(input->points.size()); p += 3) {
+      if (p == v[0] || p == v[1] || p == v[2]) continue;
+      s.last_crossed_face = kInvalidIndex;
+      const bool expected = volume::element_crosses_front(s, f, p);
+      crossing += expected;
+      for (Index last : {Index{0}, Index{7}, faces - 1, dead}) {
+        s.last_crossed_face = last;
+        EXPECT_EQ(volume::element_crosses_front(s, f, p), expected)
+            << "face " << f << " point " << p << " remembered " << last;
+      }
+    }
+  }
+  EXPECT_GT(crossing, 100);
+}
+
 }  // namespace
 }  // namespace afmesh
