@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <optional>
+#include <vector>
 
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
@@ -198,6 +200,14 @@ Index kernel_point_beside_a_corner(MesherState& s, const std::vector<Index>& poc
   return kInvalidIndex;
 }
 
+// Whether the new point at index `xi` closes front face g: it lies above g's plane and their
+// element does not cross the front (F7.3).
+bool closes_face(MesherState& s, Index g, Index xi) {
+  const Triangle& v = s.front.item(g).v;
+  return orient3d(s.points[v[0]], s.points[v[1]], s.points[v[2]], s.points[xi]) > 0 &&
+         !element_crosses_front(s, g, xi);
+}
+
 // The index in `part` of the face to leave it next, for the new point at index `xi` (the part's
 // deepest point; `inside` when it lies above every face plane): of the faces the point does not
 // close (behind their plane, or the element crosses the front, F7.3), the one it is lowest above;
@@ -213,10 +223,7 @@ std::size_t face_to_drop(MesherState& s, const std::vector<Index>& part, Index x
   std::size_t worst = part.size(), lowest_other = part.size();
   bool keep_fails = false;
   for (std::size_t i = 0; i < part.size(); ++i) {
-    const Triangle& v = s.front.item(part[i]).v;
-    const bool closes = inside &&
-                        orient3d(s.points[v[0]], s.points[v[1]], s.points[v[2]], x) > 0 &&
-                        !element_crosses_front(s, part[i], xi);
+    const bool closes = inside && closes_face(s, part[i], xi);
     if (part[i] == keep) {
       keep_fails = !closes;
       continue;
@@ -228,6 +235,72 @@ std::size_t face_to_drop(MesherState& s, const std::vector<Index>& part, Index x
   if (worst < part.size()) return worst;
   if (!keep_fails) return part.size();
   return lowest_other < part.size() ? lowest_other : part.size() + 1;
+}
+
+// Adds the elements of the new point at index x (its position set, its size not yet) and every
+// face of `part`, which it closes (closes_face, checked for each face before any is added:
+// elements with one apex that each cross no face of the front cannot overlap each other). x
+// gets its size first: eq. 15 without growth (c_i = 1), as it is joined to every corner of the
+// part. Returns the number of elements added.
+std::int64_t add_part_elements(MesherState& s, const std::vector<Index>& part, Index x) {
+  std::vector<Index> corners;
+  std::vector<Triangle> faces;
+  for (Index g : part) {
+    faces.push_back(s.front.item(g).v);
+    for (Index q : s.front.item(g).v) corners.push_back(q);
+  }
+  const Point c = s.points[x];
+  s.point_size.push_back(new_point_size(s.size_field.size_at(c), 1.0, s.point_size, corners));
+  std::int64_t added = 0;
+  for (const Triangle& v : faces) {
+    const std::optional<Index> g = s.front.find(v);
+    if (!g) continue;
+    add_element(s, *g, x);
+    ++added;
+  }
+  return added;
+}
+
+// fill_grown_part_of_pocket's growth. From `face` alone, while the element of `face` and the
+// part's deepest point crosses a front face g, the part grows: by g, or, when g is in it already
+// (the point lies above g's plane, yet the element meets g: the pocket folds at an edge of g), by
+// the faces of `pocket` (sorted) across g's edges. The point is sought in the box of the part's
+// corners, which grows with it: over the box of the whole pocket, a bent pocket puts it far from
+// `face`, outside the domain (seen on OCCT's shape.stl). True when the element crosses
+// nothing; s.points[x] is then the point. False when the part cannot grow, exceeds `max_faces`,
+// or has no point above all its faces.
+bool grow_part_about_face(MesherState& s, Index face, const std::vector<Index>& pocket, Index x,
+                          std::size_t max_faces, std::vector<Index>& part) {
+  const auto in_part = [&](Index g) {
+    return std::find(part.begin(), part.end(), g) != part.end();
+  };
+  Box box = empty_box();
+  for (Index q : s.front.item(face).v) enclose(box, s.points[q]);
+  part.assign(1, face);
+  while (part.size() <= max_faces) {
+    double depth = 0;
+    if (!deepest_point(s, part, box, s.points[x], depth)) return false;
+    const Triangle& v = s.front.item(face).v;
+    if (orient3d(s.points[v[0]], s.points[v[1]], s.points[v[2]], s.points[x]) <= 0) return false;
+    Index crossed = kInvalidIndex;
+    if (!element_crosses_front(s, face, x, &crossed)) return true;
+    if (crossed == kInvalidIndex) return false;  // a front point inside, or a meshed face
+    const std::size_t before = part.size();
+    if (!in_part(crossed)) {
+      part.push_back(crossed);
+    } else {
+      const Triangle w = s.front.item(crossed).v;
+      for (Index g : pocket) {
+        const Triangle& u = s.front.item(g).v;
+        if (has_corner(u, w[0]) + has_corner(u, w[1]) + has_corner(u, w[2]) == 2 && !in_part(g))
+          part.push_back(g);
+      }
+    }
+    if (part.size() == before) return false;
+    for (std::size_t i = before; i < part.size(); ++i)
+      for (Index q : s.front.item(part[i]).v) enclose(box, s.points[q]);
+  }
+  return false;
 }
 
 }  // namespace
@@ -250,26 +323,25 @@ std::int64_t fill_part_of_pocket(MesherState& s, Index face, std::size_t max_fac
       part.erase(part.begin() + static_cast<std::ptrdiff_t>(drop));
       continue;
     }
-    // x closes every face of the part: its elements are added, each checked by F7.3 above.
-    std::vector<Index> corners;
-    std::vector<Triangle> faces;
-    for (Index g : part) {
-      faces.push_back(s.front.item(g).v);
-      for (Index q : s.front.item(g).v) corners.push_back(q);
-    }
-    const Point c = s.points[x];
-    s.point_size.push_back(new_point_size(s.size_field.size_at(c), 1.0, s.point_size, corners));
-    std::int64_t added = 0;
-    for (const Triangle& v : faces) {
-      const std::optional<Index> g = s.front.find(v);
-      if (!g) continue;
-      add_element(s, *g, x);
-      ++added;
-    }
-    return added;
+    return add_part_elements(s, part, x);  // x closes every face of the part (face_to_drop)
   }
   s.points.pop_back();
   return 0;
+}
+
+std::int64_t fill_grown_part_of_pocket(MesherState& s, Index face, std::size_t max_faces) {
+  if (!s.point_env.empty()) return 0;  // thin regions keep the back-off they had
+  std::vector<Index> pocket, part;
+  if (!collect_pocket(s, face, max_faces, pocket)) return 0;
+  const Index x = static_cast<Index>(s.points.size());
+  s.points.push_back(Point{0, 0, 0});
+  if (!grow_part_about_face(s, face, pocket, x, max_faces, part)) {
+    s.points.pop_back();
+    return 0;
+  }
+  // x closes `face`; the faces that joined the part may lie behind x or block its elements.
+  std::erase_if(part, [&](Index g) { return g != face && !closes_face(s, g, x); });
+  return add_part_elements(s, part, x);
 }
 
 bool collect_pocket(MesherState& s, Index face, std::size_t max_faces,

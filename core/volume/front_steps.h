@@ -94,8 +94,10 @@ bool new_point_is_clear(MesherState& s, const Point& x, double spacing_size,
 
 // F7.3: true when tet (v[0], v[1], v[2], p) would cross the front: it intersects a front face
 // other than those it shares properly, or contains a front point. `p` is an index into
-// s.points (a new point is appended before the check). Exact predicates only.
-bool element_crosses_front(MesherState& s, Index face, Index p);
+// s.points (a new point is appended before the check). Exact predicates only. When it crosses
+// and `crossed` is given, *crossed is the front face it meets improperly, or kInvalidIndex when
+// it crosses for another reason (a front point inside it, a meshed face).
+bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed = nullptr);
 
 // F8–F10: adds tet (v, p), deletes the face and every front face the tet closes, and puts the
 // tet's other faces on the front with their element sizes.
@@ -126,5 +128,22 @@ std::int64_t fill_pocket(MesherState& s, Index face, std::size_t max_faces);
 // it. Returns the number of elements added (0 when no part with `face` has such a point, or on
 // a front with crossing environments, whose thin regions keep the back-off they had).
 std::int64_t fill_part_of_pocket(MesherState& s, Index face, std::size_t max_faces);
+
+// Not in the paper: the last back-off for a face whose pocket is not star-shaped, when
+// fill_part_of_pocket and re-opening its surroundings have failed (F11 has no answer then). In a
+// pocket that bends, the faces far from `face` decide where the deepest point of the whole lies,
+// and fill_part_of_pocket's shrinking can drop the faces near `face` that block its element
+// before the others, leaving `face` alone with no point; re-opening rebuilds the same pocket
+// (Regression.Issue10BentPocketClosesTheFaceItWasStuckAt). Here the part grows from `face`
+// instead, so it does not depend on an order of shrinking: while the element of `face` and the
+// part's deepest point (over the box of the part's corners) crosses a front face (F7.3), that
+// face joins the part, or, when it is in the part already, the pocket's faces across its edges
+// do; then the point is found again. Once the element crosses nothing, the point closes `face`
+// and every other face of the part above whose plane it lies and whose element crosses nothing.
+// Returns the number of elements added: 0 when the part cannot grow (the element contains a
+// front point, or meets a part face whose neighbours are all in the part), grows past
+// `max_faces`, or has no point above all its faces; and, as fill_part_of_pocket, on a front with
+// crossing environments.
+std::int64_t fill_grown_part_of_pocket(MesherState& s, Index face, std::size_t max_faces);
 
 }  // namespace afmesh::volume

@@ -36,6 +36,12 @@ constexpr std::size_t kMaxPocketFaces = 256;  // larger unmeshed regions are not
 // 364 s, 135k tets, then stuck; with at most 2, stuck after 61 s, and sh1 at its mean edge
 // meshes in 1.8 s instead of 6.5 s).
 constexpr int kMaxPartFills = 2;
+// Grown part fills (fill_grown_part_of_pocket) per region, the last resort once its re-openings
+// are used up; each closes the face the region was stuck at. Of the OCCT and corpus runs that
+// stop stuck on e8ef174, 2 closed two (cgal_dino, cgal_triceratops), 8 and 32 the same three
+// (those and shape.stl at half its mean edge). Letting the region re-open again after each fill
+// closed two others (TR12J_OCC at its mean edge, cgal_triceratops).
+constexpr int kMaxGrownPartFills = 8;
 constexpr int kCancelCheckInterval = 256;  // faces between cancellation checks
 // Input triangles with an angle below this are called slivers in failure messages.
 constexpr double kSliverAngleDeg = 5.0;
@@ -225,37 +231,50 @@ absl::Status stuck_report(const MesherState& s, const Mesh& input, const Triangl
       describe_input_near_face(s, input, v, x)));
 }
 
+// The back-off's counts per region (RepairCounts): re-openings, part fills and grown part fills.
+struct BackOffCounts {
+  RepairCounts reopenings, part_fills, grown_part_fills;
+};
+
 // The back-off for a face that failed in every queue class (F11): fill the small pocket it
 // bounds from one kernel point, or, when it has none, the part of it about `face` that one point
-// sees (at most kMaxPartFills times per region, counted in `part_fills`); failing that, re-open
-// the elements around it, one ring more each time the same region needs it again. Stops the job
-// when the region has been re-opened kMaxCavityRings times, or when the front has re-opened
-// `max_reopenings` times in a row without progress (ReopeningWatch).
-absl::Status back_off(MesherState& s, const Mesh& input, Index face, RepairCounts& repairs,
-                      RepairCounts& part_fills, ReopeningWatch& watch,
-                      std::int64_t max_reopenings) {
+// sees (at most kMaxPartFills times per region); failing that, re-open the elements around it,
+// one ring more each time the same region needs it again. When the region has been re-opened
+// kMaxCavityRings times, the part grown from `face` (fill_grown_part_of_pocket, at most
+// kMaxGrownPartFills times per region) is the last resort: only a job that would stop here tries
+// it, so every job that closes without it is unchanged. Stops the job when that fails too, or
+// when the front has re-opened `max_reopenings` times in a row without progress (ReopeningWatch).
+absl::Status back_off(MesherState& s, const Mesh& input, Index face, BackOffCounts& counts,
+                      ReopeningWatch& watch, std::int64_t max_reopenings) {
   const Triangle v = s.front.item(face).v;
   const std::uint32_t stamp = s.front.item(face).stamp;
   const Point centroid =
       scale(add(s.points[v[0]], add(s.points[v[1]], s.points[v[2]])), 1.0 / 3.0);
-  int& fills = part_fills.at(centroid, volume::element_size_for_face(s, v));
-  const auto fill_part = [&] {
-    if (fills >= kMaxPartFills) return false;
-    ++fills;
-    return volume::fill_part_of_pocket(s, face, kMaxPocketFaces) > 0;
-  };
-  if (volume::fill_pocket(s, face, kMaxPocketFaces) > 0 || fill_part()) {
+  const double d = volume::element_size_for_face(s, v);
+  const auto requeue = [&] {
     const FrontItem<3>& f = s.front.item(face);
     if (f.alive && f.stamp == stamp) s.front.requeue(face, volume::queue_size_for_face(s, v));
     return absl::OkStatus();
-  }
-  int& count = repairs.at(centroid, volume::element_size_for_face(s, v));
+  };
+  const auto fill_part = [&](RepairCounts& fill_counts, int max_fills, auto&& fill) {
+    int& fills = fill_counts.at(centroid, d);
+    if (fills >= max_fills) return false;
+    ++fills;
+    return fill(s, face, kMaxPocketFaces) > 0;
+  };
+  if (volume::fill_pocket(s, face, kMaxPocketFaces) > 0 ||
+      fill_part(counts.part_fills, kMaxPartFills, volume::fill_part_of_pocket))
+    return requeue();
+  int& count = counts.reopenings.at(centroid, d);
   const int rings = 1 + count;
   const Point& x = centroid;
-  if (rings > kMaxCavityRings)
+  if (rings > kMaxCavityRings) {
+    if (fill_part(counts.grown_part_fills, kMaxGrownPartFills, volume::fill_grown_part_of_pocket))
+      return requeue();
     return stuck_report(
         s, input, v, x,
         absl::StrFormat("after re-opening its surroundings %d times", kMaxCavityRings));
+  }
   if (watch.reopened() > max_reopenings)
     return stuck_report(
         s, input, v, x,
@@ -264,9 +283,7 @@ absl::Status back_off(MesherState& s, const Mesh& input, Index face, RepairCount
                         max_reopenings));
   ++count;
   volume::open_cavity(s, face, rings);
-  const FrontItem<3>& f = s.front.item(face);
-  if (f.alive && f.stamp == stamp) s.front.requeue(face, volume::queue_size_for_face(s, v));
-  return absl::OkStatus();
+  return requeue();
 }
 
 absl::Status overlap_report(const MesherState& s, Index face, double domain_volume) {
@@ -418,7 +435,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
   if (absl::Status st = load_initial_front(s, front, params.face_environments); !st.ok())
     return st;
 
-  RepairCounts repairs, part_fills;
+  BackOffCounts back_off_counts;
   EndGameWatch end_game;
   ReopeningWatch reopenings(domain_volume);
   std::int64_t steps = 0;
@@ -446,7 +463,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
       s.front.defer(*face, volume::queue_size_for_face(s, f.v));
       continue;
     }
-    if (absl::Status st = back_off(s, front, *face, repairs, part_fills, reopenings,
+    if (absl::Status st = back_off(s, front, *face, back_off_counts, reopenings,
                                    budget.reopenings_without_progress);
         !st.ok())
       return st;

@@ -59,6 +59,9 @@ struct MesherState {
   // the low 8 bits, valid when the high 24 bits equal side_epoch.
   std::vector<std::uint32_t> side_codes;
   std::uint32_t side_epoch = 0;
+  // The front face the last element found crossing by its bins' walk met (element_crosses_front
+  // tests it first); a slot index, possibly of a face deleted since, or kInvalidIndex.
+  Index last_crossed_face = kInvalidIndex;
   // Front faces and points element_crosses_front (F7.3) has tested: the job's work, most of its
   // time, counted against its budget (VolumeBudget).
   std::int64_t face_tests = 0;

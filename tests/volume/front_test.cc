@@ -1,10 +1,12 @@
 // Unit tests of the volume front's steps on hand-built fronts: the crossing-environment filters
 // (paper §2) and the end-game pocket fill (F11). The front's data structures are tested in
 // tests/front/front_test.cc.
+#include <filesystem>
 #include <vector>
 
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
+#include "core/io/mesh_io.h"
 #include "core/shapes/shapes.h"
 #include "core/sizing/size_field.h"
 #include "core/volume/front_steps.h"
@@ -78,6 +80,83 @@ TEST(FillPocket, SchoenhardtPrismIsFilledFromAKernelPoint) {
   for (const Triangle& t : input.triangles)
     enclosed += dot(input.points[t[0]], cross(input.points[t[1]], input.points[t[2]])) / 6;
   EXPECT_NEAR(volume, enclosed, 1e-12);
+}
+
+// Regression for issue 10 (the robustness sweep): OCCT's shape.stl (494 triangles) stopped
+// "stuck at face (244, 232, 60) ... after re-opening its surroundings 4 times" at its mean edge.
+// tests/data/shape_bent_pocket.mesh is the pocket its front left there (126 faces, reversed to
+// face out; triangle 0 is that face): a slab between two coaxial cylinders, 90 long and 10-17
+// thick, whose outer side is strips of one sliver pair each, so that no corner closes face 0.
+// The pocket bends: no point sees it all (fill_pocket), and shrinking it by the faces its
+// deepest point is lowest above (fill_part_of_pocket) leaves face 0 alone, with no point whose
+// element does not cross the front. The part grown from face 0 by the faces its element crosses
+// (fill_grown_part_of_pocket) has one.
+TEST(Regression, Issue10BentPocketClosesTheFaceItWasStuckAt) {
+  absl::StatusOr<Mesh> input = read_mesh(
+      (std::filesystem::path(AFMESH_SOURCE_DIR) / "tests" / "data" / "shape_bent_pocket.mesh")
+          .string());
+  ASSERT_TRUE(input.ok()) << input.status();
+  ASSERT_EQ(input->triangles.size(), 126u);
+  const double h = 26.108;  // the mean edge of shape.stl: the size of the failed run
+  const UniformSize size(h);
+  Box box = empty_box();
+  for (const Point& p : input->points) enclose(box, p);
+  volume::MesherState s(*input, 1.0, size, box, h);
+  s.point_size.assign(input->points.size(), h);
+  for (const Triangle& t : input->triangles) s.front.add({t[0], t[2], t[1]}, 1.0);
+  const Triangle stuck = s.front.item(0).v;
+  for (Index p = 0; p < static_cast<Index>(input->points.size()); ++p) {
+    if (p == stuck[0] || p == stuck[1] || p == stuck[2]) continue;
+    if (orient3d(s.points[stuck[0]], s.points[stuck[1]], s.points[stuck[2]], s.points[p]) <= 0)
+      continue;
+    EXPECT_TRUE(volume::element_crosses_front(s, 0, p)) << "point " << p;
+  }
+  EXPECT_EQ(volume::fill_pocket(s, 0, 256), 0);          // no kernel point
+  EXPECT_EQ(volume::fill_part_of_pocket(s, 0, 256), 0);  // the shrinking leaves face 0 alone
+  ASSERT_EQ(s.points.size(), input->points.size());      // and adds nothing
+
+  EXPECT_GT(volume::fill_grown_part_of_pocket(s, 0, 256), 0);
+  EXPECT_FALSE(s.front.find(stuck).has_value());  // closed
+  EXPECT_EQ(s.points.size(), input->points.size() + 1);
+  EXPECT_EQ(s.point_size.size(), s.points.size());
+  for (const Tet& t : s.tets)
+    EXPECT_GT(orient3d(s.points[t[0]], s.points[t[1]], s.points[t[2]], s.points[t[3]]), 0);
+}
+
+// F7.3 tests the face that met the last crossing element first (element_crosses_front): the
+// answer must not depend on which face that is. On the bent pocket of shape.stl (many elements
+// cross, by many faces), every element (face 0, point p) gets the same answer whatever face,
+// live or deleted, is remembered.
+TEST(CrossingCheck, RememberedCrossingFaceChangesNoAnswer) {
+  absl::StatusOr<Mesh> input = read_mesh(
+      (std::filesystem::path(AFMESH_SOURCE_DIR) / "tests" / "data" / "shape_bent_pocket.mesh")
+          .string());
+  ASSERT_TRUE(input.ok()) << input.status();
+  const UniformSize size(26.108);
+  Box box = empty_box();
+  for (const Point& p : input->points) enclose(box, p);
+  volume::MesherState s(*input, 1.0, size, box, 26.108);
+  s.point_size.assign(input->points.size(), 26.108);
+  for (const Triangle& t : input->triangles) s.front.add({t[0], t[2], t[1]}, 1.0);
+  const Index dead = s.front.add({0, 1, 2}, 1.0);
+  s.front.remove(dead);
+  const auto faces = static_cast<Index>(input->triangles.size());
+  int crossing = 0;
+  for (Index f = 0; f < faces; f += 5) {
+    const Triangle v = s.front.item(f).v;
+    for (Index p = 0; p < static_cast<Index>(input->points.size()); p += 3) {
+      if (p == v[0] || p == v[1] || p == v[2]) continue;
+      s.last_crossed_face = kInvalidIndex;
+      const bool expected = volume::element_crosses_front(s, f, p);
+      crossing += expected;
+      for (Index last : {Index{0}, Index{7}, faces - 1, dead}) {
+        s.last_crossed_face = last;
+        EXPECT_EQ(volume::element_crosses_front(s, f, p), expected)
+            << "face " << f << " point " << p << " remembered " << last;
+      }
+    }
+  }
+  EXPECT_GT(crossing, 100);
 }
 
 }  // namespace
