@@ -38,7 +38,7 @@ constexpr std::size_t kMaxPocketFaces = 256;  // larger unmeshed regions are not
 constexpr int kMaxPartFills = 2;
 // Grown part fills (fill_grown_part_of_pocket) per region, the last resort once its re-openings
 // are used up; each closes the face the region was stuck at. Of the OCCT and corpus runs that
-// stop stuck on e8ef174, 2 closed two (cgal_dino, cgal_triceratops), 8 and 32 the same three
+// stopped stuck before it, 2 closed two (cgal_dino, cgal_triceratops), 8 and 32 the same three
 // (those and shape.stl at half its mean edge). Letting the region re-open again after each fill
 // closed two others (TR12J_OCC at its mean edge, cgal_triceratops).
 constexpr int kMaxGrownPartFills = 8;
