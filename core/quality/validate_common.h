@@ -36,6 +36,8 @@ class CheckBuilder {
 
 // A check that did not run, saying why.
 Check not_run(std::string_view name, std::string_view reason);
+// The reason of the geometric checks that need finite coordinates.
+inline constexpr std::string_view kNeedsFinite = "some point coordinates are not finite";
 
 // "4", "4 and 9", "4, 9 and 12".
 std::string join_indices(const std::vector<Index>& ids);

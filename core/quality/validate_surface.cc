@@ -19,6 +19,9 @@
 namespace afmesh {
 namespace {
 
+// The reason of the checks that cannot run on out-of-range triangle indices.
+constexpr std::string_view kBadTriangleIndices = "the triangles' indices are invalid";
+
 // The triangles with three distinct points, renumbered 0..n-1: those that take part in the
 // topology checks. Collinear ones among them are kept there (they close the surface like any
 // other) but left out of the intersection test.
@@ -275,7 +278,6 @@ void add_topology_checks(const Mesh& surface, bool finite, const ProperTriangles
   const bool oriented_closed = topology.open_edges.empty() &&
                                topology.nonmanifold_edges.empty() &&
                                topology.misoriented_edges.empty();
-  constexpr std::string_view kNeedsFinite = "some point coordinates are not finite";
   std::span<const std::int32_t> env;
   if (!params.face_environments.empty()) {
     bool usable = false;
@@ -310,7 +312,7 @@ ValidationReport surface_checks(const Mesh& surface, const ValidationParams& par
           check::kEnvironments, check::kNoSelfIntersections, check::kPositiveEnclosedVolume,
           check::kUnusedPoints}) {
       if (name == check::kEnvironments && params.face_environments.empty()) continue;
-      report.checks.push_back(not_run(name, "the triangles' indices are invalid"));
+      report.checks.push_back(not_run(name, kBadTriangleIndices));
     }
     return report;
   }
@@ -345,9 +347,9 @@ absl::StatusOr<Check> check_surface_self_intersections(const Mesh& surface,
                                                        const ValidationParams& params,
                                                        Progress& progress) {
   if (!all_indices_in_range(surface.triangles, surface.points.size()))
-    return not_run(check::kNoSelfIntersections, "the triangles' indices are invalid");
+    return not_run(check::kNoSelfIntersections, kBadTriangleIndices);
   const bool finite = check_finite_coordinates(surface.points, params).passed();
-  if (!finite) return not_run(check::kNoSelfIntersections, "some point coordinates are not finite");
+  if (!finite) return not_run(check::kNoSelfIntersections, kNeedsFinite);
   ProperTriangles proper;
   check_non_degenerate(surface, finite, params, proper);
   CancelCheck stop(progress);

@@ -221,7 +221,6 @@ ValidationReport volume_checks(const Mesh& mesh, const Mesh* boundary,
   }
   report.checks.push_back(check_finite_coordinates(mesh.points, params));
   const bool finite = report.checks.back().passed();
-  constexpr std::string_view kNeedsFinite = "some point coordinates are not finite";
 
   report.checks.push_back(finite ? check_positive_volumes(mesh, params, stop)
                                  : not_run(check::kPositiveVolumes, kNeedsFinite));
