@@ -83,7 +83,7 @@ struct LineEndSizes {
 // side) counts as its length / n, the length of those sides. Its neighbours at its corners then
 // grade out from its short sides as from a short line. Without it, the single-segment line
 // beside a doubled one kept its long sides: cgal_hand's fin, two ridges 10° apart, put sides of
-// 0.011 beside sides of 0.0012 at one corner, and the front could not close the wedge.
+// 0.011 beside sides of 0.0012 at one corner, and the front stopped at that corner.
 std::vector<LineEndSizes> line_end_sizes(const DiscreteSurface& surface,
                                          const SurfaceFeatures& features,
                                          std::span<const Index> min_sides = {});
