@@ -193,6 +193,15 @@ constexpr double kSliverHoleDeg = 10.0;
 // Two triangles sharing an edge inside a patch whose normals differ by more than 120° fold over
 // each other (PatchFront::folds_over_a_neighbour; not in the paper).
 constexpr double kFoldCosine = -0.5;
+// A face to an existing front point may not make a side longer than the longer of the side it
+// deletes and this many times the side's target size (not in the paper). A side's element is at
+// least kMinElementOverEdge of its length (front_sizes.h), and its candidates lie within
+// rules.reach of that: a side longer than its target reaches farther than the target allows,
+// and a face to a far point leaves a still longer side, which reaches farther again. Where the
+// size drops (a narrow patch of cgal_dino, 0.0101 inside a surface of 0.067), a fan round one
+// point zipped the fine front to a coarse one with sides 0.024, 0.029, 0.033, 0.041, 0.055
+// long, and the zipper ran on over 0.4 (40 targets), the patch stuck among long slivers.
+constexpr double kMaxNewSideOverTarget = 3.0;
 
 // Relaxation of the acceptance rules for a side that has failed `attempts` times (not in the
 // paper; as the volume front's strictness_for): later attempts accept worse faces and new points
@@ -306,6 +315,11 @@ class PatchFront {
   bool lies_along(const Side& v, const Point& x, const SidePlane& plane) const {
     const Point normal = cross(sub(s_.points[v[1]], s_.points[v[0]]), sub(x, s_.points[v[0]]));
     return dot(normal, plane.n) >= kMinFaceCosine * norm(normal);
+  }
+  // Whether face (v, p) has a new side longer than `longest` (kMaxNewSideOverTarget).
+  bool lengthens_the_front(const Side& v, Index p, double longest) const {
+    return squared_norm(sub(s_.points[p], s_.points[v[0]])) > longest * longest ||
+           squared_norm(sub(s_.points[p], s_.points[v[1]])) > longest * longest;
   }
   // Whether face (v, x) has a shape the rules take: its smallest angle not under
   // rules.min_angle_deg, and lying along the plane.
@@ -846,7 +860,8 @@ bool PatchFront::delete_side(Index f) {
         s_.drop_last_point();
         continue;
       }
-    } else if (!takes_shape(v, s_.points[p], plane, rules)) {
+    } else if (!takes_shape(v, s_.points[p], plane, rules) ||
+               lengthens_the_front(v, p, std::max(length, kMaxNewSideOverTarget * target))) {
       continue;
     }
     if (!face_crosses_front(f, v, p, {plane, face_plane(v, p)}, rules.side_clearance * d) &&  // S6

@@ -555,6 +555,21 @@ TEST(Regression, Issue11FacesFitTheGapsRoundASpikeOfAScan) {
   EXPECT_LT(r->report.hausdorff, 0.01 * r->report.model_size);
 }
 
+// cgal_dino at its mean edge (0.067): where a narrow patch wants 0.0101, a fan round one point
+// joined the fine front to the coarse one's points with sides ever longer (0.024 to 0.055, each
+// side's element at least 0.55 of its length and so reaching farther), a zipper of slivers up
+// to 0.45 long; the patch stopped ("far more triangles than the size asks"). A face to an
+// existing point may no longer make a side longer than the side it deletes and three times its
+// target (kMaxNewSideOverTarget), and the dino closes.
+TEST(Regression, Issue11FacesToFarFrontPointsDoNotZipAFineFrontToACoarseOne) {
+  const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge("cgal_dino.stl");
+  ASSERT_TRUE(r.ok()) << r.status();
+  print("dino", *r);
+  expect_closed_valid(r->mesh);
+  EXPECT_NEAR(total_area(r->mesh) / total_area(testing::corpus_mesh("cgal_dino.stl")), 1.0, 0.01);
+  EXPECT_LT(r->report.hausdorff, 0.01 * r->report.model_size);
+}
+
 // gmsh_t13_data with no curvature bound: one input face, ridges on all three edges, is a patch
 // of its own, and two of its ridges meet at a point that is not a corner. Its two lines run
 // between the same two corners; split into one side each they gave the same chord, so the
