@@ -12,6 +12,7 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_format.h"
+#include "core/geometry/vec.h"
 #include "core/quality/compensated_sum.h"
 
 namespace afmesh {
@@ -297,6 +298,25 @@ absl::StatusOr<QualitySummary> summarize_quality(const Mesh& mesh, Progress& pro
   if (stop.stopped()) return absl::CancelledError("the quality summary was cancelled");
   summarize_triangles(mesh, summary);
   return summary;
+}
+
+TrianglesNear triangles_near(std::span<const Point> points, std::span<const Triangle> triangles,
+                             const Point& x, double radius) {
+  TrianglesNear near;
+  for (const Triangle& t : triangles) {
+    bool within = false;
+    for (const Index p : t) within = within || norm(sub(points[p], x)) <= radius;
+    if (!within) continue;
+    ++near.count;
+    near.smallest_angle_deg = std::min(near.smallest_angle_deg,
+                                       triangle_min_angle_deg(points[t[0]], points[t[1]], points[t[2]]));
+    for (int k = 0; k < 3; ++k) {
+      const double length = norm(sub(points[t[(k + 1) % 3]], points[t[k]]));
+      near.shortest_edge = std::min(near.shortest_edge, length);
+      near.longest_edge = std::max(near.longest_edge, length);
+    }
+  }
+  return near;
 }
 
 double mean_edge_length(const Mesh& surface) {

@@ -16,6 +16,8 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
+#include <span>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -62,6 +64,19 @@ TriangleQuality triangle_quality(const std::vector<Point>& points, const Triangl
 // length units. Triangles with an index out of range are skipped (callers that have not
 // validated the surface yet); 1 when no triangle is left.
 double mean_edge_length(const Mesh& surface);
+
+// The `triangles` (over `points`) with a corner within `radius` of x: how many, their shortest and
+// longest edges and their smallest angle (not in the paper: what a failure message says of the
+// input where a front stopped). A scan of all triangles, for a job that has already failed.
+// With none near, count is 0 and the rest as initialised.
+struct TrianglesNear {
+  std::int64_t count = 0;
+  double shortest_edge = std::numeric_limits<double>::infinity();
+  double longest_edge = 0.0;
+  double smallest_angle_deg = 180.0;
+};
+TrianglesNear triangles_near(std::span<const Point> points, std::span<const Triangle> triangles,
+                             const Point& x, double radius);
 
 // A histogram with `bins` equal bins over [lo, hi]. A value below lo counts in the first bin and
 // one at or above hi in the last (measures may overshoot their range by rounding); NaN values

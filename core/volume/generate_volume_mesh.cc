@@ -150,20 +150,10 @@ bool delete_face_with_later_rules(MesherState& s, Index face) {
 // a cause the user can act on. Looks at the input triangles with a corner within `radius` of x
 // (a scan of the input, made once, when the job has already failed).
 std::string describe_input_near(const Mesh& input, const Point& x, double radius, double size) {
-  double smallest_angle = 180.0, shortest = std::numeric_limits<double>::infinity(), longest = 0;
-  std::int64_t count = 0;
-  for (const Triangle& t : input.triangles) {
-    bool near = false;
-    for (const Index p : t) near = near || norm(sub(input.points[p], x)) <= radius;
-    if (!near) continue;
-    ++count;
-    smallest_angle = std::min(smallest_angle, triangle_quality(input.points, t).min_angle_deg);
-    for (int k = 0; k < 3; ++k) {
-      const double length = norm(sub(input.points[t[(k + 1) % 3]], input.points[t[k]]));
-      shortest = std::min(shortest, length);
-      longest = std::max(longest, length);
-    }
-  }
+  const TrianglesNear near = triangles_near(input.points, input.triangles, x, radius);
+  const std::int64_t count = near.count;
+  const double smallest_angle = near.smallest_angle_deg, shortest = near.shortest_edge,
+               longest = near.longest_edge;
   if (count == 0) return absl::StrFormat("; no input triangle within %g of there", radius);
   std::string text = absl::StrFormat(
       "; the %d input triangles within %g of there have edges %g to %g long (size asked %g) and "
