@@ -134,17 +134,7 @@ SurfaceResult mesh_at(const Mesh& input, double size) {
   return r.ok() ? *std::move(r) : SurfaceResult{};
 }
 
-// A corpus file (testing::corpus_mesh) meshed at its mean edge length, as run_corpus.py does.
-// `adjust` changes the other parameters (ridge or curvature angle) before the job runs.
-absl::StatusOr<SurfaceResult> mesh_corpus_at_mean_edge(
-    const std::string& name, const std::function<void(SurfaceParams&)>& adjust = {}) {
-  const Mesh input = testing::corpus_mesh(name);
-  if (input.triangles.empty()) return absl::NotFoundError("no corpus file " + name);
-  SurfaceParams params;
-  params.size = mean_edge_length(input);
-  if (adjust) adjust(params);
-  return generate_surface_mesh(input, params);
-}
+using testing::mesh_corpus_at_mean_edge;
 
 void print(const char* name, const SurfaceResult& r) {
   const Figures f = figures_of(r.mesh);

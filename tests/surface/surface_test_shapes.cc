@@ -13,6 +13,7 @@
 
 #include "core/geometry/vec.h"
 #include "core/io/mesh_io.h"
+#include "core/quality/measures.h"
 #include "core/shapes/graded_surface.h"
 #include "core/shapes/shapes.h"
 #include "core/sizing/size_field.h"
@@ -291,6 +292,16 @@ Mesh corpus_mesh(const std::string& name) {
   absl::StatusOr<Mesh> mesh = read_mesh(path.string());
   EXPECT_TRUE(mesh.ok()) << mesh.status();
   return mesh.ok() ? *std::move(mesh) : Mesh{};
+}
+
+absl::StatusOr<SurfaceResult> mesh_corpus_at_mean_edge(
+    const std::string& name, const std::function<void(SurfaceParams&)>& adjust) {
+  const Mesh input = corpus_mesh(name);
+  if (input.triangles.empty()) return absl::NotFoundError("no corpus file " + name);
+  SurfaceParams params;
+  params.size = mean_edge_length(input);
+  if (adjust) adjust(params);
+  return generate_surface_mesh(input, params);
 }
 
 SurfaceModel surface_model(const Mesh& mesh, const FeatureParams& params) {

@@ -8,9 +8,11 @@
 #include <random>
 #include <string>
 
+#include "absl/status/statusor.h"
 #include "core/mesh/mesh.h"
 #include "core/surface/discrete_surface.h"
 #include "core/surface/features.h"
+#include "core/surface/generate_surface_mesh.h"
 
 namespace afmesh::testing {
 
@@ -74,6 +76,11 @@ Mesh sliver_cylinder(double radius, double height, int around);
 // The mesh of `name` in ../shared/corpus (real files from Debian packages; CI has ../shared
 // beside the checkout); a read failure is a test failure (and gives an empty mesh).
 Mesh corpus_mesh(const std::string& name);
+
+// A corpus file (corpus_mesh) meshed at its mean edge length, as bench/surface/run_corpus.py
+// does. `adjust` changes the other parameters (ridge or curvature angle) before the job runs.
+absl::StatusOr<SurfaceResult> mesh_corpus_at_mean_edge(
+    const std::string& name, const std::function<void(SurfaceParams&)>& adjust = {});
 
 // A discrete surface over `mesh` and its features; a failure of either is a test failure (and
 // leaves the features empty).
