@@ -12,6 +12,7 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_format.h"
+#include "core/geometry/closest_points.h"
 #include "core/geometry/vec.h"
 #include "core/quality/compensated_sum.h"
 
@@ -300,13 +301,16 @@ absl::StatusOr<QualitySummary> summarize_quality(const Mesh& mesh, Progress& pro
   return summary;
 }
 
+bool comes_near(std::span<const Point> points, const Triangle& t, const Point& x, double radius) {
+  const Point c = closest_point_on_triangle(x, points[t[0]], points[t[1]], points[t[2]]);
+  return norm(sub(c, x)) <= radius;
+}
+
 TrianglesNear triangles_near(std::span<const Point> points, std::span<const Triangle> triangles,
                              const Point& x, double radius) {
   TrianglesNear near;
   for (const Triangle& t : triangles) {
-    bool within = false;
-    for (const Index p : t) within = within || norm(sub(points[p], x)) <= radius;
-    if (!within) continue;
+    if (!comes_near(points, t, x, radius)) continue;
     ++near.count;
     near.smallest_angle_deg = std::min(near.smallest_angle_deg,
                                        triangle_min_angle_deg(points[t[0]], points[t[1]], points[t[2]]));

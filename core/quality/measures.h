@@ -65,7 +65,7 @@ TriangleQuality triangle_quality(const std::vector<Point>& points, const Triangl
 // validated the surface yet); 1 when no triangle is left.
 double mean_edge_length(const Mesh& surface);
 
-// The `triangles` (over `points`) with a corner within `radius` of x: how many, their shortest and
+// The `triangles` (over `points`) that come within `radius` of x: how many, their shortest and
 // longest edges and their smallest angle (not in the paper: what a failure message says of the
 // input where a front stopped). A scan of all triangles, for a job that has already failed.
 // With none near, count is 0 and the rest as initialised.
@@ -77,6 +77,10 @@ struct TrianglesNear {
 };
 TrianglesNear triangles_near(std::span<const Point> points, std::span<const Triangle> triangles,
                              const Point& x, double radius);
+// Whether triangle t (over `points`) comes within `radius` of x (its closest point to x does):
+// the triangles that triangles_near counts. A long input triangle passing by counts though its
+// corners lie far away.
+bool comes_near(std::span<const Point> points, const Triangle& t, const Point& x, double radius);
 
 // A histogram with `bins` equal bins over [lo, hi]. A value below lo counts in the first bin and
 // one at or above hi in the last (measures may overshoot their range by rounding); NaN values

@@ -7,8 +7,10 @@
 #include <initializer_list>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <span>
+#include <string>
 
 #include "absl/container/flat_hash_map.h"
 #include "absl/container/flat_hash_set.h"
@@ -490,6 +492,64 @@ absl::Status explain_stuck(absl::Status stuck, const Mesh& clean, Progress& prog
       stuck.message(), crossings->pairs, c[0], c[1], c[2]));
 }
 
+namespace {
+
+// A size wanted below this share of the size asked is named in a failure message.
+constexpr double kSmallWantedSize = 0.25;
+
+// Not in the paper: what the input looks like where a patch's front stopped, so that the message
+// names a cause the user can act on, as the volume front's does: the input's triangles near
+// there (their edges and smallest angle), the sharpest turn between two adjacent faces of one
+// patch there (above the ridge angle: a crease on a ridge too short to be a line, or one that
+// ends inside the patch, which the front must mesh across), and the size the front wanted
+// against the size asked (the curvature bound and the gaps between lines lower it). A scan of
+// the input, once, when the job has already failed.
+absl::Status describe_where_stopped(absl::Status stopped, const SurfaceMeshState& s,
+                                    const SizeField& asked, double ridge_angle_deg) {
+  if (stopped.code() != absl::StatusCode::kFailedPrecondition || !s.stopped_at) return stopped;
+  const DiscreteSurface& surface = s.surface;
+  const std::vector<Point>& p = surface.local_points();
+  const Point& x = s.stopped_at->x;
+  const double reach = s.stopped_at->reach;
+  const TrianglesNear near = triangles_near(p, surface.triangles(), x, reach);
+  if (near.count == 0) return stopped;
+  double sharpest = 0.0;  // degrees
+  for (Index f = 0; f < surface.face_count(); ++f) {
+    if (!comes_near(p, surface.triangles()[f], x, reach)) continue;
+    for (int k = 0; k < 3; ++k) {
+      const Index g = surface.neighbours().across[f][k];
+      if (g == kInvalidIndex || s.features.face_patch[f] != s.features.face_patch[g]) continue;
+      const Point& n_f = surface.normal(FaceId{f});
+      const Point& n_g = surface.normal(FaceId{g});
+      if (!(squared_norm(n_f) > 0.0) || !(squared_norm(n_g) > 0.0)) continue;
+      const double c = (surface.neighbours().same_way[f][k] ? -1.0 : 1.0) * dot(n_f, n_g);
+      sharpest = std::max(sharpest, std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi);
+    }
+  }
+  std::string text = absl::StrFormat(
+      "%s; the input's %d triangles within %g of there have edges %g to %g long and angles down "
+      "to %.3g degrees, and adjacent faces of the patch there turn by up to %.3g degrees",
+      stopped.message(), near.count, reach, near.shortest_edge, near.longest_edge,
+      near.smallest_angle_deg, sharpest);
+  if (sharpest > ridge_angle_deg)
+    absl::StrAppend(&text, absl::StrFormat(
+                               " (over the ridge angle, %g: a crease on a ridge too short to be "
+                               "kept as a line, or on one that ends inside the patch, which the "
+                               "front meshes across)",
+                               ridge_angle_deg));
+  const double wanted = s.field_size(x);
+  const double size = asked.size_at(surface.to_global(x));
+  if (wanted < kSmallWantedSize * size)
+    absl::StrAppend(&text, absl::StrFormat(
+                               "; the size wanted there, %g, is %.3g times below the size asked, "
+                               "%g: the curvature bound (--curvature-angle) or a gap between lines "
+                               "lowers it",
+                               wanted, size / wanted, size));
+  return absl::FailedPreconditionError(text);
+}
+
+}  // namespace
+
 absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const SurfaceParams& params,
                                                     Progress& progress) {
   SurfaceResult result;
@@ -585,7 +645,8 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
         kMinBackOffs + static_cast<std::int64_t>(expected[p] / kExpectedTrianglesPerBackOff);
     if (absl::Status st = mesh_patch(s, patch, patch_sides[p], boxes[p], front_params, progress);
         !st.ok())
-      return explain_stuck(std::move(st), *clean, progress);
+      return explain_stuck(describe_where_stopped(std::move(st), s, **field, params.ridge_angle_deg),
+                           *clean, progress);
     if (static_cast<std::int64_t>(s.triangles.size()) > params.max_triangles)
       return absl::ResourceExhaustedError(absl::StrFormat(
           "the surface has %d triangles after %d of its %d patches, over the limit of %d",

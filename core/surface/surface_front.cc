@@ -272,7 +272,7 @@ class PatchFront {
   // FAILED_PRECONDITION for side f: why the patch stops, where, its sizes, and the back-offs
   // tried.
   absl::Status stuck(Index f, std::string_view why, std::int64_t triangles_before,
-                     std::int64_t back_offs) const;
+                     std::int64_t back_offs);
 
  private:
   // Eq. 15 at the side's midpoint: min(delta(x), c_i · min(delta_A, delta_B)).
@@ -1007,9 +1007,12 @@ bool PatchFront::back_off(Index f) {
 }
 
 absl::Status PatchFront::stuck(Index f, std::string_view why, std::int64_t triangles_before,
-                               std::int64_t back_offs) const {
+                               std::int64_t back_offs) {
   const Side v = front_.item(f).v;
   const Point x = s_.surface.to_global(s_.points[v[0]]);
+  s_.stopped_at = SurfaceMeshState::StoppedAt{
+      s_.points[v[0]],
+      3.0 * std::max(target_[f], norm(sub(s_.points[v[1]], s_.points[v[0]])))};
   return absl::FailedPreconditionError(absl::StrFormat(
       "the surface front of patch %d (input tag %d) got stuck (%s) at side (%d, %d) near (%g, "
       "%g, %g), %g long, size wanted %g, after %d back-offs in the patch; %d triangles built in "

@@ -29,6 +29,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -77,6 +78,14 @@ struct SurfaceMeshState {
   // max): two patches that meet at a corner where their lines turn can each cut the corner by
   // the same chord, and the surface would carry one edge four times (not in the paper).
   absl::flat_hash_set<std::pair<Index, Index>> chords_between_line_points;
+  // Where a patch's front stopped (local frame: its side's first point) and the reach within
+  // which the failure message describes the input (three times the larger of the side's length
+  // and its target size); set by mesh_patch when it stops (not in the paper).
+  struct StoppedAt {
+    Point x;
+    double reach = 0.0;
+  };
+  std::optional<StoppedAt> stopped_at;
   // Whether edge (a, b) joins two line points and a patch meshed before has it off the lines.
   bool chord_of_another_patch(Index a, Index b) const {
     return a < line_points && b < line_points &&

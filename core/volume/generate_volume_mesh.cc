@@ -147,8 +147,8 @@ bool delete_face_with_later_rules(MesherState& s, Index face) {
 }
 
 // Not in the paper: what the input looks like where the front failed, so that the message names
-// a cause the user can act on. Looks at the input triangles with a corner within `radius` of x
-// (a scan of the input, made once, when the job has already failed).
+// a cause the user can act on. Looks at the input triangles that come within `radius` of x
+// (triangles_near: a scan of the input, made once, when the job has already failed).
 std::string describe_input_near(const Mesh& input, const Point& x, double radius, double size) {
   const TrianglesNear near = triangles_near(input.points, input.triangles, x, radius);
   const std::int64_t count = near.count;

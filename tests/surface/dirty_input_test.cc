@@ -38,6 +38,25 @@ TEST(DirtyInput, AStopOnACleanInputAndOtherErrorsAreLeftAsTheyAre) {
   EXPECT_EQ(explain_stuck(cancelled, testing::corpus_mesh("cgal_bones.stl")), cancelled);
 }
 
+// Where a front stops on a clean input, the message says what the input looks like there, as the
+// volume front's does: libcgal-demo's triceratops at its mean edge stops among faces that turn
+// by 58° (over the ridge angle: a crease no line follows) where the curvature bound asks for
+// about a ninth of the size.
+TEST(DirtyInput, AStopSaysWhatTheInputLooksLikeThere) {
+  const absl::StatusOr<SurfaceResult> result =
+      testing::mesh_corpus_at_mean_edge("cgal_triceratops.stl");
+  ASSERT_FALSE(result.ok()) << "the triceratops closes now: describe another stop here";
+  EXPECT_EQ(result.status().code(), absl::StatusCode::kFailedPrecondition);
+  const std::string message(result.status().message());
+  EXPECT_THAT(message, HasSubstr("got stuck"));
+  EXPECT_THAT(message, HasSubstr("; the input's "));
+  EXPECT_THAT(message, HasSubstr("have edges "));
+  EXPECT_THAT(message, HasSubstr("adjacent faces of the patch there turn by up to "));
+  EXPECT_THAT(message, HasSubstr("(over the ridge angle, 30: a crease"));
+  EXPECT_THAT(message, HasSubstr("times below the size asked"));
+  EXPECT_THAT(message, ::testing::Not(HasSubstr("intersects itself")));
+}
+
 // End to end: bones at its mean edge is re-triangulated component by component (issue 11 part 6:
 // crossing components are each meshed on their own). Every check of the output passes but the
 // one the input fails too: the bones cross where the input's do.
