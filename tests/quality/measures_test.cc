@@ -263,9 +263,10 @@ TEST(QualitySummary, OutOfRangeIndexIsInvalidArgumentNamingTheElement) {
   EXPECT_NE(s.status().message().find("42"), std::string_view::npos);
 }
 
-// Two triangles far apart: only the one with a corner within the radius counts, with its
-// shortest and longest edges and smallest angle; none within gives a count of 0.
-TEST(TrianglesNear, CountsOnlyTrianglesWithACornerWithinTheRadius) {
+// Two triangles far apart: only the one that comes within the radius counts, with its shortest
+// and longest edges and smallest angle; none within gives a count of 0. A long triangle whose
+// corners all lie far from the point but which passes by it counts too.
+TEST(TrianglesNear, CountsOnlyTrianglesThatComeWithinTheRadius) {
   Mesh m;
   m.points = {{0, 0, 0}, {3, 0, 0}, {0, 4, 0},             // right triangle 3-4-5
               {100, 0, 0}, {101, 0, 0}, {100, 1, 0}};      // far away
@@ -277,6 +278,11 @@ TEST(TrianglesNear, CountsOnlyTrianglesWithACornerWithinTheRadius) {
   EXPECT_NEAR(near.smallest_angle_deg, std::atan2(3.0, 4.0) * 180.0 / std::numbers::pi, 1e-9);
   EXPECT_EQ(triangles_near(m.points, m.triangles, {50, 50, 50}, 1.0).count, 0);
   EXPECT_EQ(triangles_near(m.points, m.triangles, {50, 0, 0}, 100.0).count, 2);
+  Mesh passing;
+  passing.points = {{-100, 0, 0}, {100, 0, 0}, {0, 1, 0}};
+  passing.triangles = {{0, 1, 2}};
+  EXPECT_EQ(triangles_near(passing.points, passing.triangles, {0, 0, 0.5}, 1.0).count, 1);
+  EXPECT_EQ(triangles_near(passing.points, passing.triangles, {0, 0, 1.5}, 1.0).count, 0);
 }
 
 }  // namespace
