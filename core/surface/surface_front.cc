@@ -373,6 +373,13 @@ class PatchFront {
   bool fits_the_gap_at(Index apex, Index from, Index p, bool at_start) const;
   void gather(const Side& v, const SidePlane& plane, const Point& best, double d,
               const SideRules& rules);
+  // Not in the paper: the far ends of the initial (line) sides at the side's two corners, as
+  // candidates after those gathered (delete_side adds them in the last rule class, to a side
+  // shorter than its element). A side across a strip narrower than the size, between two lines
+  // sampled at the size, reaches no farther than a few of its own lengths, and its only faces
+  // are to those ends: without them it stops the patch (gmsh_lever at diag / 40). Built sides'
+  // ends are not added: at the dino's eyes that joined sides 10^-8 long to far points.
+  void add_front_neighbours(const Side& v, const SidePlane& plane, const Point& best, double d);
   bool new_point_is_clear(const Point& x, double d, const SideRules& rules, Index f) const;
   // S6 for new face (v, p) in each of `planes` (the side's plane and the face's own): whether
   // it crosses the front in any of them. One pass over the front near the face serves both.
@@ -540,6 +547,27 @@ void PatchFront::gather(const Side& v, const SidePlane& plane, const Point& best
                      if (x.rank != y.rank) return x.rank < y.rank;
                      return x.point < y.point;
                    });
+}
+
+void PatchFront::add_front_neighbours(const Side& v, const SidePlane& plane, const Point& best,
+                                      double d) {
+  const std::array<double, 2> a2 = plane.at(s_.points[v[0]]), b2 = plane.at(s_.points[v[1]]);
+  auto consider = [&](Index q) {
+    if (q == v[0] || q == v[1] || !faces_plane(q, plane)) return;
+    for (const Candidate& c : candidates_)
+      if (c.point == q) return;  // within reach: gathered already
+    const std::array<double, 2> q2 = plane.at(s_.points[q]);
+    if (orient2d(a2.data(), b2.data(), q2.data()) <= 0) return;  // not left of the side
+    candidates_.push_back({q, norm(sub(s_.points[q], best)) / d});
+  };
+  front_.for_each_item_at(v[0], [&](Index g) {
+    const Side& w = front_.item(g).v;
+    if (w[1] == v[0] && initial_.contains({w[0], w[1]})) consider(w[0]);
+  });
+  front_.for_each_item_at(v[1], [&](Index g) {
+    const Side& w = front_.item(g).v;
+    if (w[0] == v[1] && initial_.contains({w[0], w[1]})) consider(w[1]);
+  });
 }
 
 bool PatchFront::new_point_is_clear(const Point& x, double d, const SideRules& rules,
@@ -848,6 +876,8 @@ bool PatchFront::delete_side(Index f) {
   const Located on = locate_in_patch(s_.surface, s_.features, patch_, above, host);  // S8
   const Point best = on.closest;
   gather(v, plane, best, d, rules);                                          // S5
+  if (d < target && front_.item(f).attempts >= kRuleClasses - 1)  // not in the paper
+    add_front_neighbours(v, plane, best, d);
   for (const Candidate& c : candidates_) {
     Index p = c.point;
     if (p == kInvalidIndex) {

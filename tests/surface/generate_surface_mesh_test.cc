@@ -560,6 +560,21 @@ TEST(Regression, Issue11FacesToFarFrontPointsDoNotZipAFineFrontToACoarseOne) {
   EXPECT_LT(r->report.hausdorff, 0.01 * r->report.model_size);
 }
 
+// gmsh_lever at diag / 40 (5.44, bench/surface's size for it): a planar face of the lever is a
+// strip 0.005 to 0.39 wide between two ridges, each line split at the size there (0.48). Across
+// the strip's narrow end the front left a side 0.059 long whose faces can only go to the next
+// points of the two lines, 0.4 away; a side reaches a few of its own lengths, so it found none
+// and the patch stopped ("no face, and the back-offs there failed"). The far ends of the line
+// sides at a short side's corners are now its candidates in the last rule class.
+TEST(Regression, Issue11ASideAcrossANarrowStripClosesToTheLinesAtItsEnds) {
+  const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge(
+      "gmsh_lever.stl", [](SurfaceParams& params) { params.size = 5.440209579467774; });
+  ASSERT_TRUE(r.ok()) << r.status();
+  print("lever at diag / 40", *r);
+  expect_closed_valid(r->mesh);
+  EXPECT_LT(r->report.hausdorff, 0.01 * r->report.model_size);
+}
+
 // gmsh_t13_data with no curvature bound: one input face, ridges on all three edges, is a patch
 // of its own, and two of its ridges meet at a point that is not a corner. Its two lines run
 // between the same two corners; split into one side each they gave the same chord, so the
