@@ -5,7 +5,9 @@ target edge length h and ridge angle, every output judged by the same code that 
 (bench/surface/cgal_remesh.cc, measure mode). See bench/surface/README.md.
 
 Every run is a fresh process, one after the other, on one thread (OMP_NUM_THREADS=1; gmsh
-General.NumThreads = 1): afmesh as `AFMESH surface IN -o OUT --size H --ridge-angle A --quiet`,
+General.NumThreads = 1): afmesh as `AFMESH surface IN -o OUT --size H --ridge-angle A --quiet`
+(row afmesh: its default curvature bound on; row afmesh-h: `--curvature-angle 0`, the size alone
+as the peers are given it),
 CGAL as `cgal_remesh remesh` (compiled once with g++ and cached in the build directory), gmsh and
 netgen as a child of this script. Each runs under /usr/bin/time (process wall seconds, peak
 RSS) with a timeout; a tool that fails shows its exit status and message in its row.
@@ -21,7 +23,7 @@ edge midpoints and centroids) over the input's bounding-box diagonal, in percent
 of the input's ridge length (normals > A apart) covered by output edges; corners = input corners
 (3+ ridges) with an output vertex on them; edge/h = mean output edge length / h; B/tri = (peak
 RSS of the phase - RSS before it) / tris (afmesh: the peak RSS of its largest process / tris,
-marked '*'). The ratio line divides afmesh's tris/s (whole command) by each peer's tris/s over
+marked '*'). The ratio lines (one per afmesh row) divide afmesh's tris/s (whole command) by each peer's tris/s over
 its whole process (by wall and by CPU seconds), and its B/tri by the peer's: > 1 means afmesh
 is faster (or uses more memory per triangle).
 """
@@ -48,7 +50,12 @@ import run_bench  # noqa: E402  bench/run_bench.py: run_process, machine/load/so
 
 CORPUS_DIR = os.path.join(REPO_DIR, "..", "shared", "corpus")
 CGAL_SOURCE = os.path.join(SURFACE_DIR, "cgal_remesh.cc")
-TOOLS = ("afmesh", "cgal", "gmsh", "netgen")
+# afmesh-h: afmesh with the size alone (--curvature-angle 0), as the peers are driven (gmsh without
+# MeshSizeFromCurvature, CGAL and netgen with h only): afmesh's default also bounds the turn of
+# its elements where the input curves (30 degrees), which on a scan asks for far more triangles
+# than h does. Both rows are shown; each has its own ratio line.
+AFMESH_TOOLS = ("afmesh", "afmesh-h")
+TOOLS = AFMESH_TOOLS + ("cgal", "gmsh", "netgen")
 DEFAULT_RIDGE_ANGLE = 30.0  # afmesh's default, and netgen's STL yangle (which it cannot be told)
 SPHERE_AREA = 4.0 * math.pi
 EQUILATERAL_AREA = math.sqrt(3.0) / 4.0  # of a triangle of edge 1
@@ -338,9 +345,11 @@ def run_tool(args, tool, case, workdir):
     if os.path.exists(output):
         os.remove(output)
     h, angle = case["size"], args.ridge_angle
-    if tool == "afmesh":
+    if tool in AFMESH_TOOLS:
         command = [args.afmesh, "surface", case["input"], "-o", output, "--size", repr(h),
                    "--ridge-angle", repr(angle), "--quiet"]
+        if tool == "afmesh-h":
+            command += ["--curvature-angle", "0"]
     elif tool == "cgal":
         if not args.cgal_binary:
             return {"error": f"not measured: {args.cgal_missing}"}
@@ -351,7 +360,7 @@ def run_tool(args, tool, case, workdir):
                "output": output, "size": h, "ridge_angle": angle}
         command = [sys.executable, os.path.abspath(__file__), "_child", json.dumps(job),
                    os.path.join(workdir, "result.json")]
-    if tool == "afmesh" and not os.access(args.afmesh, os.X_OK):
+    if tool in AFMESH_TOOLS and not os.access(args.afmesh, os.X_OK):
         return {"error": f"not run: {args.afmesh} is not an executable (build afmesh first)"}
     result_path = os.path.join(workdir, "result.json")
     if os.path.exists(result_path):
@@ -368,7 +377,8 @@ def run_tool(args, tool, case, workdir):
             figures.update(json.load(f))
     else:  # afmesh: its phases are not exposed; the whole command stands for them
         figures.update({"seconds": wall, "cpu_seconds": cpu, "seconds_whole_process": True,
-                        "options": f"--size {h:g} --ridge-angle {angle:g}"})
+                        "options": f"--size {h:g} --ridge-angle {angle:g}"
+                                   + (" --curvature-angle 0" if tool == "afmesh-h" else "")})
     figures["output"] = output
     return figures
 
@@ -449,10 +459,17 @@ def print_case(case, rows):
         if (row.get("mean_edge_over_h") or 0) > SIZE_NOT_TAKEN:
             print(f"   {'':8s} ^ mean edge {row['mean_edge_over_h']:.2f} h: the size asked was not "
                   "taken (netgen's STL mesher ignores maxh from Python, README.md)")
-    ours = next((r for r in rows if r["tool"] == "afmesh" and "error" not in r), None)
+    for name in AFMESH_TOOLS:
+        if any(row["tool"] == name for row in rows):
+            print_ratios(name, rows)
+
+
+def print_ratios(name, rows):
+    """The ratio line of afmesh variant `name` against each peer's row."""
+    ours = next((r for r in rows if r["tool"] == name and "error" not in r), None)
     ratios = []
     for row in rows:
-        if row["tool"] == "afmesh" or "error" in row or ours is None:
+        if row["tool"] in AFMESH_TOOLS or "error" in row or ours is None:
             continue
         speed = ours["triangles_per_process_second"] / row["triangles_per_process_second"]
         cpu = (row["process_cpu_seconds"] / row["triangles"]
@@ -464,9 +481,9 @@ def print_case(case, rows):
                       f"{run_bench._cell(cpu, 0, '.2f')}x tris per cpu s, "
                       f"{run_bench._cell(memory, 0, '.2f')}x B/tri")
     if ours is None:
-        print("   afmesh / peer: not yet (afmesh gave no output)")
+        print(f"   {name} / peer: not yet ({name} gave no output)")
     elif ratios:
-        print("   afmesh / peer (whole processes): " + "; ".join(ratios))
+        print(f"   {name} / peer (whole processes): " + "; ".join(ratios))
 
 
 # ---------------------------------------------------------------------------------------------
