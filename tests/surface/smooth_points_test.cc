@@ -24,23 +24,6 @@ class CancelledProgress final : public Progress {
   bool cancelled() const override { return true; }
 };
 
-// Puts `mesh` into s as the front's result in patch 0: each point moved onto the input (its
-// host the face it lands on, no anchor), the triangles as they are.
-void add_on_the_input(const Mesh& mesh, SurfaceMeshState& s) {
-  for (const Point& x : mesh.points) {
-    const Located on = s.surface.nearest_face(s.surface.to_local(x));
-    s.add_point(on.closest, 0.2, on.face, kInvalidIndex);
-  }
-  for (const Triangle& t : mesh.triangles) s.add_triangle(t, PatchId{0});
-}
-
-double smallest_angle(const SurfaceMeshState& s) {
-  double smallest = 180.0;
-  for (const Triangle& t : s.triangles)
-    smallest = std::min(smallest, triangle_quality(s.points, t).min_angle_deg);
-  return smallest;
-}
-
 Point normal_of(const std::vector<Point>& p, const Triangle& t) {
   const Point n = cross(sub(p[t[1]], p[t[0]]), sub(p[t[2]], p[t[0]]));
   return scale(n, 1.0 / norm(n));
@@ -52,19 +35,19 @@ TEST(SmoothPoints, RaisesTheSmallestAngleAndKeepsEveryPointOnTheInput) {
   const UniformSize field(0.2);
   SurfaceMeshState s(model.surface, model.features, field, 1.2);
   // A coarse sphere, jittered by a third of its edges.
-  add_on_the_input(testing::jittered(sphere_surface({0, 0, 0}, 1.0, 0.2), 0.06, 7), s);
+  testing::add_on_the_input(testing::jittered(sphere_surface({0, 0, 0}, 1.0, 0.2), 0.06, 7), s);
   // Three points anchored, as line points are: they must not move.
   for (const Index q : {0, 10, 20}) s.anchor[q] = model.surface.triangle(s.host[q])[0];
   const std::vector<Point> before = s.points;
   const std::vector<Triangle> triangles = s.triangles;
-  const double smallest_before = smallest_angle(s);
+  const double smallest_before = testing::smallest_angle(s);
 
   const absl::StatusOr<std::int64_t> moves = smooth_points(s);
   ASSERT_TRUE(moves.ok()) << moves.status();
-  std::printf("smallest angle %.2f -> %.2f after %lld moves\n", smallest_before, smallest_angle(s),
-              static_cast<long long>(*moves));
+  std::printf("smallest angle %.2f -> %.2f after %lld moves\n", smallest_before,
+              testing::smallest_angle(s), static_cast<long long>(*moves));
   EXPECT_GT(*moves, 0);
-  EXPECT_GT(smallest_angle(s), smallest_before + 5.0);
+  EXPECT_GT(testing::smallest_angle(s), smallest_before + 5.0);
   EXPECT_EQ(s.triangles, triangles);
   for (const Index q : {0, 10, 20}) EXPECT_EQ(s.points[q], before[q]);
   const double turn = std::cos(30.0 * std::numbers::pi / 180.0);
@@ -81,7 +64,7 @@ TEST(SmoothPoints, StopsWithCancelled) {
   const testing::SurfaceModel model = testing::surface_model(sphere_surface({0, 0, 0}, 1.0, 0.1));
   const UniformSize field(0.2);
   SurfaceMeshState s(model.surface, model.features, field, 1.2);
-  add_on_the_input(testing::jittered(sphere_surface({0, 0, 0}, 1.0, 0.05), 0.01, 3), s);
+  testing::add_on_the_input(testing::jittered(sphere_surface({0, 0, 0}, 1.0, 0.05), 0.01, 3), s);
   CancelledProgress cancelled;
   EXPECT_EQ(smooth_points(s, {}, cancelled).status().code(), absl::StatusCode::kCancelled);
 }

@@ -312,4 +312,19 @@ SurfaceModel surface_model(const Mesh& mesh, const FeatureParams& params) {
   return {*std::move(surface), features.ok() ? *std::move(features) : SurfaceFeatures{}};
 }
 
+void add_on_the_input(const Mesh& mesh, SurfaceMeshState& s) {
+  for (const Point& x : mesh.points) {
+    const Located on = s.surface.nearest_face(s.surface.to_local(x));
+    s.add_point(on.closest, 0.2, on.face, kInvalidIndex);
+  }
+  for (const Triangle& t : mesh.triangles) s.add_triangle(t, PatchId{0});
+}
+
+double smallest_angle(const SurfaceMeshState& s) {
+  double smallest = 180.0;
+  for (const Triangle& t : s.triangles)
+    smallest = std::min(smallest, triangle_quality(s.points, t).min_angle_deg);
+  return smallest;
+}
+
 }  // namespace afmesh::testing

@@ -13,6 +13,7 @@
 #include "core/surface/discrete_surface.h"
 #include "core/surface/features.h"
 #include "core/surface/generate_surface_mesh.h"
+#include "core/surface/surface_front.h"
 
 namespace afmesh::testing {
 
@@ -89,5 +90,12 @@ struct SurfaceModel {
   SurfaceFeatures features;
 };
 SurfaceModel surface_model(const Mesh& mesh, const FeatureParams& params = {});
+
+// Puts `mesh` into s as the front's result in patch 0: each point moved onto the input (its
+// host the face it lands on, no anchor), the triangles as they are.
+void add_on_the_input(const Mesh& mesh, SurfaceMeshState& s);
+
+// The smallest angle of s's triangles, degrees.
+double smallest_angle(const SurfaceMeshState& s);
 
 }  // namespace afmesh::testing
