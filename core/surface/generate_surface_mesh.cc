@@ -26,6 +26,7 @@
 #include "core/surface/curvature_sizes.h"
 #include "core/surface/discrete_surface.h"
 #include "core/surface/features.h"
+#include "core/surface/collapse_edges.h"
 #include "core/surface/flip_edges.h"
 #include "core/surface/gap_sizes.h"
 #include "core/surface/smooth_points.h"
@@ -660,6 +661,17 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
       !flips.ok())
     return flips.status();
   clock.lap("flips");
+  // Needles and caps that no flip mends lose their shortest edge (collapse_edges.h); the flips
+  // then run again over what changed.
+  if (absl::StatusOr<std::int64_t> collapses = collapse_edges(s, {}, progress); !collapses.ok()) {
+    return collapses.status();
+  } else if (*collapses > 0) {
+    if (absl::StatusOr<std::int64_t> flips =
+            flip_edges(s.points, s.triangles, s.triangle_patch, s.line_sides, {}, progress);
+        !flips.ok())
+      return flips.status();
+  }
+  clock.lap("collapses");
   // The points inside the patches relax towards their neighbours' mean, on the input (flips
   // again after it change the angles by less than 0.1% of triangles on the corpus).
   if (absl::StatusOr<std::int64_t> moves = smooth_points(s, {}, progress); !moves.ok())
