@@ -18,6 +18,13 @@ class SimplexIncidence {
  public:
   using Simplex = std::array<Index, Arity>;
 
+  // The incidence of every element of `elements` (all live).
+  static SimplexIncidence of(const std::vector<Simplex>& elements) {
+    SimplexIncidence incidence;
+    for (Index t = 0; t < static_cast<Index>(elements.size()); ++t) incidence.add(elements, t);
+    return incidence;
+  }
+
   // Element t (elements[t], live, not yet added) joins the lists of its corners.
   void add(const std::vector<Simplex>& elements, Index t) {
     if (next_.size() <= static_cast<std::size_t>(t)) next_.resize(t + 1);

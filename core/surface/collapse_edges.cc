@@ -73,8 +73,7 @@ bool collapse_is_better(const SurfaceMeshState& s, const SimplexIncidence<3>& in
 
 absl::StatusOr<std::int64_t> collapse_edges(SurfaceMeshState& s, const CollapseParams& params,
                                             Progress& progress) {
-  SimplexIncidence<3> incidence;
-  for (Index t = 0; t < static_cast<Index>(s.triangles.size()); ++t) incidence.add(s.triangles, t);
+  SimplexIncidence<3> incidence = SimplexIncidence<3>::of(s.triangles);
   const double min_cosine = std::cos(params.max_normal_turn_deg * std::numbers::pi / 180.0);
   CancelCheck cancel(progress, 4096);
   Trial trial;

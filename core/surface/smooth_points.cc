@@ -36,8 +36,7 @@ Fan fan_at(const SurfaceMeshState& s, Index q, const Point& x, const std::vector
 
 absl::StatusOr<std::int64_t> smooth_points(SurfaceMeshState& s, const SmoothParams& params,
                                            Progress& progress) {
-  SimplexIncidence<3> incidence;
-  for (Index t = 0; t < static_cast<Index>(s.triangles.size()); ++t) incidence.add(s.triangles, t);
+  SimplexIncidence<3> incidence = SimplexIncidence<3>::of(s.triangles);
   const double min_cosine = std::cos(params.max_normal_turn_deg * std::numbers::pi / 180.0);
   CancelCheck cancel(progress, 1024);  // each point a walk and a few fans
   std::vector<Index> fan;
