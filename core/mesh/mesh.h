@@ -11,6 +11,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -22,6 +23,14 @@ inline constexpr Index kInvalidIndex = -1;
 using Point = std::array<double, 3>;     // x, y, z
 using Triangle = std::array<Index, 3>;   // point indices
 using Tet = std::array<Index, 4>;        // point indices, positive orientation
+
+// Whether point p is a corner of simplex s (a triangle or a tet).
+template <std::size_t N>
+constexpr bool has_corner(const std::array<Index, N>& s, Index p) {
+  for (const Index q : s)
+    if (q == p) return true;
+  return false;
+}
 
 // A mesh as plain arrays. Any of the element arrays may be empty. Tag arrays always have the
 // same length as their element arrays (0 where a file carries no tag): `triangle_tags[i]` is the

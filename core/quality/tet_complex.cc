@@ -9,8 +9,6 @@
 namespace afmesh {
 namespace {
 
-bool contains(const Tet& t, Index p) { return t[0] == p || t[1] == p || t[2] == p || t[3] == p; }
-
 // +1 when (t[i0], t[i1], t[i2], t[i3]) is an even permutation of t, -1 when odd.
 int permutation_sign(int i0, int i1, int i2, int i3) {
   const int p[4] = {i0, i1, i2, i3};
@@ -153,7 +151,7 @@ bool TetComplex::replace(absl::Span<const Index> old, absl::Span<const Tet> fres
   for (Index o : old)
     for (Index p : m_->tets[o]) {
       bool used = false;
-      for (const Tet& f : fresh) used = used || contains(f, p);
+      for (const Tet& f : fresh) used = used || has_corner(f, p);
       if (!used) return false;
     }
   // link[4 f + i]: the fresh face (4 g + j) glued to face i of fresh[f], or -(k + 1) for the

@@ -17,8 +17,6 @@ double min_angle_of(const std::vector<Point>& p, const Triangle& t) {
   return triangle_min_angle_deg(p[t[0]], p[t[1]], p[t[2]]);
 }
 
-bool has_corner(const Triangle& t, Index q) { return t[0] == q || t[1] == q || t[2] == q; }
-
 // Scratch of one trial, reused across trials.
 struct Trial {
   std::vector<Index> fan_a, fan_b;        // the live triangles around the two points

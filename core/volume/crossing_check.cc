@@ -9,12 +9,6 @@
 namespace afmesh::volume {
 namespace {
 
-bool is_corner(const Tet& tet, Index q) {
-  return q == tet[0] || q == tet[1] || q == tet[2] || q == tet[3];
-}
-
-bool is_corner(const Triangle& t, Index q) { return q == t[0] || q == t[1] || q == t[2]; }
-
 // Faces of the positive tet (a, b, c, d), oriented out of it: (a, c, b), then the element's sides
 // (a, b, d), (b, c, d), (c, a, d) in the order of element_crosses_front's `sides`.
 constexpr int kFaces[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
@@ -84,7 +78,7 @@ bool side_is_a_meshed_face(MesherState& s, const Triangle (&sides)[3], Index p) 
     around.clear();
     s.incidence.elements_of(s.tets, p, around);
     for (const Index t : around) {
-      if (is_corner(s.tets[t], side[0]) && is_corner(s.tets[t], side[1])) return true;
+      if (has_corner(s.tets[t], side[0]) && has_corner(s.tets[t], side[1])) return true;
     }
   }
   return false;
@@ -116,11 +110,11 @@ bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed) 
     // environment on the element's own points (three ridge points, say, where the rim of a
     // thin sheet turns a corner) that looks away from it would make the element start a second
     // layer of elements over that face's side.
-    const bool has_p = w[0] == p || w[1] == p || w[2] == p;
-    const int on_face = is_corner(v, w[0]) + is_corner(v, w[1]) + is_corner(v, w[2]);
+    const bool has_p = has_corner(w, p);
+    const int on_face = has_corner(v, w[0]) + has_corner(v, w[1]) + has_corner(v, w[2]);
     if (has_p && on_face == 2) {
       int i = 0;  // the side on w's corners leaves out the corner of `face` that w lacks
-      while (is_corner(w, opposite[i])) ++i;
+      while (has_corner(w, opposite[i])) ++i;
       return orient3d(x[w[0]], x[w[1]], x[w[2]], x[opposite[i]]) <= 0;
     }
     if (!face_visible(s, env, g)) return false;
@@ -134,7 +128,7 @@ bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed) 
     const Orient3dPlane w_plane(x[w[0]], x[w[1]], x[w[2]]);
     unsigned above = 0, below = 0;
     for (int k = 0; k < 4; ++k) {
-      if (is_corner(w, tet[k])) {
+      if (has_corner(w, tet[k])) {
         above |= 1u << k;
         below |= 1u << k;
         continue;
@@ -177,7 +171,7 @@ bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed) 
   bool contains_point = false;
   s.front.bins().for_each_point_near(box, [&](Index q) {
     ++s.face_tests;
-    if (contains_point || is_corner(tet, q) || !point_visible(s, env, q)) return;
+    if (contains_point || has_corner(tet, q) || !point_visible(s, env, q)) return;
     // In the closed positive element: on no face plane's outer side (the barycentric signs of
     // point_in_tet are the face planes' sides, negated).
     contains_point = positive ? (planes.code(q) & 0x0F) == 0

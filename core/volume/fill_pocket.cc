@@ -25,8 +25,6 @@ Box segment_box(const Point& a, const Point& b) {
   return box;
 }
 
-bool has_corner(const Triangle& t, Index p) { return t[0] == p || t[1] == p || t[2] == p; }
-
 // Signed distance of x from the plane of face (a, b, c), positive on its unmeshed side.
 double height_above(const Point& a, const Point& b, const Point& c, const Point& x) {
   const Point n = cross(sub(b, a), sub(c, a));
