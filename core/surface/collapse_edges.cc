@@ -45,7 +45,8 @@ bool collapse_is_better(const SurfaceMeshState& s, const SimplexIncidence<3>& in
   incidence.elements_of(s.triangles, b, trial.fan_b);
   trial.shared.clear();
   trial.moved.clear();
-  for (const Index t : trial.fan_a) (has_corner(s.triangles[t], b) ? trial.shared : trial.moved).push_back(t);
+  for (const Index t : trial.fan_a)
+    (has_corner(s.triangles[t], b) ? trial.shared : trial.moved).push_back(t);
   if (trial.shared.size() != 2) return false;
   // The link condition: a and b have as common neighbours only the two opposite corners.
   neighbours_of(s.triangles, trial.fan_a, a, trial.neighbours_a);
@@ -55,7 +56,8 @@ bool collapse_is_better(const SurfaceMeshState& s, const SimplexIncidence<3>& in
     common += q != b && std::binary_search(trial.neighbours_b.begin(), trial.neighbours_b.end(), q);
   if (common != 2) return false;
   double before = 180.0, after = 180.0;
-  for (const Index t : trial.fan_a) before = std::min(before, min_angle_of(s.points, s.triangles[t]));
+  for (const Index t : trial.fan_a)
+    before = std::min(before, min_angle_of(s.points, s.triangles[t]));
   for (const Index t : trial.moved) {
     const Triangle& k = s.triangles[t];
     const auto at = [&](Index q) -> const Point& { return s.points[q == a ? b : q]; };
@@ -101,7 +103,8 @@ absl::StatusOr<std::int64_t> collapse_edges(SurfaceMeshState& s, const CollapseP
         }
         if (a == kInvalidIndex) continue;
         for (const Index g : trial.fan_a) incidence.remove(s.triangles, g);
-        for (const Index g : trial.shared) s.triangles[g] = {kInvalidIndex, kInvalidIndex, kInvalidIndex};
+        for (const Index g : trial.shared)
+          s.triangles[g] = {kInvalidIndex, kInvalidIndex, kInvalidIndex};
         for (const Index g : trial.moved) {
           for (Index& q : s.triangles[g])
             if (q == a) q = b;
