@@ -131,6 +131,61 @@ TEST(CurvatureSizes, TheChordBoundAsksTheLengthOfItsSagitta) {
   }
 }
 
+// A line's own turn (not in the paper): a flat disk of radius 2 whose rim is 64 segments, the
+// boundary line of an open surface. Its faces are flat, so only the rim can ask for a size. At
+// a base size of 1 the rim (12.6 long, over kMinTurnLineSizes sizes) takes eq. 21 on its radius
+// at 10° (2 r tan 5° = 0.35) and the chord bound sqrt(8 r epsilon) with epsilon = 0.002 (0.179);
+// at a base size of 2 the rim is too short for its turn to count, and no point asks anything.
+TEST(CurvatureSizes, ALineAsksTheSizeOfItsOwnTurn) {
+  const Mesh disk = testing::terrain_disk(0.0, 0.0, 2.0, 8, 64, [](double, double) { return 0.0; });
+  const testing::SurfaceModel model = testing::surface_model(disk);
+  ASSERT_EQ(model.features.lines.size(), 1u);
+  const double eq21 = 2.0 * 2.0 * std::tan(5.0 * std::numbers::pi / 180.0);
+  const double chord = std::sqrt(8.0 * 2.0 * 0.002);
+  struct Case {
+    double angle, deviation, expected;
+  };
+  for (const Case c : {Case{10.0, 0.0, eq21}, Case{0.0, 0.002, chord}, Case{10.0, 0.002, chord}}) {
+    const std::vector<double> sizes = curvature_point_sizes(model.surface, model.features, c.angle,
+                                                            c.deviation, UniformSize(1.0));
+    Range rim;
+    for (Index v = 0; v < model.surface.point_count(); ++v) {
+      const Point x = model.surface.to_global(model.surface.local_points()[v]);
+      if (std::abs(std::hypot(x[0], x[1]) - 2.0) > 1e-9) {
+        EXPECT_FALSE(std::isfinite(sizes[v])) << "an inner point of the flat disk at " << x[0];
+        continue;
+      }
+      rim.smallest = std::min(rim.smallest, sizes[v]);
+      rim.largest = std::max(rim.largest, sizes[v]);
+      ++rim.finite;
+    }
+    std::printf("disk rim, angle %g, epsilon %g: %d points, sizes %.4f to %.4f (expected %.4f)\n",
+                c.angle, c.deviation, rim.finite, rim.smallest, rim.largest, c.expected);
+    EXPECT_EQ(rim.finite, 64);
+    EXPECT_GT(rim.smallest, 0.85 * c.expected);
+    EXPECT_LT(rim.largest, 1.15 * c.expected);
+  }
+  const Range coarse = finite_range(
+      curvature_point_sizes(model.surface, model.features, 10.0, 0.002, UniformSize(2.0)));
+  EXPECT_EQ(coarse.finite, 0);
+}
+
+// End to end: the disk meshed at 1 with a 10° bound has at least 36 sides on its rim (a chord of
+// 10° each), where the size alone gives 13; every output point on the rim stays on it.
+TEST(CurvatureSizes, ARimIsSplitByItsTurn) {
+  const Mesh disk = testing::terrain_disk(0.0, 0.0, 2.0, 8, 64, [](double, double) { return 0.0; });
+  SurfaceParams params;
+  params.size = 1.0;
+  params.curvature_angle_deg = 10.0;
+  const absl::StatusOr<SurfaceResult> result = generate_surface_mesh(disk, params);
+  ASSERT_TRUE(result.ok()) << result.status();
+  int rim = 0;
+  for (const Point& x : result->mesh.points)
+    if (std::abs(std::hypot(x[0], x[1]) - 2.0) < 0.01) ++rim;
+  std::printf("disk at 1, 10°: %d rim points of %zu\n", rim, result->mesh.points.size());
+  EXPECT_GE(rim, 36);
+}
+
 // End to end, as a user meshes a scan at the default angles: the noisy sphere above at 0.15 gives
 // the triangles of the same sphere meshed with no curvature bound, within 5% (1,332; with eq. 21
 // between the faces alone, 6,930).
