@@ -66,6 +66,7 @@ class Optimiser {
 
   double quality(Index t) const { return tet_min_sine(c_.points(), c_.tet(t)); }
   bool bad(double quality) const { return quality < threshold_; }
+  void allow_splits(bool allowed) { splits_allowed_ = allowed; }
 
   // Laplacian smoothing over every movable point, kept where the worst tet around it improves.
   absl::Status smoothing_sweep(Progress& progress);
@@ -99,6 +100,7 @@ class Optimiser {
   TetComplex& c_;
   Index fixed_;
   const OptimiseParams& params_;
+  bool splits_allowed_ = true;  // this round may split edges (OptimiseParams::split_passes)
   double threshold_;
   std::vector<std::int64_t> touched_;  // per point: the change count of the last change at it
   std::int64_t changes_ = 0;
@@ -204,7 +206,8 @@ absl::Status Optimiser::round(const std::vector<BadTet>& work, std::vector<BadTe
       changed(created_, next);
     } else if (params_.smoothing && smooth_corners(w.tet, next) && !bad(quality(w.tet))) {
       // smoothed enough
-    } else if (params_.edge_split && bad(quality(w.tet)) && split_an_edge(w.tet)) {
+    } else if (params_.edge_split && splits_allowed_ && bad(quality(w.tet)) &&
+               split_an_edge(w.tet)) {
       changed(created_, next);
     } else if (c_.alive(w.tet) && bad(quality(w.tet))) {
       next.push_back({quality(w.tet), w.tet, changes_});
@@ -251,6 +254,7 @@ absl::StatusOr<OptimiseStats> optimise_tets(Mesh& mesh, Index fixed_points,
   for (int pass = 0; pass < params.passes && status.ok() && !work.empty(); ++pass) {
     bool changed = false;
     next.clear();
+    opt.allow_splits(pass < params.split_passes);
     status = opt.round(work, next, changed, progress);
     if (!changed) break;
     work = next_work(*complex, opt, next);
