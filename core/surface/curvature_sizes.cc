@@ -179,21 +179,28 @@ class HalfDisks {
   std::vector<std::pair<Index, double>> stack_;
 };
 
-// The turn across edge k of face f (other face g) seen at the element's scale (not in the paper;
-// see the header): down from rho = top, halving, eq. 21 between the half-disks at rho; the first
-// scale whose size is at least rho gives it, but no more than the last scale passed over (the
-// turn was too much there). When no scale down to the faces' own spacing passes, `face_level`
-// (eq. 21 between the two faces), again no more than the last scale passed over.
-double turn_at_element_scale(HalfDisks& disks, Index f, int k, Index g, double l_g, double top,
-                             double face_level) {
+// A turn seen at the element's scale (not in the paper; see the header), for the faces across an
+// edge and for a line at a vertex alike. `level` is eq. 21 at the pieces' own spacing l_g (between
+// the two faces, or the two pieces of line); where it asks for less than the largest scale tried
+// and than the base size (`base_size()`, asked only then: most edges turn slowly), the scales rho
+// from the smaller of those down, halving: `size_at_scale(rho)` is eq. 21 between the halves at
+// rho (NaN where it says nothing), and the first scale whose size is at least rho gives it, but no
+// more than the last scale passed over (the turn was too much there). When no scale down to l_g
+// passes, `level`, again no more than the last scale passed over.
+template <typename BaseSize, typename SizeAtScale>
+double turn_at_element_scale(double level, double l_g, BaseSize&& base_size,
+                             SizeAtScale&& size_at_scale) {
+  if (!(level < kTopScaleInSpacings * l_g)) return level;
+  const double top = std::min(kTopScaleInSpacings * l_g, base_size());
+  if (!(level < top)) return level;
   double passed_over = std::numeric_limits<double>::infinity();
   for (double rho = top; kDiskRadius * rho >= l_g; rho *= 0.5) {
-    const double l_p = disks.size_across(f, k, g, rho);
+    const double l_p = size_at_scale(rho);
     if (std::isnan(l_p)) continue;
     if (l_p >= rho) return std::min(l_p, passed_over);
     passed_over = rho;
   }
-  return std::min(face_level, passed_over);
+  return std::min(level, passed_over);
 }
 
 // Lines shorter than this many base sizes (at their middle vertex) keep no turn size: their
@@ -209,7 +216,8 @@ constexpr double kMinTurnLineSizes = 8.0;
 // its sides are chords of that curve, whatever the faces beside it ask: a rim of radius 3 split
 // at 0.93 lay 0.33% of the model from the input. Eq. 20–21 apply to a curve as to a surface, with
 // the directions of consecutive pieces of the line for the normals and the distance between
-// their midpoints for l_g. Read at the element's scale as the faces' turn is (see the header):
+// their midpoints for l_g. Read at the element's scale as the faces' turn is
+// (turn_at_element_scale):
 // at scale rho the line's arc within kDiskRadius * rho of the vertex on each side (stopping at
 // the line's ends; round a closed loop) is one half, its chord the half's direction and its
 // length-weighted midpoint its centroid.
@@ -295,27 +303,6 @@ class LineTurns {
   double total_ = 0.0;
 };
 
-// The size at vertex i of a line from its turn (LineTurns), at the element's scale as
-// turn_at_element_scale reads the faces': down from rho = top, halving, the first scale whose
-// size is at least rho, but no more than the last scale passed over; when none down to the
-// pieces' own spacing passes, eq. 21 between the pieces. +infinity where the line is straight.
-double line_turn_size(const LineTurns& turns, Index i, const DiscreteSurface& surface,
-                      const Point& x, const SizeField& base) {
-  double l_g = 0.0;
-  const double piece_level = turns.between_pieces(i, l_g);
-  if (!(piece_level < kTopScaleInSpacings * l_g)) return piece_level;
-  const double top = std::min(kTopScaleInSpacings * l_g, base.size_at(surface.to_global(x)));
-  if (!(piece_level < top)) return piece_level;
-  double passed_over = std::numeric_limits<double>::infinity();
-  for (double rho = top; kDiskRadius * rho >= l_g; rho *= 0.5) {
-    const double l_p = turns.size_at_scale(i, rho);
-    if (std::isnan(l_p)) continue;
-    if (l_p >= rho) return std::min(l_p, passed_over);
-    passed_over = rho;
-  }
-  return std::min(piece_level, passed_over);
-}
-
 }  // namespace
 
 std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
@@ -353,13 +340,11 @@ std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
       double l_p = turn_size(surface.normal(FaceId{f}), surface.normal(FaceId{g}),
                              neighbours.same_way[f][k], turn_distance(c_f, c_g, sub(p[b], p[a]), bound),
                              bound);
-      // Where that asks for less than the base size (and than the largest scale tried), the
-      // turn at the element's scale. The base size is asked only then: most edges turn slowly.
-      if (l_p < kTopScaleInSpacings * l_g) {
-        const double top = std::min(
-            kTopScaleInSpacings * l_g, base.size_at(surface.to_global(scale(add(c_f, c_g), 0.5))));
-        if (l_p < top) l_p = turn_at_element_scale(disks, f, k, g, l_g, top, l_p);
-      }
+      // Where that asks for less than the base size, the turn at the element's scale.
+      l_p = turn_at_element_scale(
+          l_p, l_g,
+          [&] { return base.size_at(surface.to_global(scale(add(c_f, c_g), 0.5))); },
+          [&](double rho) { return disks.size_across(f, k, g, rho); });
       size[a] = std::min(size[a], l_p);  // eq. 22
       size[b] = std::min(size[b], l_p);
     }
@@ -373,7 +358,12 @@ std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
     for (Index i = 0; i < turns.segments(); ++i) {
       if (!turns.inner(i)) continue;
       const Index v = line.vertices[i];
-      size[v] = std::min(size[v], line_turn_size(turns, i, surface, p[v], base));
+      double l_g = 0.0;
+      const double level = turns.between_pieces(i, l_g);
+      size[v] = std::min(
+          size[v], turn_at_element_scale(
+                       level, l_g, [&] { return base.size_at(surface.to_global(p[v])); },
+                       [&](double rho) { return turns.size_at_scale(i, rho); }));
     }
   }
   return size;
