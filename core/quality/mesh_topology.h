@@ -129,4 +129,10 @@ EdgeNeighbours triangle_edge_neighbours(const std::vector<Triangle>& triangles,
 Index label_components(const EdgeNeighbours& neighbours,
                        absl::FunctionRef<bool(Index t, int k)> joins, std::vector<Index>& label);
 
+// One id per triangle of `triangles` (distinct indices in each): 1 + its component, joined across
+// every edge of two triangles (label_components). As validate_surface's face_environments, only
+// triangles of different components may cross: the judge of an assembly whose components cross
+// in the input and are re-triangulated one by one (MeshSurface, issue 11 part 6). O(M log M).
+std::vector<std::int32_t> component_environments(const std::vector<Triangle>& triangles);
+
 }  // namespace afmesh
