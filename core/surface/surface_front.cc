@@ -694,6 +694,9 @@ void PatchFront::add_face(Index f, const Side& v, Index p) {
 // sides no longer cross (crossing_sides), leaves a strip of ~60 sides that no new point fits
 // (gmsh_lever at its mean edge; 32 left it stuck).
 constexpr std::size_t kMaxHoleSides = 64;
+// A corner of the hole this near an ear's diagonal, as a fraction of the diagonal's length, lies
+// on it (a rounding's width; not in the paper).
+constexpr double kOnDiagonal = 1e-9;
 
 Index PatchFront::next_side_of_loop(Index at, Index from) const {
   Index leaving = kInvalidIndex, count = 0;
@@ -789,6 +792,22 @@ bool PatchFront::fill_hole(Index f) {
           empty = false;
       }
       if (!empty) continue;
+      // Nor on its diagonal in space, the ear's own corner b included, where the rounding of
+      // the plane's coordinates can put a point a hair outside: line points split along one
+      // straight input edge lie on the chord between two of them. An ear with b on it has no
+      // area and faces any way (cgal_bones at 1.4 times its mean edge: an ear on three line
+      // points, 2.3e-18 in area, turned over, left a vertex with two fans); one with another
+      // corner on it covers that point with an edge along the line and leaves a hole of no area
+      // (gmsh_lever with its lines split at their turning vertices, an experiment).
+      const Point& xa = s_.points[corners[a]];
+      const Point& xc = s_.points[corners[c]];
+      const double on_diagonal = kOnDiagonal * norm(sub(xc, xa));
+      for (const std::size_t j : ring) {
+        if (j == a || j == c) continue;
+        const Point& xj = s_.points[corners[j]];
+        if (norm(sub(closest_point_on_segment(xj, xa, xc), xj)) <= on_diagonal) empty = false;
+      }
+      if (!empty) continue;
       double angle = triangle_min_angle_deg(s_.points[corners[a]], s_.points[corners[b]],
                                             s_.points[corners[c]]);
       // With four corners left, the ear decides the last triangle too: both are judged, so
@@ -810,6 +829,14 @@ bool PatchFront::fill_hole(Index f) {
     ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(best));
   }
   if (orient2d(xy[ring[0]].data(), xy[ring[1]].data(), xy[ring[2]].data()) <= 0) return false;
+  // The last ear, too, must have area in space (a hole of three sides along a line).
+  {
+    const Point& xa = s_.points[corners[ring[0]]];
+    const Point& xb = s_.points[corners[ring[1]]];
+    const Point& xc = s_.points[corners[ring[2]]];
+    if (norm(sub(closest_point_on_segment(xb, xa, xc), xb)) <= kOnDiagonal * norm(sub(xc, xa)))
+      return false;
+  }
   ears.push_back({corners[ring[0]], corners[ring[1]], corners[ring[2]]});
   for (const Index g : loop) front_.remove(g);
   for (const Triangle& ear : ears) add_triangle(ear);

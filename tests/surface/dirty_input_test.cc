@@ -91,6 +91,26 @@ TEST(DirtyInput, BonesAreReTriangulatedComponentByComponent) {
   EXPECT_EQ(result->report.first_input_crossing, input->first);
 }
 
+// The surface front ends valid or with FAILED_PRECONDITION, never with a surface that fails a
+// check. At 1.4 times the bones' mean edge a patch's hole ran along a straight line whose points
+// the hole's plane saw a hair apart, and ear clipping cut an ear on three of them: no area,
+// turned over, a vertex with two fans (surface_front.cc, kOnDiagonal).
+TEST(DirtyInput, BonesAtOneAndAHalfTheMeanEdgeEndValidOrStop) {
+  const Mesh bones = testing::corpus_mesh("cgal_bones.stl");
+  SurfaceParams params;
+  params.size = 1.4 * mean_edge_length(bones);
+  const absl::StatusOr<SurfaceResult> result = generate_surface_mesh(bones, params);
+  if (!result.ok()) {
+    EXPECT_EQ(result.status().code(), absl::StatusCode::kFailedPrecondition) << result.status();
+    return;
+  }
+  ValidationParams by_component;
+  const std::vector<std::int32_t> components = component_environments(result->mesh.triangles);
+  by_component.face_environments = components;
+  for (const Check& c : validate_surface(result->mesh, by_component).checks)
+    EXPECT_TRUE(c.passed()) << c.name << ": " << c.summary;
+}
+
 // Components that do not cross are not reported as crossing; one component is not checked.
 TEST(DirtyInput, ComponentsApartReportNoCrossing) {
   Mesh two = sphere_surface({0, 0, 0}, 1.0, 0.2);
