@@ -697,6 +697,10 @@ constexpr std::size_t kMaxHoleSides = 64;
 // A corner of the hole this near an ear's diagonal, as a fraction of the diagonal's length, lies
 // on it (a rounding's width; not in the paper).
 constexpr double kOnDiagonal = 1e-9;
+// Whether x lies on segment (a, c) within kOnDiagonal of its length.
+bool on_diagonal(const Point& x, const Point& a, const Point& c) {
+  return norm(sub(closest_point_on_segment(x, a, c), x)) <= kOnDiagonal * norm(sub(c, a));
+}
 
 Index PatchFront::next_side_of_loop(Index at, Index from) const {
   Index leaving = kInvalidIndex, count = 0;
@@ -799,14 +803,10 @@ bool PatchFront::fill_hole(Index f) {
       // points, 2.3e-18 in area, turned over, left a vertex with two fans); one with another
       // corner on it covers that point with an edge along the line and leaves a hole of no area
       // (gmsh_lever with its lines split at their turning vertices, an experiment).
-      const Point& xa = s_.points[corners[a]];
-      const Point& xc = s_.points[corners[c]];
-      const double on_diagonal = kOnDiagonal * norm(sub(xc, xa));
-      for (const std::size_t j : ring) {
-        if (j == a || j == c) continue;
-        const Point& xj = s_.points[corners[j]];
-        if (norm(sub(closest_point_on_segment(xj, xa, xc), xj)) <= on_diagonal) empty = false;
-      }
+      for (const std::size_t j : ring)
+        if (j != a && j != c &&
+            on_diagonal(s_.points[corners[j]], s_.points[corners[a]], s_.points[corners[c]]))
+          empty = false;
       if (!empty) continue;
       double angle = triangle_min_angle_deg(s_.points[corners[a]], s_.points[corners[b]],
                                             s_.points[corners[c]]);
@@ -830,13 +830,9 @@ bool PatchFront::fill_hole(Index f) {
   }
   if (orient2d(xy[ring[0]].data(), xy[ring[1]].data(), xy[ring[2]].data()) <= 0) return false;
   // The last ear, too, must have area in space (a hole of three sides along a line).
-  {
-    const Point& xa = s_.points[corners[ring[0]]];
-    const Point& xb = s_.points[corners[ring[1]]];
-    const Point& xc = s_.points[corners[ring[2]]];
-    if (norm(sub(closest_point_on_segment(xb, xa, xc), xb)) <= kOnDiagonal * norm(sub(xc, xa)))
-      return false;
-  }
+  if (on_diagonal(s_.points[corners[ring[1]]], s_.points[corners[ring[0]]],
+                  s_.points[corners[ring[2]]]))
+    return false;
   ears.push_back({corners[ring[0]], corners[ring[1]], corners[ring[2]]});
   for (const Index g : loop) front_.remove(g);
   for (const Triangle& ear : ears) add_triangle(ear);

@@ -59,6 +59,17 @@ TEST(DirtyInput, AStopSaysWhatTheInputLooksLikeThere) {
   EXPECT_THAT(message, ::testing::Not(HasSubstr("intersects itself")));
 }
 
+// Every check of `surface` passes with its edge-connected components as environments: only
+// triangles of different components may cross (an assembly re-triangulated component by
+// component).
+void expect_valid_by_component(const Mesh& surface) {
+  ValidationParams by_component;
+  const std::vector<std::int32_t> components = component_environments(surface.triangles);
+  by_component.face_environments = components;
+  for (const Check& c : validate_surface(surface, by_component).checks)
+    EXPECT_TRUE(c.passed()) << c.name << ": " << c.summary;
+}
+
 // End to end: bones at its mean edge is re-triangulated component by component (issue 11 part 6:
 // crossing components are each meshed on their own). Every check of the output passes but the
 // one the input fails too: the bones cross where the input's do.
@@ -76,12 +87,9 @@ TEST(DirtyInput, BonesAreReTriangulatedComponentByComponent) {
   EXPECT_FALSE(crossings->passed()) << "the input's 366 crossing pairs are gone from the output";
   // They cross between components only: with the components as environments, every check
   // passes (no component crosses itself).
-  ValidationParams by_component;
   const std::vector<std::int32_t> components = component_environments(result->mesh.triangles);
-  by_component.face_environments = components;
   EXPECT_EQ(*std::max_element(components.begin(), components.end()), 26);
-  for (const Check& c : validate_surface(result->mesh, by_component).checks)
-    EXPECT_TRUE(c.passed()) << c.name << ": " << c.summary;
+  expect_valid_by_component(result->mesh);
   // The report says so: the input's crossing pairs and where the first is.
   EXPECT_EQ(result->report.components, 26);
   EXPECT_EQ(result->report.input_crossing_pairs, 366);
@@ -104,11 +112,7 @@ TEST(DirtyInput, BonesAtOneAndAHalfTheMeanEdgeEndValidOrStop) {
     EXPECT_EQ(result.status().code(), absl::StatusCode::kFailedPrecondition) << result.status();
     return;
   }
-  ValidationParams by_component;
-  const std::vector<std::int32_t> components = component_environments(result->mesh.triangles);
-  by_component.face_environments = components;
-  for (const Check& c : validate_surface(result->mesh, by_component).checks)
-    EXPECT_TRUE(c.passed()) << c.name << ": " << c.summary;
+  expect_valid_by_component(result->mesh);
 }
 
 // Components that do not cross are not reported as crossing; one component is not checked.
