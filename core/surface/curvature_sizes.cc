@@ -44,8 +44,9 @@ struct TurnBound {
 };
 
 // The size for normals n_1, n_2 (any length; the second counted reversed when `reversed`) that
-// turn by alpha over a distance l: eq. 21, l_p = l tan(alpha_p / 2) / tan(alpha / 2), and the chord
-// bound sqrt(8 r epsilon) with r = l / (2 tan(alpha / 2)) from eq. 20. +infinity where they agree.
+// turn by alpha over a distance l: eq. 21, l_p = l tan(alpha_p / 2) / tan(alpha / 2), the chord
+// bound sqrt(8 r epsilon) with r = l / (2 tan(alpha / 2)) from eq. 20, and the kink bound
+// 2 epsilon / sin(alpha / 2) (see the header). +infinity where they agree.
 double turn_size(const Point& n_1, const Point& n_2, bool reversed, double l,
                  const TurnBound& bound) {
   const double cosine = std::clamp(
@@ -55,7 +56,9 @@ double turn_size(const Point& n_1, const Point& n_2, bool reversed, double l,
   const double tan_alpha = std::tan(0.5 * std::min(alpha, 0.99 * std::numbers::pi));
   const double l_p = l * bound.tan_p / tan_alpha;
   if (!(bound.deviation > 0.0)) return l_p;
-  return std::min(l_p, std::sqrt(4.0 * l * bound.deviation / tan_alpha));
+  const double chord = std::sqrt(4.0 * l * bound.deviation / tan_alpha);
+  const double kink = 2.0 * bound.deviation / std::sin(0.5 * alpha);
+  return std::min({l_p, chord, kink});
 }
 
 // The distance over which normals at c_1 and c_2 turn about an edge along `edge`: its part across

@@ -20,10 +20,17 @@
 // (the sagitta l^2 / 8r). Eq. 21 alone lets an element of length l lie l tan(alpha_p / 2) / 4
 // from the arc, 0.067 l at 30°: at the sizes of a CAD part (diag / 40) that is 0.17% of the
 // model. The chord bound is the finer one wherever eq. 21's length is over 4 epsilon /
-// tan(alpha_p / 2) (at 30° and epsilon = 0.0003 diag: diag / 223). The two-sided distance then
-// measured is about twice epsilon: the front's edges run up to ~1.3 times the size, a
-// triangle's centroid lies deeper than an edge's midpoint, and a chord across the crease
-// between two facets of a coarse tessellation cuts it.
+// tan(alpha_p / 2) (at 30° and epsilon = 0.0003 diag: diag / 223). The input is a polyhedron,
+// not the circle eq. 20 fits to it: a chord of length l across a crease where two faces turn
+// by alpha (a facet edge of a coarse CAD tessellation, a vertex of a line's polyline) lies up
+// to (l / 2) sin(alpha / 2) from it when l is shorter than the faces, more than the sagitta
+// l^2 / 8r of the circle (the two agree at l = l_g). So the chord bound is joined by this kink
+// bound, l <= 2 epsilon / sin(alpha / 2), wherever it is smaller (ours): a 64-gon of radius 2
+// split by the sagitta alone at epsilon 0.002 had sides of 0.179 cutting its vertices by 0.0044,
+// and simbody_UR10_Wrist2, whose 0.004-wide facets turn by 29° (under the ridge angle), came
+// out 0.26% of its diagonal from the input at epsilon = 0.03%. epsilon here bounds one chord of
+// the size; generate_surface_mesh asks for a fraction of the user's deviation
+// (kDeviationMargin) so that the triangles it makes, longer and wider than one chord, keep it.
 //
 // The turn is read at the element's scale (not in the paper, which measures it between the faces
 // of a grid of about the size in force). On a scan whose faces are smaller than the size, noise

@@ -51,17 +51,22 @@ struct SurfaceParams {
   // faster, so that small holes and fillets are not meshed over. 30° gives about 12 elements
   // round a circle.
   double curvature_angle_deg = 30.0;
-  // Where the input curves with radius r (eq. 20), the size is also at most sqrt(8 r epsilon),
-  // the length of a chord whose midpoint lies epsilon from its arc; epsilon is this fraction of
-  // the model size (the input's bounding-box diagonal; in [0, 1), or 0: no such bound). Not in
-  // the paper, whose §4.4 leaves "other measures of surface accuracy" open (curvature_sizes.h).
-  // The angle alone lets an element of length l lie 0.067 l from the input at 30°, 0.17% of the
-  // model size at l = diag / 40. 0.0003 keeps the bench's inputs (CAD parts at diag / 40, the
-  // bunny at diag / 60) within 0.055–0.071% of the diagonal, cgal_pinion 0.101% (chords across
-  // the creases of its 14° facets), with 1.25–3.7 times the triangles. It is off by default for
-  // now: with it the front stops on inputs it closes without it (at 0.0003: homer's spike, the
-  // lever's ledge at its mean edge, and the volume fill of part1 re-triangulated; at 0.00025:
-  // cgal_bones), by margins that move with any change of the sizes.
+  // The largest distance of the output from the input where it curves, as a fraction of the
+  // model size (the input's bounding-box diagonal; in [0, 1), or 0: no such bound). Not in the
+  // paper, whose §4.4 leaves "other measures of surface accuracy" open (curvature_sizes.h):
+  // where the input curves with radius r (eq. 20) an element is at most sqrt(8 r epsilon) long
+  // (the chord whose midpoint lies epsilon from its arc), and across a crease where two faces
+  // turn by alpha, 2 epsilon / sin(alpha / 2) (the kink bound), epsilon being the deviation over
+  // kDeviationMargin (2.25, for triangles longer and wider than one chord). The angle alone lets
+  // an element of length l lie 0.067 l from the input at 30°, 0.17% of the model size at
+  // l = diag / 40. 0.001 keeps 14 corpus files at their mean edge within 0.047–0.094% of the
+  // diagonal, with 1 (the bunny, where the 30° bound is finer) to 90 times the triangles of the
+  // angle bound alone (gmsh_surface1, 80 coarse facets: 84 → 7,782), and the bench's CAD parts
+  // at diag / 40 and bunny at diag / 60 within 0.060–0.077%. It is off
+  // by default: the triangles it costs on coarse CAD tessellations (every facet crease is a
+  // kink) are the user's choice, and with it the front stops on some inputs it closes without
+  // it (cgal_dino at 0.001 and its mean edge), by margins that move with any change of the
+  // sizes.
   double curvature_deviation = 0.0;
   // Stop with RESOURCE_EXHAUSTED past this many output triangles (the server's --max-elements).
   std::int64_t max_triangles = std::numeric_limits<std::int64_t>::max();

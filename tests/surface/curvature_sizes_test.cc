@@ -134,18 +134,21 @@ TEST(CurvatureSizes, TheChordBoundAsksTheLengthOfItsSagitta) {
 // A line's own turn (not in the paper): a flat disk of radius 2 whose rim is 64 segments, the
 // boundary line of an open surface. Its faces are flat, so only the rim can ask for a size. At
 // a base size of 1 the rim (12.6 long, over kMinTurnLineSizes sizes) takes eq. 21 on its radius
-// at 10° (2 r tan 5° = 0.35) and the chord bound sqrt(8 r epsilon) with epsilon = 0.002 (0.179);
-// at a base size of 2 the rim is too short for its turn to count, and no point asks anything.
+// at 10° (2 r tan 5° = 0.35), and with epsilon = 0.002 the kink bound at its vertices, which
+// turn by 5.625°: 2 epsilon / sin(2.8125°) = 0.0815 (a side of eq. 20's sagitta bound, sqrt(8 r
+// epsilon) = 0.179, would cut a vertex by 0.0044); at a base size of 2 the rim is too short for
+// its turn to count, and no point asks anything.
 TEST(CurvatureSizes, ALineAsksTheSizeOfItsOwnTurn) {
   const Mesh disk = testing::terrain_disk(0.0, 0.0, 2.0, 8, 64, [](double, double) { return 0.0; });
   const testing::SurfaceModel model = testing::surface_model(disk);
   ASSERT_EQ(model.features.lines.size(), 1u);
   const double eq21 = 2.0 * 2.0 * std::tan(5.0 * std::numbers::pi / 180.0);
-  const double chord = std::sqrt(8.0 * 2.0 * 0.002);
+  const double kink = 2.0 * 0.002 / std::sin(std::numbers::pi / 64.0);
+  ASSERT_LT(kink, std::sqrt(8.0 * 2.0 * 0.002));
   struct Case {
     double angle, deviation, expected;
   };
-  for (const Case c : {Case{10.0, 0.0, eq21}, Case{0.0, 0.002, chord}, Case{10.0, 0.002, chord}}) {
+  for (const Case c : {Case{10.0, 0.0, eq21}, Case{0.0, 0.002, kink}, Case{10.0, 0.002, kink}}) {
     const std::vector<double> sizes = curvature_point_sizes(model.surface, model.features, c.angle,
                                                             c.deviation, UniformSize(1.0));
     Range rim;
