@@ -7,7 +7,7 @@ target edge length h and ridge angle, every output judged by the same code that 
 Every run is a fresh process, one after the other, on one thread (OMP_NUM_THREADS=1; gmsh
 General.NumThreads = 1): afmesh as `AFMESH surface IN -o OUT --size H --ridge-angle A --quiet`
 (row afmesh: its default curvature bound on; row afmesh-h: `--curvature-angle 0`, the size alone
-as the peers are given it),
+as the peers are given it; row afmesh-d: `--curvature-deviation 0.001`, the accuracy goal asked),
 CGAL as `cgal_remesh remesh` (compiled once with g++ and cached in the build directory), gmsh and
 netgen as a child of this script. Each runs under /usr/bin/time (process wall seconds, peak
 RSS) with a timeout; a tool that fails shows its exit status and message in its row.
@@ -53,8 +53,12 @@ CGAL_SOURCE = os.path.join(SURFACE_DIR, "cgal_remesh.cc")
 # afmesh-h: afmesh with the size alone (--curvature-angle 0), as the peers are driven (gmsh without
 # MeshSizeFromCurvature, CGAL and netgen with h only): afmesh's default also bounds the turn of
 # its elements where the input curves (30 degrees), which on a scan asks for far more triangles
-# than h does. Both rows are shown; each has its own ratio line.
-AFMESH_TOOLS = ("afmesh", "afmesh-h")
+# than h does. afmesh-d: afmesh asked to stay within issue 11's accuracy goal, 0.1% of the
+# diagonal (--curvature-deviation 0.001), which refines where the input curves or creases under
+# the ridge angle. Every row is shown; each has its own ratio line.
+AFMESH_FLAGS = {"afmesh": [], "afmesh-h": ["--curvature-angle", "0"],
+                "afmesh-d": ["--curvature-deviation", "0.001"]}
+AFMESH_TOOLS = tuple(AFMESH_FLAGS)
 TOOLS = AFMESH_TOOLS + ("cgal", "gmsh", "netgen")
 DEFAULT_RIDGE_ANGLE = 30.0  # afmesh's default, and netgen's STL yangle (which it cannot be told)
 SPHERE_AREA = 4.0 * math.pi
@@ -348,8 +352,7 @@ def run_tool(args, tool, case, workdir):
     if tool in AFMESH_TOOLS:
         command = [args.afmesh, "surface", case["input"], "-o", output, "--size", repr(h),
                    "--ridge-angle", repr(angle), "--quiet"]
-        if tool == "afmesh-h":
-            command += ["--curvature-angle", "0"]
+        command += AFMESH_FLAGS[tool]
     elif tool == "cgal":
         if not args.cgal_binary:
             return {"error": f"not measured: {args.cgal_missing}"}
@@ -377,8 +380,8 @@ def run_tool(args, tool, case, workdir):
             figures.update(json.load(f))
     else:  # afmesh: its phases are not exposed; the whole command stands for them
         figures.update({"seconds": wall, "cpu_seconds": cpu, "seconds_whole_process": True,
-                        "options": f"--size {h:g} --ridge-angle {angle:g}"
-                                   + (" --curvature-angle 0" if tool == "afmesh-h" else "")})
+                        "options": " ".join([f"--size {h:g} --ridge-angle {angle:g}"]
+                                            + AFMESH_FLAGS[tool])})
     figures["output"] = output
     return figures
 
