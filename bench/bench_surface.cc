@@ -23,18 +23,14 @@
 namespace afmesh::bench {
 namespace {
 
-int run(const std::string& input, double size, double ridge_angle, double curvature_angle,
-        double curvature_deviation, const std::string& out, bool json) {
+// params as the options set them; a size of 0 is the input's mean edge.
+int run(const std::string& input, SurfaceParams params, const std::string& out, bool json) {
   absl::StatusOr<Mesh> surface = read_mesh(input);
   if (!surface.ok()) {
     std::fprintf(stderr, "afmesh-bench-surface: %s\n", surface.status().ToString().c_str());
     return 3;
   }
-  SurfaceParams params;
-  params.size = size > 0 ? size : mean_edge_length(*surface);
-  params.ridge_angle_deg = ridge_angle;
-  params.curvature_angle_deg = curvature_angle;
-  params.curvature_deviation = curvature_deviation;
+  if (!(params.size > 0)) params.size = mean_edge_length(*surface);
   PeakMemoryProbe memory;
   memory.start();
   const auto start = std::chrono::steady_clock::now();
@@ -132,20 +128,21 @@ int run(const std::string& input, double size, double ridge_angle, double curvat
 int main(int argc, char** argv) {
   CLI::App app{"The core surface mesher on one surface (one thread)"};
   std::string input, out;
-  double size = 0, ridge_angle = 30, curvature_angle = afmesh::SurfaceParams{}.curvature_angle_deg;
-  double curvature_deviation = afmesh::SurfaceParams{}.curvature_deviation;
+  afmesh::SurfaceParams params;
+  params.size = 0;
   bool json = false;
   app.add_option("--input", input, "surface file (.stl, .obj, .off, .mesh, .msh)")->required();
-  app.add_option("--size", size, "target edge length h (default: the input's mean edge)");
-  app.add_option("--ridge-angle", ridge_angle, "ridge angle, degrees");
-  app.add_option("--curvature-angle", curvature_angle,
+  app.add_option("--size", params.size, "target edge length h (default: the input's mean edge)");
+  app.add_option("--ridge-angle", params.ridge_angle_deg, "ridge angle, degrees");
+  app.add_option("--curvature-angle", params.curvature_angle_deg,
                  "largest turn of an element where the input curves, degrees (0: off)");
-  app.add_option("--curvature-deviation", curvature_deviation,
+  app.add_option("--curvature-deviation", params.curvature_deviation,
                  "largest distance of an element from the input where it curves, as a fraction "
                  "of the bounding-box diagonal (0: off)");
+  app.add_option("--wall-sizes", params.wall_sizes,
+                 "elements at most this many times the thickness of the solid's walls (0: off)");
   app.add_option("--out", out, "write the surface (format by extension)");
   app.add_flag("--json", json, "one JSON object");
   CLI11_PARSE(app, argc, argv);
-  return afmesh::bench::run(input, size, ridge_angle, curvature_angle, curvature_deviation, out,
-                                 json);
+  return afmesh::bench::run(input, params, out, json);
 }

@@ -1,6 +1,6 @@
 // afmesh surface IN -o OUT [--size H] [--growth C] [--spec SPEC.json] [--ridge-angle DEG]
 //                          [--corner-angle DEG] [--curvature-angle DEG]
-//                          [--curvature-deviation E] [--server ADDR] [--retries N]
+//                          [--curvature-deviation E] [--wall-sizes F] [--server ADDR] [--retries N]
 //                          [--tls-ca FILE [--tls-cert FILE --tls-key FILE]] [--token-file FILE]
 //                          [--json] [--quiet] [--timeout SEC]
 // Re-triangulates the surface in IN at the size asked through the MeshSurface call (paper §3),

@@ -1,6 +1,7 @@
 // afmesh volume IN -o OUT [--size H] [--growth C] [--spec SPEC.json] [--envs auto|tags|none]
 //                         [--remesh-surface [--ridge-angle DEG] [--corner-angle DEG]
-//                                           [--curvature-angle DEG] [--curvature-deviation E]]
+//                                           [--curvature-angle DEG] [--curvature-deviation E]
+//                                           [--wall-sizes F]]
 //                         [--server ADDR] [--retries N]
 //                         [--tls-ca FILE [--tls-cert FILE --tls-key FILE]]
 //                         [--token-file FILE] [--json] [--quiet] [--timeout SEC]
@@ -124,6 +125,7 @@ void add_volume_command(CLI::App& app, Action& action) {
   command->get_option("--corner-angle")->needs(remesh);
   command->get_option("--curvature-angle")->needs(remesh);
   command->get_option("--curvature-deviation")->needs(remesh);
+  command->get_option("--wall-sizes")->needs(remesh);
   command->callback([options, command, &action] {
     note_given_flags(*command, options->mesh);
     action = [options] { return run_volume(*options); };

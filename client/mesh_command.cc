@@ -244,6 +244,7 @@ int run_mesh_command(const MeshCommandOptions& options, MeshCommand command) {
   call_options.corner_angle_deg = options.corner_angle_deg;
   call_options.curvature_angle_deg = options.curvature_angle_deg;
   call_options.curvature_deviation = options.curvature_deviation;
+  call_options.wall_sizes = options.wall_sizes;
   call_options.timeout_seconds = options.timeout_seconds;
   call_options.canceller = canceller.get();
   call_options.security = *std::move(security);
@@ -366,11 +367,16 @@ void add_surface_angle_flags(CLI::App& command, MeshCommandOptions& options) {
       ->check(CLI::Range(0.0, 180.0) & !CLI::IsMember({180.0}));
   command
       .add_option("--curvature-deviation", options.curvature_deviation_flag,
-                  "where IN curves, the size is also at most sqrt(8 r E) for a radius of "
-                  "curvature r, E being this fraction of IN's bounding-box diagonal, so the "
-                  "result stays within about 0.1% of the diagonal from IN at E = 0.0003 (default "
-                  "0: the angle alone)")
+                  "the result stays within E times IN's bounding-box diagonal from IN where IN "
+                  "curves or creases: the size is reduced there (0.001: within 0.1%; default 0: "
+                  "the angle alone)")
       ->check(CLI::Range(0.0, 1.0) & !CLI::IsMember({1.0}));
+  command
+      .add_option("--wall-sizes", options.wall_sizes_flag,
+                  "elements at most F times the thickness of the solid IN bounds where its walls "
+                  "are thinner than the size, down to 0.15 of the size, so that a volume's tets "
+                  "do not span them flat (1 is a good choice; default 0: none)")
+      ->check(CLI::Range(0.0, 100.0) & !CLI::IsMember({100.0}));
 }
 
 void note_given_flags(const CLI::App& command, MeshCommandOptions& options) {
@@ -382,6 +388,7 @@ void note_given_flags(const CLI::App& command, MeshCommandOptions& options) {
   if (command.count("--curvature-deviation") > 0) {
     options.curvature_deviation = options.curvature_deviation_flag;
   }
+  if (command.count("--wall-sizes") > 0) options.wall_sizes = options.wall_sizes_flag;
 }
 
 }  // namespace afmesh::cli

@@ -40,6 +40,8 @@ struct MeshCommandOptions {
   double curvature_angle_flag = 0.0;          // its parsed value (note_given_flags)
   std::optional<double> curvature_deviation;  // --curvature-deviation; unset: the server's default
   double curvature_deviation_flag = 0.0;      // its parsed value (note_given_flags)
+  std::optional<double> wall_sizes;           // --wall-sizes; unset: the server's default
+  double wall_sizes_flag = 0.0;               // its parsed value (note_given_flags)
 };
 
 // Adds the shared flags to `command`, with the help texts of IN and -o.

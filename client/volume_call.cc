@@ -66,6 +66,7 @@ v1::MeshSurfaceRequest header_request(const Mesh& front, const VolumeCallOptions
   if (options.curvature_deviation) {
     header.mutable_options()->set_curvature_deviation(*options.curvature_deviation);
   }
+  if (options.wall_sizes) header.mutable_options()->set_wall_sizes(*options.wall_sizes);
   return request;
 }
 
@@ -84,6 +85,7 @@ v1::MeshVolumeRequest header_request(const Mesh& front, const VolumeCallOptions&
     if (options.curvature_deviation) {
       header.mutable_options()->set_curvature_deviation(*options.curvature_deviation);
     }
+    if (options.wall_sizes) header.mutable_options()->set_wall_sizes(*options.wall_sizes);
   }
   switch (options.environments) {
     case EnvironmentSource::kNone:

@@ -64,11 +64,13 @@ struct VolumeCallOptions {
   // MeshSurface, and MeshVolume with remesh_surface: ridge and corner angles in degrees
   // (SurfaceOptions; 0: the server's defaults, 30 and 60), and the curvature angle (unset: the
   // server's default, 30; 0: no curvature bound) and deviation (a fraction of the model size;
-  // unset: the server's default, none; 0: none). `environments` is MeshVolume's only.
+  // unset: the server's default, none; 0: none), and the wall sizes (elements per wall
+  // thickness; unset: the server's default, none; 0: none). `environments` is MeshVolume's only.
   double ridge_angle_deg = 0.0;
   double corner_angle_deg = 0.0;
   std::optional<double> curvature_angle_deg;
   std::optional<double> curvature_deviation;
+  std::optional<double> wall_sizes;
 };
 
 // Where the call is, for the progress display: the client's own stages ("send", "receive")

@@ -10,7 +10,8 @@ namespace afmesh::server {
 
 namespace {
 
-// SurfaceOptions and VolumeOptions carry the same three angle fields and the deviation.
+// SurfaceOptions and VolumeOptions carry the same three angle fields, the deviation and the
+// wall sizes.
 template <typename Options>
 SurfaceAngles angles_in(const Options& options) {
   SurfaceAngles angles;
@@ -19,6 +20,7 @@ SurfaceAngles angles_in(const Options& options) {
   if (options.has_curvature_angle_deg()) angles.curvature_deg = options.curvature_angle_deg();
   if (options.has_curvature_deviation())
     angles.curvature_deviation = options.curvature_deviation();
+  if (options.has_wall_sizes()) angles.wall_sizes = options.wall_sizes();
   return angles;
 }
 
@@ -49,7 +51,7 @@ SurfaceAngles angles_of(const v1::VolumeOptions& options) { return angles_in(opt
 
 bool any_angle_given(const SurfaceAngles& angles) {
   return angles.ridge_deg != 0.0 || angles.corner_deg != 0.0 || angles.curvature_deg.has_value() ||
-         angles.curvature_deviation.has_value();
+         angles.curvature_deviation.has_value() || angles.wall_sizes.has_value();
 }
 
 absl::Status surface_params_from(const VolumeParams& size, const SurfaceAngles& angles,
@@ -77,6 +79,11 @@ absl::Status surface_params_from(const VolumeParams& size, const SurfaceAngles& 
            SurfaceParams{}.curvature_deviation});
       !st.ok())
     return st;
+  if (absl::Status st = check_optional_bound(
+          angles.wall_sizes, prefix,
+          {"wall_sizes", 100.0, "wall thicknesses", "no wall bound", SurfaceParams{}.wall_sizes});
+      !st.ok())
+    return st;
   params.size = size.size;
   params.growth = size.growth;
   params.spec = size.spec;
@@ -84,6 +91,7 @@ absl::Status surface_params_from(const VolumeParams& size, const SurfaceAngles& 
   if (corner != 0.0) params.corner_angle_deg = corner;
   if (angles.curvature_deg) params.curvature_angle_deg = *angles.curvature_deg;
   if (angles.curvature_deviation) params.curvature_deviation = *angles.curvature_deviation;
+  if (angles.wall_sizes) params.wall_sizes = *angles.wall_sizes;
   return absl::OkStatus();
 }
 

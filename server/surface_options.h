@@ -20,16 +20,19 @@ struct SurfaceAngles {
   double corner_deg = 0.0;
   std::optional<double> curvature_deg;
   std::optional<double> curvature_deviation;
+  // Elements per wall thickness (SurfaceParams::wall_sizes; unset for its default, 0 for none).
+  std::optional<double> wall_sizes;
 };
 SurfaceAngles angles_of(const v1::SurfaceOptions& options);
 SurfaceAngles angles_of(const v1::VolumeOptions& options);
-// True when any angle or the deviation is given (not its default).
+// True when any angle, the deviation or the wall sizes are given (not their default).
 bool any_angle_given(const SurfaceAngles& angles);
 
 // `params` with the size of `size` (its size, growth and specification, already checked by
 // VolumeInput) and `angles` (defaults as SurfaceParams'). INVALID_ARGUMENT naming
 // "<prefix>ridge_angle_deg" outside (0, 180), "<prefix>corner_angle_deg" outside (0, 180] or
-// "<prefix>curvature_angle_deg" outside [0, 180) or "<prefix>curvature_deviation" outside [0, 1).
+// "<prefix>curvature_angle_deg" outside [0, 180), "<prefix>curvature_deviation" outside [0, 1)
+// or "<prefix>wall_sizes" outside [0, 100).
 absl::Status surface_params_from(const VolumeParams& size, const SurfaceAngles& angles,
                                  std::string_view prefix, SurfaceParams& params);
 

@@ -172,7 +172,8 @@ absl::Status VolumeInput::surface_options(const v1::VolumeOptions& options) {
         angles_.ridge_deg != 0.0            ? "ridge_angle_deg"
         : angles_.corner_deg != 0.0         ? "corner_angle_deg"
         : angles_.curvature_deg.has_value() ? "curvature_angle_deg"
-                                            : "curvature_deviation"));
+        : angles_.curvature_deviation.has_value() ? "curvature_deviation"
+                                                  : "wall_sizes"));
   }
   SurfaceParams checked;
   return surface_params_from(params_, angles_, "options.", checked);

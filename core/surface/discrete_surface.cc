@@ -140,6 +140,11 @@ absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
   return s;
 }
 
+void DiscreteSurface::for_each_face_overlapping(const Box& box,
+                                                absl::FunctionRef<void(FaceId)> visit) const {
+  tree_.for_each_overlap(box, [&](Index f) { visit(FaceId{f}); });
+}
+
 void DiscreteSurface::build_tree(CancelCheck* cancel) {
   tree_ = AabbTree(triangle_boxes(points_, triangles_), AabbTree::kDefaultLeafSize, cancel);
 }

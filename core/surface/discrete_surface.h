@@ -157,6 +157,10 @@ class DiscreteSurface {
   // called), the same face by a scan of all faces, O(M).
   Located nearest_face(const Point& x) const;
 
+  // Calls visit(f) for every face whose bounding box overlaps `box` (local frame), by the AABB
+  // tree (which must be built: has_tree()). O(log M + the faces visited).
+  void for_each_face_overlapping(const Box& box, absl::FunctionRef<void(FaceId)> visit) const;
+
   // Whether the AABB tree is built; builds it (O(M log M)) for a surface built without. With
   // `cancel`, stopped partway when cancel->stopped() turns true: the caller drops the surface.
   bool has_tree() const { return tree_.size() == face_count(); }

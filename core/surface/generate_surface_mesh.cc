@@ -29,6 +29,7 @@
 #include "core/surface/features.h"
 #include "core/surface/flip_edges.h"
 #include "core/surface/gap_sizes.h"
+#include "core/surface/wall_sizes.h"
 #include "core/surface/smooth_points.h"
 #include "core/surface/split_lines.h"
 #include "core/surface/surface_front.h"
@@ -53,6 +54,10 @@ absl::Status check_params(const SurfaceParams& params) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "curvature deviation must be in [0, 1) of the model size (0: no chord bound); got %g",
         params.curvature_deviation));
+  if (!(params.wall_sizes >= 0.0) || !std::isfinite(params.wall_sizes))
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "wall sizes must be a finite number >= 0 of wall thicknesses (0: none); got %g",
+        params.wall_sizes));
   return absl::OkStatus();
 }
 
@@ -605,10 +610,15 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
           : std::vector<double>(surface->local_points().size(),
                                 std::numeric_limits<double>::infinity());
   const std::vector<double> gaps = line_gap_sizes(*surface, *features, **field);
+  // Not in the paper: the thickness of the walls, for a surface that is to be a volume's front.
+  const std::vector<double> walls =
+      params.wall_sizes > 0.0 ? wall_thickness_sizes(*surface, params.wall_sizes, **field)
+                              : std::vector<double>();
   bool attached = false;
   std::vector<bool> at_gap(point_sizes.size(), false);
   for (std::size_t v = 0; v < point_sizes.size(); ++v) {
     point_sizes[v] = std::min(point_sizes[v], gaps[v]);
+    if (!walls.empty()) point_sizes[v] = std::min(point_sizes[v], walls[v]);
     at_gap[v] = std::isfinite(gaps[v]);
     attached = attached || std::isfinite(point_sizes[v]);
   }

@@ -68,6 +68,12 @@ struct SurfaceParams {
   // it (cgal_dino at 0.001 and its mean edge), by margins that move with any change of the
   // sizes.
   double curvature_deviation = 0.0;
+  // Elements no longer than this many times the thickness of the solid the surface bounds, the
+  // distance across to its opposite wall (wall_sizes.h; not in the paper), down to 0.15 of the
+  // size; 0: no such bound (the default of `afmesh surface`). A surface that is to be a volume
+  // mesher's front needs it where its walls are thinner than the size: `afmesh volume
+  // --remesh-surface` sets it to kRemeshWallSizes.
+  double wall_sizes = 0.0;
   // Stop with RESOURCE_EXHAUSTED past this many output triangles (the server's --max-elements).
   std::int64_t max_triangles = std::numeric_limits<std::int64_t>::max();
   // When set, called once before the front runs with the number of triangles that the size

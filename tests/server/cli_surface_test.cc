@@ -88,6 +88,12 @@ TEST_F(CliSurfaceTest, CurvatureDeviationOutsideZeroToOneIsAUsageError) {
   EXPECT_EQ(run("surface " + in() + out() + " --curvature-deviation -0.001"), 2);
 }
 
+TEST_F(CliSurfaceTest, WallSizesOutsideZeroTo100IsAUsageError) {
+  EXPECT_EQ(run("surface " + in() + out() + " --wall-sizes 100"), 2);
+  EXPECT_THAT(stderr_text(), HasSubstr("--wall-sizes"));
+  EXPECT_EQ(run("surface " + in() + out() + " --wall-sizes -1"), 2);
+}
+
 TEST_F(CliSurfaceTest, NonPositiveSizeAndGrowthBelowOneAreUsageErrors) {
   EXPECT_EQ(run("surface " + in() + out() + " --size 0"), 2);
   EXPECT_EQ(run("surface " + in() + out() + " --growth 0.5"), 2);
@@ -117,12 +123,14 @@ TEST_F(CliSurfaceTest, VolumeAnglesNeedRemeshSurface) {
   EXPECT_THAT(stderr_text(), HasSubstr("--remesh-surface"));
   EXPECT_EQ(run("volume " + in() + out("v.msh") + " --curvature-deviation 0.001"), 2);
   EXPECT_THAT(stderr_text(), HasSubstr("--remesh-surface"));
+  EXPECT_EQ(run("volume " + in() + out("v.msh") + " --wall-sizes 1"), 2);
+  EXPECT_THAT(stderr_text(), HasSubstr("--remesh-surface"));
 }
 
 TEST_F(CliSurfaceTest, HelpListsTheSurfaceCommandAndItsFlags) {
   EXPECT_EQ(run("surface --help"), 0);
   for (const char* flag : {"--size", "--growth", "--spec", "--ridge-angle", "--corner-angle",
-                           "--curvature-angle", "--curvature-deviation", "--server", "--json", "--quiet", "--timeout",
+                           "--curvature-angle", "--curvature-deviation", "--wall-sizes", "--server", "--json", "--quiet", "--timeout",
                            "--retries", "--tls-ca", "--token-file"}) {
     EXPECT_THAT(stdout_text(), HasSubstr(flag));
   }

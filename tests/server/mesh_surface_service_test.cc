@@ -342,6 +342,27 @@ TEST_F(MeshSurfaceServiceTest, UnsetAnglesMeanTheCoreDefaults) {
   EXPECT_EQ(probe_->params.corner_angle_deg, SurfaceParams{}.corner_angle_deg);
   EXPECT_EQ(probe_->params.curvature_angle_deg, SurfaceParams{}.curvature_angle_deg);
   EXPECT_EQ(probe_->params.curvature_deviation, SurfaceParams{}.curvature_deviation);
+  EXPECT_EQ(probe_->params.wall_sizes, SurfaceParams{}.wall_sizes);
+}
+
+// wall_sizes likewise: unset is the default (above, none), any value in [0, 100) reaches the
+// job; outside it, or not finite, it is refused naming the field.
+TEST_F(MeshSurfaceServiceTest, WallSizesReachTheJob) {
+  start(fixed_job(probe_, tetrahedron_front()));
+  Request head = header(0.25);
+  head.mutable_header()->mutable_options()->set_wall_sizes(1.5);
+  ASSERT_TRUE(call(requests_for(tetrahedron_front(), head)).status.ok());
+  EXPECT_EQ(probe_->params.wall_sizes, 1.5);
+}
+
+TEST_F(MeshSurfaceServiceTest, RejectsWallSizesOutsideZeroTo100) {
+  start(fixed_job(probe_, tetrahedron_front()));
+  for (const double walls : {100.0, -1.0, std::nan(""), HUGE_VAL}) {
+    Request bad = header(0.25);
+    bad.mutable_header()->mutable_options()->set_wall_sizes(walls);
+    expect_rejected(requests_for(tetrahedron_front(), bad), grpc::StatusCode::INVALID_ARGUMENT,
+                    {"options.wall_sizes must be in [0, 100)"});
+  }
 }
 
 // curvature_deviation likewise: unset is the default (above), 0 turns the chord bound off, any
@@ -691,6 +712,21 @@ TEST_F(MeshSurfaceServiceTest, VolumeCarriesTheCurvatureAngleOnlyWithRemeshSurfa
   EXPECT_EQ(deviation.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_THAT(deviation.status.error_message(),
               HasSubstr("options.curvature_deviation is set, but options.remesh_surface is not"));
+  requests = remesh_requests(0.0, 0.0, false);
+  requests[0].mutable_header()->mutable_options()->set_wall_sizes(1.0);
+  const Outcome walls = call_volume(requests, responses);
+  EXPECT_EQ(walls.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(walls.status.error_message(),
+              HasSubstr("options.wall_sizes is set, but options.remesh_surface is not"));
+}
+
+TEST_F(MeshSurfaceServiceTest, VolumeCarriesTheWallSizesWithRemeshSurface) {
+  start(fixed_job(probe_, tetrahedron_front()));
+  std::vector<v1::MeshVolumeResponse> responses;
+  std::vector<v1::MeshVolumeRequest> requests = remesh_requests(0.0, 0.0, true);
+  requests[0].mutable_header()->mutable_options()->set_wall_sizes(1.0);
+  ASSERT_TRUE(call_volume(requests, responses).status.ok());
+  EXPECT_EQ(probe_->params.wall_sizes, 1.0);
 }
 
 TEST_F(MeshSurfaceServiceTest, VolumeCarriesTheCurvatureDeviationWithRemeshSurface) {

@@ -669,5 +669,81 @@ TEST(GenerateSurfaceMesh, ARawCadFrontFillsOnceReTriangulated) {
   expect_fills_with_valid_tets("netgen_part1", r->mesh, figures_of(r->mesh).mean_edge);
 }
 
+// The smallest dihedral angle of the tets that fill `surface` at `size` (valid, checked).
+double filled_min_dihedral(const char* name, const Mesh& surface, double size) {
+  VolumeParams params;
+  params.size = size;
+  const absl::StatusOr<VolumeResult> r = generate_volume_mesh(surface, params, no_progress());
+  EXPECT_TRUE(r.ok()) << name << ": " << r.status();
+  if (!r.ok()) return 0.0;
+  const ValidationReport report = validate_volume_mesh(r->mesh, &surface);
+  EXPECT_TRUE(report.valid()) << name << ": " << report.to_string();
+  const absl::StatusOr<QualitySummary> q = summarize_quality(r->mesh);
+  EXPECT_TRUE(q.ok()) << q.status();
+  std::printf("%s: %zu tets at size %g, min dihedral %.2f\n", name, r->mesh.tets.size(), size,
+              q.ok() ? q->tet_min_dihedral_deg.min : 0.0);
+  return q.ok() ? q->tet_min_dihedral_deg.min : 0.0;
+}
+
+// wall_sizes (wall_sizes.h): a hollow sphere, radii 1 and 0.95 (a wall 0.05 thick, the cavity
+// oriented inward), at size 0.2 has its outer sheet meshed at about the size without the bound
+// and at about its thickness with it (1 per thickness: 0.05, over the floor of 0.15 × 0.2), so
+// that the tets across the wall are not flat. It has no lines: no gap between lines lowers the
+// size.
+TEST(GenerateSurfaceMesh, WallSizesMeshAThinShellAtItsThickness) {
+  Mesh shell = sphere_surface({0, 0, 0}, 1.0, 0.05);
+  const Mesh inner = sphere_surface({0, 0, 0}, 0.95, 0.05);
+  const auto offset = static_cast<Index>(shell.points.size());
+  shell.points.insert(shell.points.end(), inner.points.begin(), inner.points.end());
+  for (const Triangle& t : inner.triangles)
+    shell.triangles.push_back({t[0] + offset, t[2] + offset, t[1] + offset});
+  shell.triangle_tags.clear();
+  const auto mean_outer_edge = [](const Mesh& m) {
+    double sum = 0.0;
+    int count = 0;
+    for (const Triangle& t : m.triangles) {
+      if (!(norm(m.points[t[0]]) > 0.975)) continue;
+      for (int k = 0; k < 3; ++k) sum += distance(m.points[t[k]], m.points[t[(k + 1) % 3]]);
+      count += 3;
+    }
+    return count > 0 ? sum / count : 0.0;
+  };
+  SurfaceParams params;
+  params.size = 0.2;
+  const absl::StatusOr<SurfaceResult> coarse = generate_surface_mesh(shell, params);
+  ASSERT_TRUE(coarse.ok()) << coarse.status();
+  params.wall_sizes = 1.0;
+  const absl::StatusOr<SurfaceResult> fine = generate_surface_mesh(shell, params);
+  ASSERT_TRUE(fine.ok()) << fine.status();
+  expect_closed_valid(fine->mesh);
+  const double coarse_edge = mean_outer_edge(coarse->mesh);
+  const double fine_edge = mean_outer_edge(fine->mesh);
+  std::printf("shell: outer edges %.4f without, %.4f with wall sizes (%zu, %zu triangles)\n",
+              coarse_edge, fine_edge, coarse->mesh.triangles.size(), fine->mesh.triangles.size());
+  EXPECT_GT(coarse_edge, 0.15);
+  EXPECT_GT(fine_edge, 0.04);
+  EXPECT_LT(fine_edge, 0.07);
+  EXPECT_GE(filled_min_dihedral("shell with wall sizes", fine->mesh, 0.2), 18.0);
+  params.wall_sizes = -1.0;
+  EXPECT_EQ(generate_surface_mesh(shell, params).status().code(),
+            absl::StatusCode::kInvalidArgument);
+}
+
+// cgal_rotor re-triangulated at its mean edge (0.096) and filled at the new surface's mean edge
+// (0.021): a blade 0.003–0.004 thick, whose CAD tessellation has points on its rim only, under
+// triangles of 0.025 left tets of 14.96° across it. With 1 per wall thickness the smallest is
+// 20.00° (85,909 tets against 71,874).
+TEST(Regression, Issue10ThinBladeOfARemeshedRotorFillsWithoutFlatTets) {
+  const Mesh input = testing::corpus_mesh("cgal_rotor.stl");
+  ASSERT_FALSE(input.triangles.empty()) << "no corpus file cgal_rotor.stl";
+  SurfaceParams params;
+  params.size = mean_edge_length(input);
+  params.wall_sizes = 1.0;
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  ASSERT_TRUE(r.ok()) << r.status();
+  expect_closed_valid(r->mesh);
+  EXPECT_GE(filled_min_dihedral("cgal_rotor", r->mesh, 0.021353), 19.0);
+}
+
 }  // namespace
 }  // namespace afmesh

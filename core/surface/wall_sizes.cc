@@ -1,0 +1,52 @@
+#include "core/surface/wall_sizes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/geometry/vec.h"
+#include "core/spatial/box.h"
+
+namespace afmesh {
+namespace {
+
+// A face counts as the opposite wall when its normal is within 60° of the opposite of the
+// face measured from, and it lies within 60° of that face's inward direction (the header).
+constexpr double kOppositeCosine = 0.5;
+constexpr double kBehindCosine = 0.5;
+// The thickness takes the size down to this fraction of the size in force at most (the header;
+// the floor of the gaps between lines, gap_sizes.cc, for the same reasons).
+constexpr double kMinWallSizes = 0.15;
+
+}  // namespace
+
+std::vector<double> wall_thickness_sizes(const DiscreteSurface& surface, double per_thickness,
+                                         const SizeField& field) {
+  const std::vector<Point>& p = surface.local_points();
+  std::vector<double> size(p.size(), std::numeric_limits<double>::infinity());
+  for (Index f = 0; f < surface.face_count(); ++f) {
+    const Point& n = surface.normal(FaceId{f});
+    if (!(squared_norm(n) > 0.0)) continue;
+    const Point& x = surface.centroid(FaceId{f});
+    const double wanted = field.size_at(surface.to_global(x));
+    if (!(wanted > 0.0) || !std::isfinite(wanted)) continue;
+    double thickness = wanted;
+    Box box;
+    for (int a = 0; a < 3; ++a) box.lo[a] = x[a] - wanted, box.hi[a] = x[a] + wanted;
+    surface.for_each_face_overlapping(box, [&](FaceId g) {
+      if (index_of(g) == f || !(dot(surface.normal(g), n) < -kOppositeCosine)) return;
+      Point closest;
+      const double d2 = surface.squared_distance_to_face(x, g, closest);
+      if (!(d2 < thickness * thickness)) return;
+      const double d = std::sqrt(d2);
+      if (!(dot(sub(closest, x), n) < -kBehindCosine * d)) return;
+      thickness = d;
+    });
+    if (!(per_thickness * thickness < wanted)) continue;
+    const double h = std::max(per_thickness * thickness, kMinWallSizes * wanted);
+    for (const Index v : surface.triangles()[f]) size[v] = std::min(size[v], h);
+  }
+  return size;
+}
+
+}  // namespace afmesh
