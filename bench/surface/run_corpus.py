@@ -20,9 +20,12 @@ numpy) judges the tets against that surface. Four columns go before the message:
 verdict (valid, invalid, unchecked when it gave none; or the CLI's exit code, or timeout), the
 checker's tets and smallest dihedral angle, and the volume run's wall seconds (CLI and server);
 files not filled show "-". --keep DIR keeps the files. Without --volume the output is as before.
+--surface-flags passes options to afmesh-bench-surface (e.g. "--wall-sizes 1", the sizes a
+volume's front needs across thin walls, or "--curvature-deviation 0.001").
 
   bench/surface/run_corpus.py [--bench PATH] [--corpus DIR] [--timeout SEC] [--only a,b] [--json]
                               [--volume [--cli PATH] [--check PATH] [--keep DIR]]
+                              [--surface-flags "FLAGS"]
 """
 
 import argparse
@@ -146,6 +149,8 @@ def main():
     ap.add_argument("--check", default=DEFAULT_CHECK, help="check_volume.py for --volume")
     ap.add_argument("--keep", default="",
                     help="with --volume: keep the surfaces and volume meshes in DIR")
+    ap.add_argument("--surface-flags", default="",
+                    help="more options for afmesh-bench-surface, one string (e.g. \"--wall-sizes 1\")")
     args = ap.parse_args()
     if args.keep:
         os.makedirs(args.keep, exist_ok=True)
@@ -167,7 +172,8 @@ def main():
             "file", "outcome", "tris", "cpu s", "wall s", "min", "%>=30", "H/diag",
             volume_header if args.volume else "", "message"))
     for name in names:
-        argv = [args.bench, "--input", os.path.join(corpus, name), "--json"]
+        argv = [args.bench, "--input", os.path.join(corpus, name), "--json",
+                *args.surface_flags.split()]
         surface = os.path.join(work, name[:-4] + ".surface.mesh")
         if args.volume:
             argv += ["--out", surface]
