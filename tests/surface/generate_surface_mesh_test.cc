@@ -457,6 +457,26 @@ TEST(Regression, Issue11PatchesOverlappingOnADirtyInputStopTheJob) {
   EXPECT_NE(r.status().message().find("intersects itself"), std::string::npos) << r.status();
 }
 
+// cgal_dino (clean) with 0.001 of its diagonal asked as the deviation, at its mean edge: two
+// patches covered the same place round a line point (point 2586, patches 0 and 67), which their
+// checks each passed, and the surface came back as a success with a vertex of two fans and 8
+// crossing pairs of triangles. The job now ends valid or stops saying where the patches
+// overlap; never an invalid surface.
+TEST(Regression, Issue11PatchesOverlappingRoundALinePointNeverComeBackAsASuccess) {
+  const Mesh input = testing::corpus_mesh("cgal_dino.stl");
+  ASSERT_FALSE(input.triangles.empty()) << "no corpus file cgal_dino.stl";
+  SurfaceParams params;
+  params.size = mean_edge_length(input);
+  params.curvature_deviation = 0.001;
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  if (r.ok()) {
+    expect_closed_valid(r->mesh);
+  } else {
+    EXPECT_EQ(r.status().code(), absl::StatusCode::kFailedPrecondition) << r.status();
+    std::printf("cgal_dino at 0.001: %s\n", std::string(r.status().message()).c_str());
+  }
+}
+
 // fuzz_surface_mesher: a single triangle whose boundary, at a corner angle of 180, is one
 // closed loop without corners, meshed at a size over the loop's length. The loop got one side
 // from its start to itself; the patch's front bins were made with cells of size 0
