@@ -463,12 +463,9 @@ TEST(Regression, Issue11PatchesOverlappingOnADirtyInputStopTheJob) {
 // crossing pairs of triangles. The job now ends valid or stops saying where the patches
 // overlap; never an invalid surface.
 TEST(Regression, Issue11PatchesOverlappingRoundALinePointNeverComeBackAsASuccess) {
-  const Mesh input = testing::corpus_mesh("cgal_dino.stl");
-  ASSERT_FALSE(input.triangles.empty()) << "no corpus file cgal_dino.stl";
-  SurfaceParams params;
-  params.size = mean_edge_length(input);
-  params.curvature_deviation = 0.001;
-  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge(
+      "cgal_dino.stl", [](SurfaceParams& params) { params.curvature_deviation = 0.001; });
+  ASSERT_NE(r.status().code(), absl::StatusCode::kNotFound) << r.status();
   if (r.ok()) {
     expect_closed_valid(r->mesh);
   } else {
@@ -754,12 +751,8 @@ TEST(GenerateSurfaceMesh, WallSizesMeshAThinShellAtItsThickness) {
 // triangles of 0.025 left tets of 14.96° across it. With 1 per wall thickness the smallest is
 // 20.00° (85,909 tets against 71,874).
 TEST(Regression, Issue10ThinBladeOfARemeshedRotorFillsWithoutFlatTets) {
-  const Mesh input = testing::corpus_mesh("cgal_rotor.stl");
-  ASSERT_FALSE(input.triangles.empty()) << "no corpus file cgal_rotor.stl";
-  SurfaceParams params;
-  params.size = mean_edge_length(input);
-  params.wall_sizes = 1.0;
-  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge(
+      "cgal_rotor.stl", [](SurfaceParams& params) { params.wall_sizes = 1.0; });
   ASSERT_TRUE(r.ok()) << r.status();
   expect_closed_valid(r->mesh);
   EXPECT_GE(filled_min_dihedral("cgal_rotor", r->mesh, 0.021353), 19.0);
