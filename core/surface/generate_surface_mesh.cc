@@ -637,9 +637,13 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
                                 std::numeric_limits<double>::infinity());
   const std::vector<double> gaps = line_gap_sizes(*surface, *features, **field);
   // Not in the paper: the thickness of the walls, for a surface that is to be a volume's front.
-  const std::vector<double> walls =
-      params.wall_sizes > 0.0 ? wall_thickness_sizes(*surface, params.wall_sizes, **field)
-                              : std::vector<double>();
+  std::vector<double> walls;
+  if (params.wall_sizes > 0.0) {
+    absl::StatusOr<std::vector<double>> w =
+        wall_thickness_sizes(*surface, params.wall_sizes, **field, progress);
+    if (!w.ok()) return w.status();
+    walls = *std::move(w);
+  }
   bool attached = false;
   std::vector<bool> at_gap(point_sizes.size(), false);
   for (std::size_t v = 0; v < point_sizes.size(); ++v) {

@@ -330,31 +330,36 @@ class CancelAfter final : public Progress {
 };
 
 // Issue 12: every step of the surface job looks at its Progress (features, curvature, lines,
-// each patch's front, the flips, the smoothing, the distance), and a cancel seen at any look
-// ends the job with CANCELLED; a job never cancelled gives the same surface as without a
-// Progress.
+// each patch's front, the flips, the smoothing, the distance; the wall sizes when asked), and a
+// cancel seen at any look ends the job with CANCELLED; a job never cancelled gives the same
+// surface as without a Progress.
 TEST(GenerateSurfaceMesh, StopsWithCancelledAtEveryLook) {
   const Mesh input = testing::closed_cylinder(1.0, 2.0, 48, 12);
-  SurfaceParams params;
-  params.size = 0.1;
-  const absl::StatusOr<SurfaceResult> plain = generate_surface_mesh(input, params);
-  ASSERT_TRUE(plain.ok()) << plain.status();
-  CancelAfter never(std::int64_t{1} << 40);
-  const absl::StatusOr<SurfaceResult> watched = generate_surface_mesh(input, params, never);
-  ASSERT_TRUE(watched.ok()) << watched.status();
-  EXPECT_EQ(watched->mesh.points, plain->mesh.points);
-  EXPECT_EQ(watched->mesh.triangles, plain->mesh.triangles);
-  const std::int64_t looks = never.calls();
-  std::printf("cylinder: %zu triangles, %lld looks at the Progress\n",
-              plain->mesh.triangles.size(), static_cast<long long>(looks));
-  ASSERT_GE(looks, 8);  // at least one per step
-  std::set<std::int64_t> at = {0, 1, 2, 3, looks / 4, looks / 2, looks - 3, looks - 2, looks - 1};
-  for (std::int64_t k = 4; k < looks; k += std::max<std::int64_t>(1, looks / 40)) at.insert(k);
-  for (const std::int64_t k : at) {
-    CancelAfter progress(k);
-    const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params, progress);
-    EXPECT_EQ(r.status().code(), absl::StatusCode::kCancelled) << "cancelled at look " << k;
-    EXPECT_EQ(progress.calls(), k + 1) << "looks after the cancel, cancelled at look " << k;
+  for (const double walls : {0.0, 1.0}) {
+    SurfaceParams params;
+    params.size = 0.1;
+    params.wall_sizes = walls;
+    const absl::StatusOr<SurfaceResult> plain = generate_surface_mesh(input, params);
+    ASSERT_TRUE(plain.ok()) << plain.status();
+    CancelAfter never(std::int64_t{1} << 40);
+    const absl::StatusOr<SurfaceResult> watched = generate_surface_mesh(input, params, never);
+    ASSERT_TRUE(watched.ok()) << watched.status();
+    EXPECT_EQ(watched->mesh.points, plain->mesh.points);
+    EXPECT_EQ(watched->mesh.triangles, plain->mesh.triangles);
+    const std::int64_t looks = never.calls();
+    std::printf("cylinder, wall sizes %g: %zu triangles, %lld looks at the Progress\n", walls,
+                plain->mesh.triangles.size(), static_cast<long long>(looks));
+    ASSERT_GE(looks, 8);  // at least one per step
+    std::set<std::int64_t> at = {0, 1, 2, 3, looks / 4, looks / 2, looks - 3, looks - 2, looks - 1};
+    for (std::int64_t k = 4; k < looks; k += std::max<std::int64_t>(1, looks / 40)) at.insert(k);
+    for (const std::int64_t k : at) {
+      CancelAfter progress(k);
+      const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params, progress);
+      EXPECT_EQ(r.status().code(), absl::StatusCode::kCancelled)
+          << "wall sizes " << walls << ", cancelled at look " << k;
+      EXPECT_EQ(progress.calls(), k + 1)
+          << "looks after the cancel, wall sizes " << walls << ", cancelled at look " << k;
+    }
   }
 }
 
