@@ -59,20 +59,22 @@ struct SurfaceParams {
   // turn by alpha, 2 epsilon / sin(alpha / 2) (the kink bound), epsilon being the deviation over
   // kDeviationMargin (2.25, for triangles longer and wider than one chord). The angle alone lets
   // an element of length l lie 0.067 l from the input at 30°, 0.17% of the model size at
-  // l = diag / 40. 0.001 keeps 14 corpus files at their mean edge within 0.047–0.094% of the
-  // diagonal, with 1 (the bunny, where the 30° bound is finer) to 90 times the triangles of the
-  // angle bound alone (gmsh_surface1, 80 coarse facets: 84 → 7,782), and the bench's CAD parts
-  // at diag / 40 and bunny at diag / 60 within 0.060–0.077%. It is off
-  // by default: the triangles it costs on coarse CAD tessellations (every facet crease is a
+  // l = diag / 40. With 0.001 every corpus surface that closes at its mean edge (22 of 30, and
+  // the open of_wigley) lies 0.036–0.102% of its diagonal from the input (cgal_homer 2% over
+  // the deviation asked), with 1 (the bunny, where the 30° bound is finer) to 90 times the
+  // triangles of the angle bound alone (gmsh_surface1, 80 coarse facets: 84 → 7,782), and the
+  // bench's CAD parts at diag / 40 and bunny at diag / 60 within 0.060–0.077%. It is off by
+  // default: the triangles it costs on coarse CAD tessellations (every facet crease is a
   // kink) are the user's choice, and with it the front stops on some inputs it closes without
   // it (cgal_dino at 0.001 and its mean edge), by margins that move with any change of the
   // sizes.
   double curvature_deviation = 0.0;
   // Elements no longer than this many times the thickness of the solid the surface bounds, the
   // distance across to its opposite wall (wall_sizes.h; not in the paper), down to 0.15 of the
-  // size; 0: no such bound (the default of `afmesh surface`). A surface that is to be a volume
-  // mesher's front needs it where its walls are thinner than the size: `afmesh volume
-  // --remesh-surface` sets it to kRemeshWallSizes.
+  // size; 0: no such bound (the default). A surface that is to be a volume mesher's front needs
+  // it where its walls are thinner than the size (`afmesh volume --remesh-surface --wall-sizes
+  // 1`); it is not the default because with it the front stops on some inputs it closes
+  // without it (cgal_dino, cgal_bones at their mean edge).
   double wall_sizes = 0.0;
   // Stop with RESOURCE_EXHAUSTED past this many output triangles (the server's --max-elements).
   std::int64_t max_triangles = std::numeric_limits<std::int64_t>::max();
