@@ -14,13 +14,6 @@ namespace {
 
 constexpr double kParallelCosine = 0.8660254037844386;  // within 30° of parallel
 constexpr double kAlongCosine = 0.5;                      // the gap at least 60° off the line
-// A gap takes the size down to this fraction of the size field's at most: lines that nearly
-// touch (a dirty input's crossing, a sliver patch of a CAD tessellation) would otherwise ask
-// for elements without bound (of_cyclone ran out of memory). 0.15: on the corpus at the mean
-// edge, 0.1 leaves bones stuck and 0.2 or more gmsh_t13_data; the CAD parts keep 99.3% or more
-// of their triangles at 30° from 0.1 to 0.25.
-constexpr double kMinGapSizes = 0.15;
-
 bool share_a_patch(const DiscreteLine& a, const DiscreteLine& b) {
   auto i = a.patches.begin();
   auto j = b.patches.begin();

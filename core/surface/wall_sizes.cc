@@ -6,6 +6,7 @@
 
 #include "core/geometry/vec.h"
 #include "core/spatial/box.h"
+#include "core/surface/gap_sizes.h"
 
 namespace afmesh {
 namespace {
@@ -14,9 +15,6 @@ namespace {
 // face measured from, and it lies within 60° of that face's inward direction (the header).
 constexpr double kOppositeCosine = 0.5;
 constexpr double kBehindCosine = 0.5;
-// The thickness takes the size down to this fraction of the size in force at most (the header;
-// the floor of the gaps between lines, gap_sizes.cc, for the same reasons).
-constexpr double kMinWallSizes = 0.15;
 // The opposite wall is looked for within the size, but no farther than this many times the
 // face's longest edge: on a scan of a million faces (bench/surface's scan900k) meshed at 0.05,
 // about ten faces wide, the faces within the size were hundreds per face, and the search took
@@ -59,8 +57,9 @@ absl::StatusOr<std::vector<double>> wall_thickness_sizes(const DiscreteSurface& 
       thickness = d;
     });
     if (!(thickness < reach) || !(per_thickness * thickness < wanted)) continue;
-    const double h = std::max(per_thickness * thickness, kMinWallSizes * wanted);
-    for (const Index v : surface.triangles()[f]) size[v] = std::min(size[v], h);
+    // The floor of the gaps between lines (kMinGapSizes, gap_sizes.h), for the same reasons.
+    const double h = std::max(per_thickness * thickness, kMinGapSizes * wanted);
+    for (const Index v : t) size[v] = std::min(size[v], h);
   }
   return size;
 }

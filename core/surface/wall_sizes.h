@@ -16,12 +16,13 @@
 // where the two sheets' normals cancel, and faces 70 times longer than the blade is thick
 // (cgal_rotor). Only faces nearer than the size in force are looked for: a wall thicker than the
 // size needs no size of its own. The face's corners take `per_thickness` times that thickness
-// as their size (the smallest over their faces), but not less than kMinWallSizes (0.15) of the
-// size in force: where two walls meet at a sharp edge (a blade's tip, a wedge) the thickness
-// falls to zero, and a dirty input's walls may touch. The search reaches no farther than 3 of
-// the face's longest edges (a scan far finer than the size would otherwise visit hundreds of
-// faces per face): a wall thicker than 3 of its faces keeps the size. The sizes are graded with
-// the others (grade_point_sizes, curvature_sizes.h).
+// as their size (the smallest over their faces), but not less than kMinGapSizes (0.15, the
+// floor of the gaps between lines, gap_sizes.h) of the size in force: where two walls meet at a
+// sharp edge (a blade's tip, a wedge) the thickness falls to zero, and a dirty input's walls may
+// touch. The search reaches no farther than 3 of the face's longest edges (a scan far finer
+// than the size would otherwise visit hundreds of faces per face): a wall thicker than 3 of its
+// faces keeps the size. The sizes are graded with the others (grade_point_sizes,
+// curvature_sizes.h).
 #pragma once
 
 #include <vector>
