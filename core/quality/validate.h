@@ -186,10 +186,11 @@ ValidationReport validate_surface(const Mesh& surface, const ValidationParams& p
 absl::StatusOr<ValidationReport> validate_surface(const Mesh& surface,
                                                   const ValidationParams& params,
                                                   Progress& progress);
-// validate_surface's no_self_intersections alone (face_environments not read), for callers that
-// want only where a surface crosses itself (MeshSurface on an assembly or a stuck front): the
-// topology checks are skipped. not_run when an index is out of range or a coordinate is not
-// finite; CANCELLED as above.
+// validate_surface's no_self_intersections alone, for callers that want only where a surface
+// crosses itself (MeshSurface on an assembly, a stuck front, or its own result): the topology
+// checks are skipped. With face_environments, crossings of two different positive environments
+// are allowed as in validate_surface. not_run when an index is out of range, a coordinate is not
+// finite or the environments are not one id >= 0 per triangle; CANCELLED as above.
 absl::StatusOr<Check> check_surface_self_intersections(const Mesh& surface,
                                                        const ValidationParams& params,
                                                        Progress& progress);

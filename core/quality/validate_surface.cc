@@ -352,8 +352,15 @@ absl::StatusOr<Check> check_surface_self_intersections(const Mesh& surface,
   if (!finite) return not_run(check::kNoSelfIntersections, kNeedsFinite);
   ProperTriangles proper;
   check_non_degenerate(surface, finite, params, proper);
+  std::span<const std::int32_t> env;
+  if (!params.face_environments.empty()) {
+    bool usable = false;
+    const Check environments = check_environments(surface, params, usable);
+    if (!usable) return not_run(check::kNoSelfIntersections, environments.summary);
+    env = params.face_environments;
+  }
   CancelCheck stop(progress);
-  Check check = check_self_intersections(surface, proper, {}, params, stop);
+  Check check = check_self_intersections(surface, proper, env, params, stop);
   if (stop.stopped()) return absl::CancelledError("validation of the surface cancelled");
   return check;
 }

@@ -496,25 +496,44 @@ void count_components(const DiscreteSurface& surface, SurfaceReport& report) {
 
 }  // namespace
 
-absl::StatusOr<InputCrossings> input_crossings(const Mesh& clean, Progress& progress) {
+absl::StatusOr<SurfaceCrossings> surface_crossings(const Mesh& mesh,
+                                                   std::span<const std::int32_t> components,
+                                                   Progress& progress) {
   ValidationParams params;
   params.max_findings_per_check = 1;
-  const absl::StatusOr<Check> check = check_surface_self_intersections(clean, params, progress);
+  params.face_environments = components;
+  const absl::StatusOr<Check> check = check_surface_self_intersections(mesh, params, progress);
   if (!check.ok()) return check.status();
-  InputCrossings crossings;
+  if (check->outcome == CheckOutcome::kNotRun)
+    return absl::InternalError(absl::StrCat("the crossing check could not run: ", check->summary));
+  SurfaceCrossings crossings;
   if (check->outcome != CheckOutcome::kFailed || check->findings.empty() ||
       check->findings[0].triangles.empty())
     return crossings;
-  const Triangle& t = clean.triangles[check->findings[0].triangles[0]];
+  const Triangle& t = mesh.triangles[check->findings[0].triangles[0]];
   crossings.pairs = check->finding_count;
-  crossings.first =  // `clean` is in the input's (global) frame
-      scale(add(clean.points[t[0]], add(clean.points[t[1]], clean.points[t[2]])), 1.0 / 3.0);
+  crossings.first =
+      scale(add(mesh.points[t[0]], add(mesh.points[t[1]], mesh.points[t[2]])), 1.0 / 3.0);
   return crossings;
+}
+
+absl::Status check_result_does_not_cross_itself(const Mesh& result,
+                                                std::span<const std::int32_t> components,
+                                                Progress& progress) {
+  const absl::StatusOr<SurfaceCrossings> crossings =
+      surface_crossings(result, components, progress);
+  if (!crossings.ok()) return crossings.status();
+  if (crossings->pairs == 0) return absl::OkStatus();
+  const Point& c = crossings->first;
+  return absl::FailedPreconditionError(absl::StrFormat(
+      "the re-triangulated surface crosses itself: %d pairs of its triangles within one "
+      "component cross, the first near (%g, %g, %g); it is not returned",
+      crossings->pairs, c[0], c[1], c[2]));
 }
 
 absl::Status explain_stuck(absl::Status stuck, const Mesh& clean, Progress& progress) {
   if (stuck.code() != absl::StatusCode::kFailedPrecondition) return stuck;
-  const absl::StatusOr<InputCrossings> crossings = input_crossings(clean, progress);
+  const absl::StatusOr<SurfaceCrossings> crossings = surface_crossings(clean, {}, progress);
   if (!crossings.ok()) return crossings.status();
   if (crossings->pairs == 0) return stuck;
   const Point& c = crossings->first;
@@ -762,7 +781,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   // Not in the paper: an assembly's components that cross each other are each re-triangulated
   // on its own (issue 11), and the result crosses where they do; the report says so.
   if (result.report.components > 1) {
-    const absl::StatusOr<InputCrossings> crossings = input_crossings(*clean, progress);
+    const absl::StatusOr<SurfaceCrossings> crossings = surface_crossings(*clean, {}, progress);
     if (!crossings.ok()) return crossings.status();
     result.report.input_crossing_pairs = crossings->pairs;
     result.report.first_input_crossing = crossings->first;
@@ -771,6 +790,16 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
 
   result.mesh = std::move(local);
   for (Point& x : result.mesh.points) x = surface->to_global(x);
+  // Not in the paper: the result as returned (global frame) must not cross itself within a
+  // component (check_result_does_not_cross_itself).
+  std::vector<Index> component;
+  label_components(output->neighbours(), [](Index, int) { return true; }, component);
+  std::vector<std::int32_t> components(component.begin(), component.end());
+  for (std::int32_t& c : components) ++c;
+  if (absl::Status st = check_result_does_not_cross_itself(result.mesh, components, progress);
+      !st.ok())
+    return st;
+  clock.lap("self-check");
   return result;
 }
 

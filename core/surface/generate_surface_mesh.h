@@ -22,6 +22,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "absl/status/status.h"
@@ -138,13 +139,27 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
 absl::Status explain_stuck(absl::Status stuck, const Mesh& clean,
                            Progress& progress = no_progress());
 
-// The pairs of triangles of `clean` that cross (validate_surface's no_self_intersections) and
-// the centroid of the first pair's first triangle; 0 pairs when none cross. O(M log M).
-struct InputCrossings {
+// The pairs of triangles of `mesh` that cross (validate_surface's no_self_intersections) and
+// the centroid of the first pair's first triangle, in `mesh`'s frame; 0 pairs when none cross.
+// With `components` (one id > 0 per triangle, as face_environments), only pairs within one
+// component count. O(M log M).
+struct SurfaceCrossings {
   std::int64_t pairs = 0;
   Point first{0.0, 0.0, 0.0};
 };
-absl::StatusOr<InputCrossings> input_crossings(const Mesh& clean,
-                                               Progress& progress = no_progress());
+absl::StatusOr<SurfaceCrossings> surface_crossings(
+    const Mesh& mesh, std::span<const std::int32_t> components = {},
+    Progress& progress = no_progress());
+
+// Not in the paper: FAILED_PRECONDITION when two triangles of one component of `result` (the
+// job's output, `components` one id > 0 per triangle as face_environments) cross, naming how many
+// pairs and where the first is. The front's crossing test (S6) works in the plane of a side,
+// patch by patch; flips, collapses and smoothing move triangles after it, and the patches of a
+// thin wall are meshed apart: a surface that crosses itself is no volume's front, and it is never
+// returned as a success. Components may cross each other where the input's do (an assembly,
+// re-triangulated component by component). O(M log M).
+absl::Status check_result_does_not_cross_itself(const Mesh& result,
+                                                std::span<const std::int32_t> components,
+                                                Progress& progress = no_progress());
 
 }  // namespace afmesh

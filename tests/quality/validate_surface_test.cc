@@ -233,6 +233,35 @@ TEST(ValidateSurface, TheSelfIntersectionCheckAloneFindsWhatTheReportFinds) {
             CheckOutcome::kNotRun);
 }
 
+// With face_environments, the check alone allows what validate_surface allows: the two cubes
+// overlap as two environments (MeshSurface's components of an assembly), not as one, and an
+// environment array of the wrong length or with a negative id does not run.
+TEST(ValidateSurface, TheSelfIntersectionCheckAloneReadsFaceEnvironments) {
+  const Mesh cube = testing::five_tet_cube_boundary();
+  const Mesh overlapping = testing::merge(cube, testing::translated(cube, {0.5, 0.5, 0.5}));
+  std::vector<std::int32_t> env(overlapping.triangles.size(), 1);
+  ValidationParams params;
+  params.face_environments = env;
+  absl::StatusOr<Check> one = check_surface_self_intersections(overlapping, params, no_progress());
+  ASSERT_TRUE(one.ok()) << one.status();
+  EXPECT_EQ(one->outcome, CheckOutcome::kFailed);
+  std::fill(env.begin() + static_cast<std::ptrdiff_t>(cube.triangles.size()), env.end(), 2);
+  const absl::StatusOr<Check> two =
+      check_surface_self_intersections(overlapping, params, no_progress());
+  ASSERT_TRUE(two.ok()) << two.status();
+  EXPECT_EQ(two->outcome, CheckOutcome::kPassed) << two->summary;
+  EXPECT_EQ(two->outcome, check_of(validate_surface(overlapping, params),
+                                   check::kNoSelfIntersections).outcome);
+  env[3] = -1;
+  EXPECT_EQ(check_surface_self_intersections(overlapping, params, no_progress())->outcome,
+            CheckOutcome::kNotRun);
+  env.pop_back();
+  env[3] = 1;
+  params.face_environments = env;
+  EXPECT_EQ(check_surface_self_intersections(overlapping, params, no_progress())->outcome,
+            CheckOutcome::kNotRun);
+}
+
 TEST(ValidateSurface, OutOfRangeIndexStopsTheOtherChecks) {
   Mesh surface = testing::octahedron();
   surface.triangles[2][1] = -3;

@@ -93,7 +93,7 @@ TEST(DirtyInput, BonesAreReTriangulatedComponentByComponent) {
   // The report says so: the input's crossing pairs and where the first is.
   EXPECT_EQ(result->report.components, 26);
   EXPECT_EQ(result->report.input_crossing_pairs, 366);
-  const absl::StatusOr<InputCrossings> input = input_crossings(bones);
+  const absl::StatusOr<SurfaceCrossings> input = surface_crossings(bones);
   ASSERT_TRUE(input.ok()) << input.status();
   EXPECT_EQ(input->pairs, 366);
   EXPECT_EQ(result->report.first_input_crossing, input->first);
@@ -138,6 +138,29 @@ TEST(DirtyInput, ComponentsApartReportNoCrossing) {
   EXPECT_GT(crossing->report.input_crossing_pairs, 0);
   EXPECT_LT(std::abs(crossing->report.first_input_crossing[0] - 0.75), 0.3)
       << "the spheres cross on the plane x = 0.75";
+}
+
+// The job's result is checked for crossings within each component before it is returned
+// (check_result_does_not_cross_itself): two overlapping spheres pass as two components, as the
+// assembly they are, and fail as one, naming the pairs and where the first is.
+TEST(DirtyInput, AResultThatCrossesItselfWithinAComponentIsNotReturned) {
+  Mesh two = sphere_surface({0, 0, 0}, 1.0, 0.3);
+  const Mesh other = sphere_surface({1.5, 0, 0}, 1.0, 0.3);
+  const auto offset = static_cast<Index>(two.points.size());
+  two.points.insert(two.points.end(), other.points.begin(), other.points.end());
+  for (const Triangle& t : other.triangles)
+    two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  two.triangle_tags.clear();
+  const std::vector<std::int32_t> components = component_environments(two.triangles);
+  EXPECT_TRUE(check_result_does_not_cross_itself(two, components).ok());
+  const std::vector<std::int32_t> one(two.triangles.size(), 1);
+  const absl::Status crossed = check_result_does_not_cross_itself(two, one);
+  EXPECT_EQ(crossed.code(), absl::StatusCode::kFailedPrecondition) << crossed;
+  EXPECT_THAT(std::string(crossed.message()),
+              ::testing::MatchesRegex(".*crosses itself: [0-9]+ pairs of its triangles within "
+                                      "one component cross, the first near \\(0\\.[678].*"));
+  EXPECT_EQ(check_result_does_not_cross_itself(sphere_surface({0, 0, 0}, 1.0, 0.3), {}).code(),
+            absl::StatusCode::kOk);
 }
 
 }  // namespace
