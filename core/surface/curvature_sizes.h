@@ -59,6 +59,8 @@
 #include <span>
 #include <vector>
 
+#include "absl/status/statusor.h"
+#include "core/common/progress.h"
 #include "core/mesh/mesh.h"
 #include "core/sizing/size_field.h"
 #include "core/surface/discrete_surface.h"
@@ -69,15 +71,20 @@ namespace afmesh {
 // delta_i for every input point of `surface` (N values; +infinity where the surface is flat or
 // only meets lines), not graded. `alpha_p_deg` in (0, 180), or 0: no angle bound; `deviation`
 // (epsilon, in the units of the points) > 0, or 0: no chord bound; `base` is the size in force
-// without the curvature (the largest scale at which a turn is read).
-std::vector<double> curvature_point_sizes(const DiscreteSurface& surface,
-                                          const SurfaceFeatures& features, double alpha_p_deg,
-                                          double deviation, const SizeField& base);
+// without the curvature (the largest scale at which a turn is read). CANCELLED soon after
+// progress.cancelled() turns true: it is looked at every few hundred faces and every line (a
+// 1M-face scan asked for a coarse size spends tens of seconds here).
+absl::StatusOr<std::vector<double>> curvature_point_sizes(const DiscreteSurface& surface,
+                                                          const SurfaceFeatures& features,
+                                                          double alpha_p_deg, double deviation,
+                                                          const SizeField& base,
+                                                          Progress& progress = no_progress());
 
 // Grades point sizes (N values, +infinity for none) in place: each becomes the smallest
 // delta_i + (c_i - 1) |x_j - x_i| over paths along the surface's edges (Dijkstra, O(N log N)).
-// growth >= 1.
-void grade_point_sizes(const DiscreteSurface& surface, double growth, std::vector<double>& size);
+// growth >= 1. CANCELLED soon after progress.cancelled() turns true (`size` then half graded).
+absl::Status grade_point_sizes(const DiscreteSurface& surface, double growth,
+                               std::vector<double>& size, Progress& progress = no_progress());
 
 // min(base(x), the size attached to the input's points at x): the linear interpolation of the
 // delta_i at the corners of the input face nearest to x, at the closest point of that face to x

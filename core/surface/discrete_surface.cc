@@ -98,12 +98,14 @@ absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
   s.tags_ = mesh.triangle_tags.empty() ? std::vector<Index>(mesh.triangles.size(), 0)
                                        : mesh.triangle_tags;
 
+  if (cancel.look()) return cancelled();
   s.normals_.reserve(s.triangles_.size());
   for (const Triangle& t : s.triangles_) {
     const Point n = unit_normal(s.points_[t[0]], s.points_[t[1]], s.points_[t[2]]);
     s.normals_.push_back(n);
     if (n == Point{0.0, 0.0, 0.0}) ++s.degenerate_faces_;
   }
+  if (cancel.look()) return cancelled();
   s.balls_.reserve(s.triangles_.size());
   for (const Triangle& t : s.triangles_) {
     const Point c =

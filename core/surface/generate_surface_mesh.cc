@@ -65,8 +65,9 @@ absl::Status check_params(const SurfaceParams& params) {
 // Step 1 (not in the paper, which assumes a clean triangulation): drops what carries no
 // surface (triangles repeating a point or of zero area, repeats of a triangle, points on no
 // triangle) and orients closed components consistently and outward (repair_front). Every
-// change is counted in `report`.
-absl::StatusOr<Mesh> clean_surface_input(const Mesh& input, SurfaceReport& report) {
+// change is counted in `report`. CANCELLED soon after progress.cancelled() turns true.
+absl::StatusOr<Mesh> clean_surface_input(const Mesh& input, SurfaceReport& report,
+                                          Progress& progress) {
   const Index n = static_cast<Index>(input.points.size());
   report.input_points = n;
   report.input_triangles = static_cast<std::int64_t>(input.triangles.size());
@@ -83,7 +84,9 @@ absl::StatusOr<Mesh> clean_surface_input(const Mesh& input, SurfaceReport& repor
   Mesh out;
   absl::flat_hash_set<Triangle> seen;
   std::vector<Index> new_index(static_cast<std::size_t>(n), kInvalidIndex);
+  CancelCheck cancel(progress);
   for (std::size_t t = 0; t < input.triangles.size(); ++t) {
+    if (cancel.due()) return absl::CancelledError("surface meshing cancelled");
     const Triangle& v = input.triangles[t];
     for (int k = 0; k < 3; ++k)
       if (v[k] < 0 || v[k] >= n)
@@ -614,7 +617,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   SurfaceResult result;
   StageClock clock(result.timings);
   if (absl::Status st = check_params(params); !st.ok()) return st;
-  absl::StatusOr<Mesh> clean = clean_surface_input(input, result.report);
+  absl::StatusOr<Mesh> clean = clean_surface_input(input, result.report, progress);
   if (!clean.ok()) return clean.status();
   absl::StatusOr<std::unique_ptr<SizeField>> field =
       make_size_field(params.spec, params.size, clean->points);
@@ -647,13 +650,15 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   // 20–22) and across the gaps between lines narrower than the size (gap_sizes.h), graded.
   const SizeField* sizes = field->get();
   std::unique_ptr<CurvatureLimitedSize> limited;
-  std::vector<double> point_sizes =
-      params.curvature_angle_deg > 0 || params.curvature_deviation > 0
-          ? curvature_point_sizes(*surface, *features, params.curvature_angle_deg,
-                                  params.curvature_deviation * surface->size() / kDeviationMargin,
-                                  **field)
-          : std::vector<double>(surface->local_points().size(),
-                                std::numeric_limits<double>::infinity());
+  std::vector<double> point_sizes(surface->local_points().size(),
+                                  std::numeric_limits<double>::infinity());
+  if (params.curvature_angle_deg > 0 || params.curvature_deviation > 0) {
+    absl::StatusOr<std::vector<double>> curved = curvature_point_sizes(
+        *surface, *features, params.curvature_angle_deg,
+        params.curvature_deviation * surface->size() / kDeviationMargin, **field, progress);
+    if (!curved.ok()) return curved.status();
+    point_sizes = *std::move(curved);
+  }
   const std::vector<double> gaps = line_gap_sizes(*surface, *features, **field);
   // Not in the paper: the thickness of the walls, for a surface that is to be a volume's front.
   std::vector<double> walls;
@@ -672,7 +677,8 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
     attached = attached || std::isfinite(point_sizes[v]);
   }
   if (attached) {
-    grade_point_sizes(*surface, growth, point_sizes);
+    if (absl::Status st = grade_point_sizes(*surface, growth, point_sizes, progress); !st.ok())
+      return st;
     limited = std::make_unique<CurvatureLimitedSize>(**field, *surface, std::move(point_sizes),
                                                      std::move(at_gap));
     sizes = limited.get();

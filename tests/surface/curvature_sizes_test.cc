@@ -25,6 +25,15 @@ namespace {
 // Eq. 20–21 on a circle of radius r: elements turning by 30° are 2 r tan(15°) long.
 double eq21_on_radius(double r) { return 2.0 * r * std::tan(15.0 * std::numbers::pi / 180.0); }
 
+// curvature_point_sizes of a model, never cancelled.
+std::vector<double> sizes_of(const testing::SurfaceModel& model, double alpha_p_deg,
+                             double deviation, const SizeField& base) {
+  absl::StatusOr<std::vector<double>> sizes =
+      curvature_point_sizes(model.surface, model.features, alpha_p_deg, deviation, base);
+  EXPECT_TRUE(sizes.ok()) << sizes.status();
+  return sizes.ok() ? *std::move(sizes) : std::vector<double>{};
+}
+
 struct Range {
   double smallest = std::numeric_limits<double>::infinity();
   double largest = 0.0;
@@ -51,7 +60,7 @@ Range finite_range(const std::vector<double>& sizes) {
 TEST(CurvatureSizes, ASphereAsksEq21AndItsNoiseAsksNothing) {
   const Mesh smooth = sphere_surface({0, 0, 0}, 1.0, 0.05);
   const testing::SurfaceModel model = testing::surface_model(smooth);
-  const Range sphere = finite_range(curvature_point_sizes(model.surface, model.features, 30.0, 0.0,
+  const Range sphere = finite_range(sizes_of(model, 30.0, 0.0,
                                                           UniformSize(1.0)));
   std::printf("sphere: %d points, sizes %.4f to %.4f (eq. 21: %.4f)\n", sphere.finite,
               sphere.smallest, sphere.largest, eq21_on_radius(1.0));
@@ -61,7 +70,7 @@ TEST(CurvatureSizes, ASphereAsksEq21AndItsNoiseAsksNothing) {
 
   const Mesh noisy = testing::jittered(smooth, 0.0075, 7);
   const testing::SurfaceModel noisy_model = testing::surface_model(noisy);
-  const Range noise = finite_range(curvature_point_sizes(noisy_model.surface, noisy_model.features,
+  const Range noise = finite_range(sizes_of(noisy_model,
                                                          30.0, 0.0, UniformSize(0.15)));
   std::printf("noisy sphere: %zu lines, sizes from %.4f\n", noisy_model.features.lines.size(),
               noise.smallest);
@@ -77,7 +86,7 @@ TEST(CurvatureSizes, ARoundingNarrowerThanTheSizeKeepsItsSize) {
   const testing::SurfaceModel model =
       testing::surface_model(testing::closed_cylinder(0.05, 1.0, 64, 40));
   const std::vector<double> sizes =
-      curvature_point_sizes(model.surface, model.features, 30.0, 0.0, UniformSize(0.5));
+      sizes_of(model, 30.0, 0.0, UniformSize(0.5));
   const std::vector<Point>& p = model.surface.local_points();
   Range lateral;
   for (Index v = 0; v < model.surface.point_count(); ++v) {
@@ -105,7 +114,7 @@ TEST(CurvatureSizes, SliversOfAFacetedHoleTurnAcrossTheirEdge) {
   const testing::SurfaceModel model =
       testing::surface_model(testing::closed_cylinder(0.5, 2.0, 36, 1));
   const std::vector<double> sizes =
-      curvature_point_sizes(model.surface, model.features, 30.0, 1.0, UniformSize(0.209));
+      sizes_of(model, 30.0, 1.0, UniformSize(0.209));
   const Range r = finite_range(sizes);
   std::printf("faceted hole: %d points, sizes %.4f to %.4f (eq. 21: %.4f)\n", r.finite,
               r.smallest, r.largest, eq21_on_radius(0.5));
@@ -121,7 +130,7 @@ TEST(CurvatureSizes, TheChordBoundAsksTheLengthOfItsSagitta) {
   const testing::SurfaceModel model = testing::surface_model(sphere_surface({0, 0, 0}, 1.0, 0.05));
   const double chord = std::sqrt(8.0 * 1.0 * 0.001);
   for (const double angle : {0.0, 30.0}) {
-    const Range r = finite_range(curvature_point_sizes(model.surface, model.features, angle,
+    const Range r = finite_range(sizes_of(model, angle,
                                                        0.001, UniformSize(1.0)));
     std::printf("sphere, angle %g, epsilon 0.001: sizes %.4f to %.4f (sqrt(8 r e): %.4f)\n",
                 angle, r.smallest, r.largest, chord);
@@ -149,7 +158,7 @@ TEST(CurvatureSizes, ALineAsksTheSizeOfItsOwnTurn) {
     double angle, deviation, expected;
   };
   for (const Case c : {Case{10.0, 0.0, eq21}, Case{0.0, 0.002, kink}, Case{10.0, 0.002, kink}}) {
-    const std::vector<double> sizes = curvature_point_sizes(model.surface, model.features, c.angle,
+    const std::vector<double> sizes = sizes_of(model, c.angle,
                                                             c.deviation, UniformSize(1.0));
     Range rim;
     for (Index v = 0; v < model.surface.point_count(); ++v) {
@@ -169,8 +178,20 @@ TEST(CurvatureSizes, ALineAsksTheSizeOfItsOwnTurn) {
     EXPECT_LT(rim.largest, 1.15 * c.expected);
   }
   const Range coarse = finite_range(
-      curvature_point_sizes(model.surface, model.features, 10.0, 0.002, UniformSize(2.0)));
+      sizes_of(model, 10.0, 0.002, UniformSize(2.0)));
   EXPECT_EQ(coarse.finite, 0);
+}
+
+// A cancelled job stops in the curvature sizes too: they look at the progress every few
+// hundred faces (a 1M-face scan at a coarse size spent 29 s there before they did).
+TEST(CurvatureSizes, StopWhenTheJobIsCancelled) {
+  struct Cancelled final : Progress {
+    bool cancelled() const override { return true; }
+  } cancelled;
+  const testing::SurfaceModel model = testing::surface_model(sphere_surface({0, 0, 0}, 1.0, 0.05));
+  const absl::StatusOr<std::vector<double>> sizes = curvature_point_sizes(
+      model.surface, model.features, 30.0, 0.0, UniformSize(1.0), cancelled);
+  EXPECT_EQ(sizes.status().code(), absl::StatusCode::kCancelled) << sizes.status();
 }
 
 // End to end: the disk meshed at 1 with a 10° bound has at least 36 sides on its rim (a chord of
@@ -286,7 +307,7 @@ TEST(CurvatureSizes, ASizeGrowsAwayFromItsPointInsideALongFace) {
   for (Index v = 0; v < surface.point_count(); ++v)
     if (surface.to_global(surface.local_points()[v])[2] < 1e-9) point_sizes[v] = 0.01;
   const double growth = 1.2;
-  grade_point_sizes(surface, growth, point_sizes);
+  ASSERT_TRUE(grade_point_sizes(surface, growth, point_sizes).ok());
   const UniformSize base(0.1);
   const CurvatureLimitedSize limited(base, surface, point_sizes);
   const double chord = 2.0 * 0.5 * std::sin(std::numbers::pi / 48.0);
