@@ -130,9 +130,9 @@ void classify_edge(const std::vector<Triangle>& triangles, const std::vector<Hal
 // Vertices whose corners fall into two or more fans. The corners are bucketed by vertex (a
 // counting sort, O(M + N)), each bucket in ascending triangle order, and a bucket's fans are
 // counted among its few corners: the same result as sorting all corners by (vertex, fan,
-// triangle), without its O(M log M).
+// triangle), without its O(M log M). Stops (an unfinished list) once `cancel` is stopped.
 std::vector<VertexFans> split_vertices(const std::vector<Triangle>& triangles,
-                                       CornerSets& corners) {
+                                       CornerSets& corners, CancelCheck* cancel) {
   Index points = 0;
   for (const Triangle& t : triangles)
     for (const Index v : t) points = std::max(points, v + 1);
@@ -147,6 +147,7 @@ std::vector<VertexFans> split_vertices(const std::vector<Triangle>& triangles,
   std::vector<VertexFans> result;
   std::vector<Index> fans;
   for (Index v = 0; v < points; ++v) {
+    if (cancel != nullptr && cancel->due()) return result;
     fans.clear();
     for (std::size_t i = start[v]; i < start[v + 1]; ++i)
       fans.push_back(corners.find(corner_at[i]));
@@ -335,14 +336,19 @@ BoundaryFaces collect_boundary_faces(const std::vector<Tet>& tets,
   return boundary;
 }
 
-TriangleTopology analyze_triangle_topology(const std::vector<Triangle>& triangles) {
+TriangleTopology analyze_triangle_topology(const std::vector<Triangle>& triangles,
+                                           CancelCheck* cancel) {
   TriangleTopology topology;
-  const std::vector<HalfEdge> half_edges = sorted_half_edges(triangles);
+  const std::vector<HalfEdge> half_edges = sorted_half_edges(triangles, cancel);
+  if (cancel != nullptr && cancel->stopped()) return topology;
   CornerSets corners(3 * triangles.size());
   for_each_edge_run(half_edges, [&](std::size_t first, std::size_t last) {
+    if (cancel != nullptr && cancel->due()) return;  // stopped: the runs left are skipped
     classify_edge(triangles, half_edges, first, last, corners, topology);
   });
-  topology.nonmanifold_vertices = split_vertices(triangles, corners);
+  if (cancel != nullptr && cancel->stopped()) return TriangleTopology{};
+  topology.nonmanifold_vertices = split_vertices(triangles, corners, cancel);
+  if (cancel != nullptr && cancel->stopped()) return TriangleTopology{};
   return topology;
 }
 

@@ -106,7 +106,10 @@ struct TriangleTopology {
 // Groups the edges of `triangles` (M×3, distinct indices in each) and counts the fans around
 // each vertex: the triangles at a vertex v fall into fans, the classes of "shares an edge at v".
 // A manifold vertex has one fan. Results are ascending by edge (a, b) and by vertex.
-TriangleTopology analyze_triangle_topology(const std::vector<Triangle>& triangles);
+// With `cancel`, it is looked at while the edges are sorted, and once it is stopped an empty
+// topology is returned: a caller checks cancel->stopped().
+TriangleTopology analyze_triangle_topology(const std::vector<Triangle>& triangles,
+                                           CancelCheck* cancel = nullptr);
 
 // The triangles across the edges of `triangles` (M×3, distinct indices in each): across[t][k] is
 // the other triangle on edge (triangles[t][k], triangles[t][(k + 1) % 3]) when exactly two

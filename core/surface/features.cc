@@ -52,9 +52,11 @@ std::uint8_t two_face_edge_kinds(const DiscreteSurface& s, double cos_ridge, Ind
 void index_line_graph(Index point_count, LineGraph& graph);
 
 // Step 1: every line edge, ascending by (a, b), with its incidence by vertex.
-LineGraph collect_line_edges(const DiscreteSurface& s, double cos_ridge) {
+// With `cancel` stopped, an unfinished graph (the caller checks cancel.stopped()).
+LineGraph collect_line_edges(const DiscreteSurface& s, double cos_ridge, CancelCheck& cancel) {
   LineGraph graph;
-  const TriangleTopology topology = analyze_triangle_topology(s.triangles());
+  const TriangleTopology topology = analyze_triangle_topology(s.triangles(), &cancel);
+  if (cancel.stopped()) return graph;
   for (const EdgeGroup& e : topology.open_edges) {
     graph.edges.push_back({e.a, e.b, kBoundaryEdge, e.triangles});
   }
@@ -62,6 +64,7 @@ LineGraph collect_line_edges(const DiscreteSurface& s, double cos_ridge) {
     graph.edges.push_back({e.a, e.b, kNonManifoldEdge, e.triangles});
   }
   for (Index t = 0; t < s.face_count(); ++t) {
+    if (cancel.due()) return graph;
     for (int k = 0; k < 3; ++k) {
       const Index g = s.neighbours().across[t][k];
       if (g == kInvalidIndex || g < t) continue;  // each two-face edge once
@@ -191,10 +194,16 @@ DiscreteLine chain(const LineGraph& graph, const std::vector<std::uint8_t>& corn
 }
 
 // Step 4: patches as connected components across edges that are not line edges.
-void find_patches(const DiscreteSurface& s, double cos_ridge, SurfaceFeatures& out) {
+// Once `cancel` is stopped no face is joined to another any more (the labels are then of no
+// use: the caller checks cancel.stopped()), so that the rest of the walk is quick.
+void find_patches(const DiscreteSurface& s, double cos_ridge, SurfaceFeatures& out,
+                  CancelCheck& cancel) {
   std::vector<Index> label;
   const Index count = label_components(
-      s.neighbours(), [&](Index t, int k) { return two_face_edge_kinds(s, cos_ridge, t, k) == 0; },
+      s.neighbours(),
+      [&](Index t, int k) {
+        return !cancel.due() && two_face_edge_kinds(s, cos_ridge, t, k) == 0;
+      },
       label);
   out.face_patch.assign(s.face_count(), PatchId{kInvalidIndex});
   out.patches.reserve(static_cast<std::size_t>(count));
@@ -225,7 +234,9 @@ absl::StatusOr<SurfaceFeatures> find_surface_features(const DiscreteSurface& sur
                                                       Progress& progress) {
   if (absl::Status status = check_params(params); !status.ok()) return status;
   const double cos_ridge = cos_degrees(params.ridge_angle_deg);
-  LineGraph graph = collect_line_edges(surface, cos_ridge);
+  CancelCheck cancel(progress);
+  LineGraph graph = collect_line_edges(surface, cos_ridge, cancel);
+  if (cancel.stopped()) return absl::CancelledError("surface features: cancelled");
   SurfaceFeatures out;
   drop_short_free_ridges(surface, params, graph, out);
   if (progress.cancelled()) return absl::CancelledError("surface features: cancelled");
@@ -260,7 +271,8 @@ absl::StatusOr<SurfaceFeatures> find_surface_features(const DiscreteSurface& sur
     corner_index[v] = static_cast<Index>(out.corners.size());
     out.corners.push_back({v, corner[v], {}});
   }
-  find_patches(surface, cos_ridge, out);
+  find_patches(surface, cos_ridge, out, cancel);
+  if (cancel.stopped()) return absl::CancelledError("surface features: cancelled");
   for (Index l = 0; l < static_cast<Index>(out.lines.size()); ++l) {
     DiscreteLine& line = out.lines[l];
     out.corners[corner_index[line.vertices.front()]].lines.push_back(LineId{l});
