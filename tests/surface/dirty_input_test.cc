@@ -115,15 +115,23 @@ TEST(DirtyInput, BonesAtOneAndAHalfTheMeanEdgeEndValidOrStop) {
   expect_valid_by_component(result->mesh);
 }
 
-// Components that do not cross are not reported as crossing; one component is not checked.
-TEST(DirtyInput, ComponentsApartReportNoCrossing) {
-  Mesh two = sphere_surface({0, 0, 0}, 1.0, 0.2);
-  const Mesh other = sphere_surface({3, 0, 0}, 1.0, 0.2);
-  const auto offset = static_cast<Index>(two.points.size());
+// Two unit spheres meshed at `size`, the second's centre `apart` along x; `offset` is the
+// second's first point.
+Mesh two_spheres(double apart, double size, Index& offset) {
+  Mesh two = sphere_surface({0, 0, 0}, 1.0, size);
+  const Mesh other = sphere_surface({apart, 0, 0}, 1.0, size);
+  offset = static_cast<Index>(two.points.size());
   two.points.insert(two.points.end(), other.points.begin(), other.points.end());
   for (const Triangle& t : other.triangles)
     two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
   two.triangle_tags.clear();
+  return two;
+}
+
+// Components that do not cross are not reported as crossing; one component is not checked.
+TEST(DirtyInput, ComponentsApartReportNoCrossing) {
+  Index offset = 0;
+  Mesh two = two_spheres(3.0, 0.2, offset);
   SurfaceParams params;
   params.size = 0.2;
   const absl::StatusOr<SurfaceResult> apart = generate_surface_mesh(two, params);
@@ -144,13 +152,8 @@ TEST(DirtyInput, ComponentsApartReportNoCrossing) {
 // (check_result_does_not_cross_itself): two overlapping spheres pass as two components, as the
 // assembly they are, and fail as one, naming the pairs and where the first is.
 TEST(DirtyInput, AResultThatCrossesItselfWithinAComponentIsNotReturned) {
-  Mesh two = sphere_surface({0, 0, 0}, 1.0, 0.3);
-  const Mesh other = sphere_surface({1.5, 0, 0}, 1.0, 0.3);
-  const auto offset = static_cast<Index>(two.points.size());
-  two.points.insert(two.points.end(), other.points.begin(), other.points.end());
-  for (const Triangle& t : other.triangles)
-    two.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
-  two.triangle_tags.clear();
+  Index offset = 0;
+  const Mesh two = two_spheres(1.5, 0.3, offset);
   const std::vector<std::int32_t> components = component_environments(two.triangles);
   EXPECT_TRUE(check_result_does_not_cross_itself(two, components).ok());
   const std::vector<std::int32_t> one(two.triangles.size(), 1);
