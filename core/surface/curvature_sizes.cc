@@ -95,14 +95,16 @@ class HalfDisks {
   HalfDisks(const DiscreteSurface& surface, const LineMask& line_mask, const TurnBound& bound)
       : surface_(surface), line_mask_(line_mask), bound_(bound) {}
 
-  // l_p across edge k of face f (whose other face is g) at scale rho; NaN when a half is empty,
-  // not coherent, or the disk holds more than kMaxDiskFaces faces.
-  double size_across(Index f, int k, Index g, double rho) {
+  // l_p across edge k of input face `face_f` (whose other face is `face_g`) at scale rho; NaN
+  // when a half is empty, not coherent, or the disk holds more than kMaxDiskFaces faces. The
+  // walk is over slots (gather_faces): f and g below are the two faces' slots.
+  double size_across(Index face_f, int k, Index face_g, double rho) {
     if (faces_.empty()) gather_faces();
     const std::vector<Point>& p = surface_.local_points();
-    const Triangle& tri_f = surface_.triangle(FaceId{f});
+    const Triangle& tri_f = surface_.triangle(FaceId{face_f});
     const Point& a = p[tri_f[k]];
     const Point& b = p[tri_f[(k + 1) % 3]];
+    const Index f = slot_[face_f], g = slot_[face_g];
     const Point mid = scale(add(a, b), 0.5);
     const Point edge = sub(b, a);
     // The direction across the edge, in the surface, from f's side to g's.
@@ -159,29 +161,59 @@ class HalfDisks {
     std::uint8_t reversed = 0;  // bit j: the face across traverses edge j the same way
   };
 
+  // The faces are stored in the Z order (Morton order) of their centroids, not in the input's:
+  // a disk's faces then lie near each other in memory. Only where they are stored changes: each
+  // face keeps its edges' order, so a walk meets the same faces in the same order and sums them
+  // in the same order as over the input's numbering, bit for bit. On the 1M-face scan at a
+  // coarse size (0.3) the sizes took 22.5 s where they took 38.1 (3.5 against 4.5 s at 0.012);
+  // on a 75k-face input the ordering costs ~10 ms.
   void gather_faces() {
     const std::vector<Point>& p = surface_.local_points();
     const std::vector<Triangle>& t = surface_.triangles();
     const EdgeNeighbours& neighbours = surface_.neighbours();
-    faces_.resize(t.size());
-    stamp_.assign(t.size(), 0);
-    for (std::size_t h = 0; h < t.size(); ++h) {
-      Face& face = faces_[h];
-      face.centroid = surface_.centroid(FaceId{static_cast<Index>(h)});
+    const Index m = surface_.face_count();
+    Box box = empty_box();
+    for (Index h = 0; h < m; ++h) enclose(box, surface_.centroid(FaceId{h}));
+    std::vector<std::pair<std::uint64_t, Index>> keyed(static_cast<std::size_t>(m));
+    for (Index h = 0; h < m; ++h) keyed[h] = {z_order(surface_.centroid(FaceId{h}), box), h};
+    std::sort(keyed.begin(), keyed.end());
+    slot_.resize(static_cast<std::size_t>(m));
+    for (Index i = 0; i < m; ++i) slot_[keyed[i].second] = i;
+    faces_.resize(static_cast<std::size_t>(m));
+    stamp_.assign(static_cast<std::size_t>(m), 0);
+    for (Index h = 0; h < m; ++h) {
+      Face& face = faces_[slot_[h]];
+      face.centroid = surface_.centroid(FaceId{h});
       face.vector_area = cross(sub(p[t[h][1]], p[t[h][0]]), sub(p[t[h][2]], p[t[h][0]]));
-      face.across = neighbours.across[h];
       for (int j = 0; j < 3; ++j) {
-        if (neighbours.across[h][j] == kInvalidIndex || (line_mask_[h] >> j & 1))
+        const Index across = neighbours.across[h][j];
+        face.across[j] = across == kInvalidIndex ? kInvalidIndex : slot_[across];
+        if (across == kInvalidIndex || (line_mask_[h] >> j & 1))
           face.walls |= static_cast<std::uint8_t>(1u << j);
         if (neighbours.same_way[h][j]) face.reversed |= static_cast<std::uint8_t>(1u << j);
       }
     }
   }
 
+  // The Z-order key of x in `box`: 21 bits per axis, interleaved.
+  static std::uint64_t z_order(const Point& x, const Box& box) {
+    std::uint32_t q[3];
+    for (int a = 0; a < 3; ++a) {
+      const double extent = box.hi[a] - box.lo[a];
+      const double u = extent > 0.0 ? (x[a] - box.lo[a]) / extent : 0.0;
+      q[a] = static_cast<std::uint32_t>(std::clamp(u, 0.0, 1.0) * 2097151.0);
+    }
+    std::uint64_t key = 0;
+    for (int bit = 20; bit >= 0; --bit)
+      for (int a = 0; a < 3; ++a) key = key << 1 | (q[a] >> bit & 1u);
+    return key;
+  }
+
   const DiscreteSurface& surface_;
   const LineMask& line_mask_;
   TurnBound bound_;
-  std::vector<Face> faces_;  // gathered at the first edge judged
+  std::vector<Face> faces_;  // by slot, gathered at the first edge judged
+  std::vector<Index> slot_;  // each input face's slot in faces_ (and stamp_)
   std::vector<std::uint32_t> stamp_;
   std::uint32_t visit_ = 0;
   std::vector<std::pair<Index, double>> stack_;
