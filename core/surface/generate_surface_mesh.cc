@@ -804,7 +804,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   for (std::int32_t& c : components) ++c;
   if (absl::Status st = check_result_does_not_cross_itself(result.mesh, components, progress);
       !st.ok())
-    return st;
+    return explain_stuck(std::move(st), *clean, progress);  // the input's own crossings, if any
   clock.lap("self-check");
   return result;
 }
