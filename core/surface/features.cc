@@ -97,6 +97,16 @@ void index_line_graph(Index point_count, LineGraph& graph) {
   }
 }
 
+// Removes the edges marked in `dropped` from `graph`, keeping the others' order, and indexes it
+// again.
+void remove_edges(Index point_count, const std::vector<bool>& dropped, LineGraph& graph) {
+  std::vector<LineEdge> kept;
+  for (std::size_t e = 0; e < graph.edges.size(); ++e)
+    if (!dropped[e]) kept.push_back(std::move(graph.edges[e]));
+  graph.edges = std::move(kept);
+  index_line_graph(point_count, graph);
+}
+
 // Step 1, last: drops the short free ridges (FeatureParams::short_ridge_sizes) from `graph`.
 // Each chain is walked from its free end once per time that end is reached: O(E).
 void drop_short_free_ridges(const DiscreteSurface& s, const FeatureParams& params,
@@ -145,11 +155,7 @@ void drop_short_free_ridges(const DiscreteSurface& s, const FeatureParams& param
     if (degree[at] == 1) free_ends.push_back(at);
   }
   if (out.short_ridge_edges_dropped == 0) return;
-  std::vector<LineEdge> kept;
-  for (std::size_t e = 0; e < graph.edges.size(); ++e)
-    if (!dropped[e]) kept.push_back(std::move(graph.edges[e]));
-  graph.edges = std::move(kept);
-  index_line_graph(s.point_count(), graph);
+  remove_edges(s.point_count(), dropped, graph);
 }
 
 // Step 2: the CornerKind bits of every vertex (0: not a corner).
