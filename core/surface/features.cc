@@ -6,6 +6,7 @@
 #include <numeric>
 #include <tuple>
 
+#include "absl/container/flat_hash_set.h"
 #include "absl/status/status.h"
 #include "absl/strings/str_format.h"
 #include "core/geometry/vec.h"
@@ -158,6 +159,105 @@ void drop_short_free_ridges(const DiscreteSurface& s, const FeatureParams& param
   remove_edges(s.point_count(), dropped, graph);
 }
 
+// Step 1, after the short free ridges (not in the paper): drops the ridges round small islands.
+// A connected set of ridge edges with no free end (a loop, or loops sharing points), shorter in
+// all than short_ridge_sizes times the size at one of its points, that closes round a patch of
+// at most kMaxIslandFaces faces, is not a line: the island is a scan's spike or dimple (noise
+// turning one or two faces by over the ridge angle; a 1M-face scanned sphere had 13 of them,
+// each a patch of its own with its own corners), which the front meshes over as it meshes over
+// a short free ridge. A CAD part's small hole is not an island: its wall is a patch of at least
+// six faces. O(E) over the line edges, and a walk of a few faces per loop.
+constexpr Index kMaxIslandFaces = 4;
+// And an island whose faces turn by more than this from their neighbours stays: noise turns by
+// a little over the ridge angle, and the front cannot mesh over a sharp spike (a pyramid whose
+// faces turn by 68° stopped it).
+constexpr double kMaxIslandTurnDeg = 60.0;
+
+// `joined`: the input edges dropped, as (a, b) with a < b, which the patches are joined across.
+void drop_small_island_ridges(const DiscreteSurface& s, const FeatureParams& params,
+                              LineGraph& graph, SurfaceFeatures& out,
+                              absl::flat_hash_set<std::pair<Index, Index>>& joined) {
+  if (params.sizes == nullptr || graph.edges.empty()) return;
+  const std::vector<Point>& p = s.local_points();
+  const std::vector<Triangle>& t = s.triangles();
+  const double cos_max_turn = cos_degrees(kMaxIslandTurnDeg);
+  // The line edges by face, to walk a patch without crossing them.
+  absl::flat_hash_set<std::pair<Index, Index>> line_edge;
+  for (const LineEdge& e : graph.edges) line_edge.insert({e.a, e.b});
+  const auto on_line = [&](Index f, int k) {
+    const Index a = t[f][k], b = t[f][(k + 1) % 3];
+    return line_edge.contains({std::min(a, b), std::max(a, b)});
+  };
+  // At most kMaxIslandFaces faces reached from `start` without crossing a line edge?
+  std::vector<Index> walk;
+  const auto island_from = [&](Index start) {
+    walk.assign(1, start);
+    for (std::size_t i = 0; i < walk.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        const Index g = s.neighbours().across[walk[i]][k];
+        if (g == kInvalidIndex || on_line(walk[i], k)) continue;
+        if (std::find(walk.begin(), walk.end(), g) != walk.end()) continue;
+        walk.push_back(g);
+        if (walk.size() > static_cast<std::size_t>(kMaxIslandFaces)) return false;
+      }
+    return true;
+  };
+  std::vector<Index> component(graph.edges.size(), kInvalidIndex);
+  std::vector<bool> dropped(graph.edges.size(), false);
+  std::vector<Index> stack, edges;
+  for (Index first = 0; first < static_cast<Index>(graph.edges.size()); ++first) {
+    if (component[first] != kInvalidIndex) continue;
+    // The connected set of line edges through `first`.
+    edges.clear();
+    stack.assign(1, first);
+    component[first] = first;
+    bool ridges_only = true, free_end = false;
+    double length = 0.0;
+    while (!stack.empty()) {
+      const Index e = stack.back();
+      stack.pop_back();
+      edges.push_back(e);
+      ridges_only = ridges_only && graph.edges[e].kinds == kRidgeEdge;
+      length += distance(p[graph.edges[e].a], p[graph.edges[e].b]);
+      for (const Index v : {graph.edges[e].a, graph.edges[e].b}) {
+        free_end = free_end || graph.degree(v) == 1;
+        for (Index i = graph.offsets[v]; i < graph.offsets[v + 1]; ++i)
+          if (const Index n = graph.incident[i]; component[n] == kInvalidIndex) {
+            component[n] = first;
+            stack.push_back(n);
+          }
+      }
+    }
+    if (!ridges_only || free_end || edges.size() > 2 * static_cast<std::size_t>(kMaxIslandFaces) + 4)
+      continue;
+    const bool gentle = std::all_of(edges.begin(), edges.end(), [&](Index e) {
+      const std::vector<Index>& f = graph.edges[e].faces;
+      if (f.size() != 2) return false;
+      // The faces' normals, the second turned when both traverse the edge the same way.
+      const auto forward = [&](Index face) {
+        for (int k = 0; k < 3; ++k)
+          if (t[face][k] == graph.edges[e].a && t[face][(k + 1) % 3] == graph.edges[e].b) return true;
+        return false;
+      };
+      const double sign = forward(f[0]) == forward(f[1]) ? -1.0 : 1.0;
+      return sign * dot(s.normal(FaceId{f[0]}), s.normal(FaceId{f[1]})) >= cos_max_turn;
+    });
+    if (!gentle) continue;
+    const Point& some = p[graph.edges[first].a];
+    if (!(length < params.short_ridge_sizes * params.sizes->size_at(s.to_global(some)))) continue;
+    const std::vector<Index>& faces = graph.edges[first].faces;
+    if (faces.size() != 2 || !(island_from(faces[0]) || island_from(faces[1]))) continue;
+    for (const Index e : edges) {
+      dropped[e] = true;
+      joined.insert({graph.edges[e].a, graph.edges[e].b});
+    }
+    ++out.island_ridges_dropped;
+    out.island_ridge_edges_dropped += static_cast<std::int64_t>(edges.size());
+  }
+  if (out.island_ridges_dropped == 0) return;
+  remove_edges(s.point_count(), dropped, graph);
+}
+
 // Step 2: the CornerKind bits of every vertex (0: not a corner).
 std::vector<std::uint8_t> corner_kinds(const DiscreteSurface& s, const LineGraph& graph,
                                        double cos_turn) {
@@ -200,15 +300,23 @@ DiscreteLine chain(const LineGraph& graph, const std::vector<std::uint8_t>& corn
 }
 
 // Step 4: patches as connected components across edges that are not line edges.
-// Once `cancel` is stopped no face is joined to another any more (the labels are then of no
-// use: the caller checks cancel.stopped()), so that the rest of the walk is quick.
-void find_patches(const DiscreteSurface& s, double cos_ridge, SurfaceFeatures& out,
-                  CancelCheck& cancel) {
+// Faces are joined across edges that are not line edges: no ridge or tag edge, or one of
+// `joined` (the ridges round islands that were dropped; the short free ridges dropped join
+// nothing, a free end's two sides being one patch already). Once `cancel` is stopped no face is
+// joined to another any more (the labels are then of no use: the caller checks
+// cancel.stopped()), so that the rest of the walk is quick.
+void find_patches(const DiscreteSurface& s, double cos_ridge,
+                  const absl::flat_hash_set<std::pair<Index, Index>>& joined,
+                  SurfaceFeatures& out, CancelCheck& cancel) {
   std::vector<Index> label;
   const Index count = label_components(
       s.neighbours(),
       [&](Index t, int k) {
-        return !cancel.due() && two_face_edge_kinds(s, cos_ridge, t, k) == 0;
+        if (cancel.due()) return false;
+        if (two_face_edge_kinds(s, cos_ridge, t, k) == 0) return true;
+        if (joined.empty()) return false;
+        const Index a = s.triangles()[t][k], b = s.triangles()[t][(k + 1) % 3];
+        return joined.contains({std::min(a, b), std::max(a, b)});
       },
       label);
   out.face_patch.assign(s.face_count(), PatchId{kInvalidIndex});
@@ -245,6 +353,8 @@ absl::StatusOr<SurfaceFeatures> find_surface_features(const DiscreteSurface& sur
   if (cancel.stopped()) return absl::CancelledError("surface features: cancelled");
   SurfaceFeatures out;
   drop_short_free_ridges(surface, params, graph, out);
+  absl::flat_hash_set<std::pair<Index, Index>> joined;
+  drop_small_island_ridges(surface, params, graph, out, joined);
   if (progress.cancelled()) return absl::CancelledError("surface features: cancelled");
   std::vector<std::uint8_t> corner =
       corner_kinds(surface, graph, cos_degrees(params.corner_angle_deg));
@@ -277,7 +387,7 @@ absl::StatusOr<SurfaceFeatures> find_surface_features(const DiscreteSurface& sur
     corner_index[v] = static_cast<Index>(out.corners.size());
     out.corners.push_back({v, corner[v], {}});
   }
-  find_patches(surface, cos_ridge, out, cancel);
+  find_patches(surface, cos_ridge, joined, out, cancel);
   if (cancel.stopped()) return absl::CancelledError("surface features: cancelled");
   for (Index l = 0; l < static_cast<Index>(out.lines.size()); ++l) {
     DiscreteLine& line = out.lines[l];

@@ -17,7 +17,9 @@
 //     - a tag edge: two faces with different input tags (Medit references, Gmsh physical tags).
 //     An edge next to a degenerate face (zero normal) is a ridge only for the other reasons (our
 //     choice: such a face has no direction to compare).
-//     Short free ridges are dropped (FeatureParams::short_ridge_sizes; not in the paper).
+//     Short free ridges are dropped (FeatureParams::short_ridge_sizes; not in the paper), and so
+//     are the ridges round islands of a few faces shorter than that (a scan's spikes; not in
+//     the paper either).
 //  2. Corners: input vertices where a line ends (one line edge), where more than two line edges
 //     meet (the paper's definition), or where a line turns by more than corner_angle_deg (these
 //     two are ours: a line must keep its end, and a rim's sharp turn must not be cut by sides).
@@ -117,6 +119,10 @@ struct SurfaceFeatures {
   // their input edges.
   std::int64_t short_ridges_dropped = 0;
   std::int64_t short_ridge_edges_dropped = 0;
+  // The ridges round small islands that are not lines (drop_small_island_ridges in features.cc:
+  // a scan's spikes and dimples), by connected set of ridge edges.
+  std::int64_t island_ridges_dropped = 0;
+  std::int64_t island_ridge_edges_dropped = 0;
 };
 
 // The features of `surface` (steps 1–4 above). INVALID_ARGUMENT for angles out of range,

@@ -8,11 +8,16 @@
 #include <cstdio>
 #include <set>
 #include <string>
+#include <tuple>
+#include <numbers>
+#include <cmath>
 #include <utility>
 
 #include "core/quality/measures.h"
 #include "core/shapes/shapes.h"
+#include "core/quality/validate.h"
 #include "core/sizing/size_field.h"
+#include "core/surface/generate_surface_mesh.h"
 #include "tests/surface/surface_test_shapes.h"
 
 namespace afmesh {
@@ -264,7 +269,8 @@ TEST(SurfaceFeatures, ResultDependsOnlyOnTheInput) {
 // scan and a hand scan lose some of their ridges, each chain of them ending freely, and a CAD
 // part whose ridges all run corner to corner loses none. The results stay consistent (faces
 // either side of a dropped edge share their patch), the patches are those found with every
-// ridge, and the counts add up.
+// ridge but where a small island's ridges went too (the terrain has one: its patches then join
+// the one around it), and the counts add up.
 TEST(SurfaceFeatures, ShortFreeRidgesGoAndThePatchesStay) {
   for (const std::string name : {"cgal_three_peaks.stl", "cgal_hand.stl", "netgen_part1.stl"}) {
     SCOPED_TRACE(name);
@@ -285,14 +291,100 @@ TEST(SurfaceFeatures, ShortFreeRidgesGoAndThePatchesStay) {
                 f.lines.size(), all.features.corners.size(), f.corners.size(),
                 f.patches.size());
     EXPECT_EQ(all.features.short_ridges_dropped, 0);
-    EXPECT_EQ(f.line_edge_count + f.short_ridge_edges_dropped, all.features.line_edge_count);
-    EXPECT_EQ(f.face_patch, all.features.face_patch);
+    EXPECT_EQ(all.features.island_ridges_dropped, 0);
+    EXPECT_EQ(f.line_edge_count + f.short_ridge_edges_dropped + f.island_ridge_edges_dropped,
+              all.features.line_edge_count);
+    if (f.island_ridges_dropped == 0) {
+      EXPECT_EQ(f.face_patch, all.features.face_patch);
+    } else {
+      EXPECT_LT(f.patches.size(), all.features.patches.size());
+    }
+    EXPECT_EQ(f.island_ridges_dropped > 0, name == "cgal_three_peaks.stl");
     if (name == "netgen_part1.stl") {
       EXPECT_EQ(f.short_ridges_dropped, 0);
     } else {
       EXPECT_GT(f.short_ridges_dropped, 0);
       EXPECT_LT(f.lines.size(), all.features.lines.size());
     }
+  }
+}
+
+// Ridges round a small island (drop_small_island_ridges): a flat disk of radius 2 (rings of
+// 0.25) with one triangle at (1, 0) replaced by a three-sided pyramid whose faces turn by 31°
+// from the disk (and under 60° from each other). Every pyramid face is an island of one face,
+// and its six ridges are no line at a size of 1: one patch, the rim its only line. At a size of
+// 0.1 they stay (longer than two sizes), and so they do for a steep pyramid (faces at 70°: the
+// front cannot mesh over that). The surface meshed at 1 is valid, with the pyramid meshed over.
+TEST(SurfaceFeatures, RidgesRoundASmallIslandAreNoLine) {
+  Mesh disk = testing::terrain_disk(0.0, 0.0, 2.0, 8, 32, [](double, double) { return 0.0; });
+  // The triangle whose centroid is nearest (1, 0), split at its raised incentre (the point as
+  // far from its three edges, so that the three new faces tilt alike).
+  std::size_t nearest = 0;
+  double best = 1e9;
+  for (std::size_t t = 0; t < disk.triangles.size(); ++t) {
+    Point c{-1.0, 0.0, 0.0};
+    for (const Index v : disk.triangles[t]) c = add(c, scale(disk.points[v], 1.0 / 3.0));
+    if (norm(c) < best) {
+      best = norm(c);
+      nearest = t;
+    }
+  }
+  const Triangle base = disk.triangles[nearest];
+  Point apex{0.0, 0.0, 0.0};
+  double perimeter = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double opposite =
+        distance(disk.points[base[(k + 1) % 3]], disk.points[base[(k + 2) % 3]]);
+    apex = add(apex, scale(disk.points[base[k]], opposite));
+    perimeter += opposite;
+  }
+  apex = scale(apex, 1.0 / perimeter);
+  const double inradius = norm(cross(sub(disk.points[base[1]], disk.points[base[0]]),
+                                     sub(disk.points[base[2]], disk.points[base[0]]))) /
+                          perimeter;
+  apex[2] = inradius * std::tan(70.0 * std::numbers::pi / 180.0);
+  Mesh steep = disk;
+  const auto top = static_cast<Index>(disk.points.size());
+  steep.points.push_back(apex);
+  steep.triangles[nearest] = {base[0], base[1], top};
+  steep.triangles.push_back({base[1], base[2], top});
+  steep.triangles.push_back({base[2], base[0], top});
+  steep.triangle_tags.assign(steep.triangles.size(), 0);
+  const UniformSize one(1.0);
+  FeatureParams at_one;
+  at_one.sizes = &one;
+  EXPECT_EQ(surface_model(steep, at_one).features.island_ridges_dropped, 0) << "steep";
+  apex[2] = inradius * std::tan(31.0 * std::numbers::pi / 180.0);
+  disk.points.push_back(apex);
+  disk.triangles[nearest] = {base[0], base[1], top};
+  disk.triangles.push_back({base[1], base[2], top});
+  disk.triangles.push_back({base[2], base[0], top});
+  disk.triangle_tags.assign(disk.triangles.size(), 0);
+  for (const auto& [size, islands, patches] :
+       {std::tuple{1.0, 1, std::size_t{1}}, std::tuple{0.1, 0, std::size_t{4}}}) {
+    SCOPED_TRACE(size);
+    const UniformSize sizes(size);
+    FeatureParams params;
+    params.sizes = &sizes;
+    const Model m = surface_model(disk, params);
+    expect_consistent(m);
+    EXPECT_EQ(m.features.island_ridges_dropped, islands);
+    EXPECT_EQ(m.features.patches.size(), patches);
+    if (islands > 0) {
+      EXPECT_EQ(m.features.island_ridge_edges_dropped, 6);
+      ASSERT_EQ(m.features.lines.size(), 1u);
+      EXPECT_TRUE(m.features.lines[0].closed);
+    }
+  }
+  SurfaceParams params;
+  params.size = 1.0;
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(disk, params);
+  ASSERT_TRUE(r.ok()) << r.status().message();
+  EXPECT_EQ(r->report.patches, 1);
+  const ValidationReport report = validate_surface(r->mesh);
+  for (const Check& c : report.checks) {
+    if (c.name == check::kClosed || c.name == check::kPositiveEnclosedVolume) continue;
+    EXPECT_TRUE(c.passed()) << c.name << ": " << c.summary;
   }
 }
 
