@@ -124,6 +124,7 @@ absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
   s.neighbours_ = triangle_edge_neighbours(s.triangles_, &cancel);
   if (cancel.stopped()) return cancelled();
 
+  if (cancel.look()) return cancelled();
   // Faces by vertex (a counting sort: ascending face ids in each bucket).
   s.face_offsets_.assign(s.points_.size() + 1, 0);
   for (const Triangle& t : s.triangles_) {

@@ -484,17 +484,22 @@ std::vector<FaceId> output_faces_near_input_points(const DiscreteSurface& input,
 
 // The report's components: joined across edges of two triangles, closed when none of their
 // triangles has an edge without exactly one other triangle across it (open or non-manifold).
-void count_components(const DiscreteSurface& surface, SurfaceReport& report) {
+// CANCELLED soon after progress.cancelled() turns true (no face is joined any more then).
+absl::Status count_components(const DiscreteSurface& surface, SurfaceReport& report,
+                              Progress& progress) {
   const EdgeNeighbours& neighbours = surface.neighbours();
   std::vector<Index> label;
+  CancelCheck cancel(progress);
   const Index count =
-      label_components(neighbours, [](Index, int) { return true; }, label);
+      label_components(neighbours, [&](Index, int) { return !cancel.due(); }, label);
+  if (cancel.stopped()) return absl::CancelledError("surface meshing cancelled");
   std::vector<bool> open(static_cast<std::size_t>(count), false);
   for (std::size_t t = 0; t < label.size(); ++t)
     for (int k = 0; k < 3; ++k)
       if (neighbours.across[t][k] == kInvalidIndex) open[label[t]] = true;
   report.components = count;
   report.closed_components = std::count(open.begin(), open.end(), false);
+  return absl::OkStatus();
 }
 
 }  // namespace
@@ -627,7 +632,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   // S2, S3
   absl::StatusOr<DiscreteSurface> surface = DiscreteSurface::build(*clean, {}, progress);
   if (!surface.ok()) return surface.status();
-  count_components(*surface, result.report);
+  if (absl::Status st = count_components(*surface, result.report, progress); !st.ok()) return st;
   clock.lap("surface");
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
   FeatureParams feature_params;
