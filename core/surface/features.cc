@@ -36,17 +36,24 @@ struct LineGraph {
 
 double cos_degrees(double deg) { return std::cos(deg * std::numbers::pi / 180.0); }
 
+// The cosine of the turn across edge k of face t, which has one face g across it: the unit
+// normals' dot product, g's turned when the two traverse the edge the same way (disagree in
+// orientation). 0 when a face has no normal (zero area).
+double turn_cosine(const DiscreteSurface& s, Index t, int k) {
+  const Index g = s.neighbours().across[t][k];
+  const double sign = s.neighbours().same_way[t][k] ? -1.0 : 1.0;
+  return sign * dot(s.normal(FaceId{t}), s.normal(FaceId{g}));
+}
+
 // Step 1 for an edge with exactly two faces: edge k of face t (its neighbour across it is known).
 // Symmetric in the two faces, so either side gives the same answer.
 std::uint8_t two_face_edge_kinds(const DiscreteSurface& s, double cos_ridge, Index t, int k) {
   const Index g = s.neighbours().across[t][k];
   std::uint8_t kinds = 0;
   if (s.tags()[t] != s.tags()[g]) kinds |= kTagEdge;
-  const Point& nt = s.normal(FaceId{t});
-  Point ng = s.normal(FaceId{g});
-  if (s.neighbours().same_way[t][k]) ng = scale(ng, -1.0);
-  const bool both_have_normals = squared_norm(nt) > 0.0 && squared_norm(ng) > 0.0;
-  if (both_have_normals && dot(nt, ng) < cos_ridge) kinds |= kRidgeEdge;
+  const bool both_have_normals =
+      squared_norm(s.normal(FaceId{t})) > 0.0 && squared_norm(s.normal(FaceId{g})) > 0.0;
+  if (both_have_normals && turn_cosine(s, t, k) < cos_ridge) kinds |= kRidgeEdge;
   return kinds;
 }
 
@@ -168,9 +175,9 @@ void drop_short_free_ridges(const DiscreteSurface& s, const FeatureParams& param
 // a short free ridge. A CAD part's small hole is not an island: its wall is a patch of at least
 // six faces. O(E) over the line edges, and a walk of a few faces per loop.
 constexpr Index kMaxIslandFaces = 4;
-// And an island whose faces turn by more than this from their neighbours stays: noise turns by
-// a little over the ridge angle, and the front cannot mesh over a sharp spike (a pyramid whose
-// faces turn by 68° stopped it).
+// And an island whose ridges turn by more than this stays: noise turns by a little over the
+// ridge angle, and the front cannot mesh over a sharp spike (a pyramid whose faces tilted by
+// about 68°, its ridges turning by up to 158°, stopped it).
 constexpr double kMaxIslandTurnDeg = 60.0;
 
 // `joined`: the input edges dropped, as (a, b) with a < b, which the patches are joined across.
@@ -202,15 +209,15 @@ void drop_small_island_ridges(const DiscreteSurface& s, const FeatureParams& par
       }
     return true;
   };
-  std::vector<Index> component(graph.edges.size(), kInvalidIndex);
+  std::vector<bool> reached(graph.edges.size(), false);
   std::vector<bool> dropped(graph.edges.size(), false);
   std::vector<Index> stack, edges;
   for (Index first = 0; first < static_cast<Index>(graph.edges.size()); ++first) {
-    if (component[first] != kInvalidIndex) continue;
+    if (reached[first]) continue;
     // The connected set of line edges through `first`.
     edges.clear();
     stack.assign(1, first);
-    component[first] = first;
+    reached[first] = true;
     bool ridges_only = true, free_end = false;
     double length = 0.0;
     while (!stack.empty()) {
@@ -222,25 +229,23 @@ void drop_small_island_ridges(const DiscreteSurface& s, const FeatureParams& par
       for (const Index v : {graph.edges[e].a, graph.edges[e].b}) {
         free_end = free_end || graph.degree(v) == 1;
         for (Index i = graph.offsets[v]; i < graph.offsets[v + 1]; ++i)
-          if (const Index n = graph.incident[i]; component[n] == kInvalidIndex) {
-            component[n] = first;
+          if (const Index n = graph.incident[i]; !reached[n]) {
+            reached[n] = true;
             stack.push_back(n);
           }
       }
     }
     if (!ridges_only || free_end || edges.size() > 2 * static_cast<std::size_t>(kMaxIslandFaces) + 4)
       continue;
+    // A ridge edge has two faces; the turn across it read from the first's side.
     const bool gentle = std::all_of(edges.begin(), edges.end(), [&](Index e) {
-      const std::vector<Index>& f = graph.edges[e].faces;
-      if (f.size() != 2) return false;
-      // The faces' normals, the second turned when both traverse the edge the same way.
-      const auto forward = [&](Index face) {
-        for (int k = 0; k < 3; ++k)
-          if (t[face][k] == graph.edges[e].a && t[face][(k + 1) % 3] == graph.edges[e].b) return true;
-        return false;
-      };
-      const double sign = forward(f[0]) == forward(f[1]) ? -1.0 : 1.0;
-      return sign * dot(s.normal(FaceId{f[0]}), s.normal(FaceId{f[1]})) >= cos_max_turn;
+      const Index f = graph.edges[e].faces[0];
+      for (int k = 0; k < 3; ++k) {
+        const Index u = t[f][k], w = t[f][(k + 1) % 3];
+        if (std::min(u, w) == graph.edges[e].a && std::max(u, w) == graph.edges[e].b)
+          return turn_cosine(s, f, k) >= cos_max_turn;
+      }
+      return false;
     });
     if (!gentle) continue;
     const Point& some = p[graph.edges[first].a];
