@@ -396,12 +396,16 @@ Index label_components(const EdgeNeighbours& neighbours,
   return count;
 }
 
-std::vector<std::int32_t> component_environments(const std::vector<Triangle>& triangles) {
+std::vector<std::int32_t> component_environments(const EdgeNeighbours& neighbours) {
   std::vector<Index> label;
-  label_components(triangle_edge_neighbours(triangles), [](Index, int) { return true; }, label);
+  label_components(neighbours, [](Index, int) { return true; }, label);
   std::vector<std::int32_t> ids(label.size());
   for (std::size_t t = 0; t < label.size(); ++t) ids[t] = static_cast<std::int32_t>(label[t]) + 1;
   return ids;
+}
+
+std::vector<std::int32_t> component_environments(const std::vector<Triangle>& triangles) {
+  return component_environments(triangle_edge_neighbours(triangles));
 }
 
 }  // namespace afmesh

@@ -106,8 +106,8 @@ struct TriangleTopology {
 // Groups the edges of `triangles` (M×3, distinct indices in each) and counts the fans around
 // each vertex: the triangles at a vertex v fall into fans, the classes of "shares an edge at v".
 // A manifold vertex has one fan. Results are ascending by edge (a, b) and by vertex.
-// With `cancel`, it is looked at while the edges are sorted, and once it is stopped an empty
-// topology is returned: a caller checks cancel->stopped().
+// With `cancel`, it is looked at while the edges are sorted, grouped and the fans counted, and
+// once it is stopped an empty topology is returned: a caller checks cancel->stopped().
 TriangleTopology analyze_triangle_topology(const std::vector<Triangle>& triangles,
                                            CancelCheck* cancel = nullptr);
 
@@ -137,5 +137,7 @@ Index label_components(const EdgeNeighbours& neighbours,
 // triangles of different components may cross: the judge of an assembly whose components cross
 // in the input and are re-triangulated one by one (MeshSurface, issue 11 part 6). O(M log M).
 std::vector<std::int32_t> component_environments(const std::vector<Triangle>& triangles);
+// The same from the triangles' edge neighbours, when they are at hand. O(M).
+std::vector<std::int32_t> component_environments(const EdgeNeighbours& neighbours);
 
 }  // namespace afmesh

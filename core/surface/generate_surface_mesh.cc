@@ -803,11 +803,8 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   for (Point& x : result.mesh.points) x = surface->to_global(x);
   // Not in the paper: the result as returned (global frame) must not cross itself within a
   // component (check_result_does_not_cross_itself).
-  std::vector<Index> component;
-  label_components(output->neighbours(), [](Index, int) { return true; }, component);
-  std::vector<std::int32_t> components(component.begin(), component.end());
-  for (std::int32_t& c : components) ++c;
-  if (absl::Status st = check_result_does_not_cross_itself(result.mesh, components, progress);
+  if (absl::Status st = check_result_does_not_cross_itself(
+          result.mesh, component_environments(output->neighbours()), progress);
       !st.ok())
     return explain_stuck(std::move(st), *clean, progress);  // the input's own crossings, if any
   clock.lap("self-check");
