@@ -342,24 +342,23 @@ TEST(SurfaceFeatures, RidgesRoundASmallIslandAreNoLine) {
   const double inradius = norm(cross(sub(disk.points[base[1]], disk.points[base[0]]),
                                      sub(disk.points[base[2]], disk.points[base[0]]))) /
                           perimeter;
-  apex[2] = inradius * std::tan(70.0 * std::numbers::pi / 180.0);
-  Mesh steep = disk;
-  const auto top = static_cast<Index>(disk.points.size());
-  steep.points.push_back(apex);
-  steep.triangles[nearest] = {base[0], base[1], top};
-  steep.triangles.push_back({base[1], base[2], top});
-  steep.triangles.push_back({base[2], base[0], top});
-  steep.triangle_tags.assign(steep.triangles.size(), 0);
+  // The disk with the base triangle split at the apex raised to tilt the new faces by `tilt`.
+  const auto with_pyramid = [&](double tilt_deg) {
+    Mesh m = disk;
+    const auto top = static_cast<Index>(m.points.size());
+    m.points.push_back({apex[0], apex[1], inradius * std::tan(tilt_deg * std::numbers::pi / 180.0)});
+    m.triangles[nearest] = {base[0], base[1], top};
+    m.triangles.push_back({base[1], base[2], top});
+    m.triangles.push_back({base[2], base[0], top});
+    m.triangle_tags.assign(m.triangles.size(), 0);
+    return m;
+  };
   const UniformSize one(1.0);
   FeatureParams at_one;
   at_one.sizes = &one;
-  EXPECT_EQ(surface_model(steep, at_one).features.island_ridges_dropped, 0) << "steep";
-  apex[2] = inradius * std::tan(31.0 * std::numbers::pi / 180.0);
-  disk.points.push_back(apex);
-  disk.triangles[nearest] = {base[0], base[1], top};
-  disk.triangles.push_back({base[1], base[2], top});
-  disk.triangles.push_back({base[2], base[0], top});
-  disk.triangle_tags.assign(disk.triangles.size(), 0);
+  EXPECT_EQ(surface_model(with_pyramid(70.0), at_one).features.island_ridges_dropped, 0)
+      << "steep";
+  disk = with_pyramid(31.0);
   for (const auto& [size, islands, patches] :
        {std::tuple{1.0, 1, std::size_t{1}}, std::tuple{0.1, 0, std::size_t{4}}}) {
     SCOPED_TRACE(size);
