@@ -64,4 +64,13 @@ inline double new_point_size(double field_size, double growth,
   return std::min(field_size, grown_corner_size(growth, point_size, corners));
 }
 
+// Eq. 15 over a distance (its continuous form; ours, not the paper's words): sizes that grow
+// by c_i = `growth` from one element to the next, starting from delta, reach
+// delta + (c_i - 1) d at distance d. The bound of a size attached at a point on the sizes around
+// it: along a line (split_lines.h), over the input's edges (grade_point_sizes), inside a patch
+// re-triangulated from its input (patch_from_input.h).
+inline double size_grown_over(double delta, double growth, double distance) {
+  return delta + (growth - 1.0) * distance;
+}
+
 }  // namespace afmesh

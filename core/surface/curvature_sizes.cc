@@ -13,6 +13,7 @@
 
 #include "absl/container/flat_hash_set.h"
 #include "core/geometry/vec.h"
+#include "core/sizing/attached_sizes.h"
 #include "core/spatial/box.h"
 
 namespace afmesh {
@@ -419,7 +420,7 @@ absl::Status grade_point_sizes(const DiscreteSurface& surface, double growth,
   const std::vector<Point>& p = surface.local_points();
   const std::vector<Triangle>& t = surface.triangles();
   // The smallest delta_i + (c_i - 1) |x_j - x_i| over the surface's edges (Dijkstra).
-  const double rate = std::max(growth, 1.0) - 1.0;
+  const double c_i = std::max(growth, 1.0);
   using Item = std::pair<double, Index>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
   for (Index v = 0; v < static_cast<Index>(size.size()); ++v)
@@ -433,7 +434,7 @@ absl::Status grade_point_sizes(const DiscreteSurface& surface, double growth,
     for (const Index f : surface.faces_at(v)) {
       for (const Index w : t[f]) {
         if (w == v) continue;
-        const double through = d + rate * norm(sub(p[w], p[v]));
+        const double through = size_grown_over(d, c_i, norm(sub(p[w], p[v])));
         if (through < size[w]) {
           size[w] = through;
           queue.push({through, w});

@@ -9,6 +9,7 @@
 #include "absl/strings/str_format.h"
 #include "core/geometry/vec.h"
 #include "core/quality/compensated_sum.h"
+#include "core/sizing/attached_sizes.h"
 
 namespace afmesh {
 namespace {
@@ -72,9 +73,9 @@ std::vector<double> arc_lengths(std::span<const Point> polyline) {
 absl::StatusOr<double> inverse_size(const SizeField& sizes, const Point& x, double s, double length,
                                     const SplitLineParams& params) {
   const double field = sizes.size_at(add(x, params.field_origin));
-  const double grow = params.growth - 1.0;
-  const double h = std::min(
-      {field, params.start_size + grow * s, params.end_size + grow * std::max(0.0, length - s)});
+  const double h =
+      std::min({field, size_grown_over(params.start_size, params.growth, s),
+                size_grown_over(params.end_size, params.growth, std::max(0.0, length - s))});
   if (!(field > 0.0) || !std::isfinite(field)) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "split line: the size field gives %g at (%g, %g, %g); sizes must be finite and > 0", field,
