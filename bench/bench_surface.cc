@@ -97,6 +97,7 @@ int run(const std::string& input, SurfaceParams params, const std::string& out, 
         .add("hausdorff_over_diagonal", r.hausdorff / r.model_size)
         .add("patches", r.patches).add("lines", r.lines).add("corners", r.corners)
         .add("short_ridges_dropped", r.short_ridges_dropped)
+        .add("patches_from_input", r.patches_from_input)
         .add("valid", valid).add("failed_checks", failed)
         .add_raw("stage_seconds", "{" + stages_json + "}");
     std::printf("%s\n", j.str().c_str());
@@ -104,14 +105,15 @@ int run(const std::string& input, SurfaceParams params, const std::string& out, 
     std::printf(
         "%s: size %g: %.0f triangles in %.3f s (%.0f/s), %.0f bytes/triangle peak; min angle "
         "%.2f, >= 30: %.2f%%, < 15: %lld; mean edge / h %.3f; Hausdorff %.2e of the diagonal; "
-        "%lld patches, %lld lines, %lld corners (%lld short free ridges dropped); dropped %lld "
-        "degenerate, %lld duplicate, "
-        "reoriented %lld; %s\n  stages (s): %s\n",
+        "%lld patches (%lld from their input), %lld lines, %lld corners (%lld short free ridges "
+        "dropped); dropped %lld degenerate, %lld duplicate, reoriented %lld; %s\n  stages (s): "
+        "%s\n",
         input.c_str(), params.size, n, seconds, n / seconds,
         static_cast<double>(memory.growth_bytes()) / n, min_angle, 100.0 * at_least_30 / n,
         static_cast<long long>(under_15), edges / (3 * n) / params.size,
         r.hausdorff / r.model_size, static_cast<long long>(r.patches),
-        static_cast<long long>(r.lines), static_cast<long long>(r.corners),
+        static_cast<long long>(r.patches_from_input), static_cast<long long>(r.lines),
+        static_cast<long long>(r.corners),
         static_cast<long long>(r.short_ridges_dropped),
         static_cast<long long>(r.degenerate_triangles_dropped),
         static_cast<long long>(r.duplicate_triangles_dropped),
@@ -141,6 +143,8 @@ int main(int argc, char** argv) {
                  "of the bounding-box diagonal (0: off)");
   app.add_option("--wall-sizes", params.wall_sizes,
                  "elements at most this many times the thickness of the solid's walls (0: off)");
+  app.add_flag("--every-patch-from-input", params.every_patch_from_input,
+               "re-triangulate every patch from its input triangles, without the front");
   app.add_option("--out", out, "write the surface (format by extension)");
   app.add_flag("--json", json, "one JSON object");
   CLI11_PARSE(app, argc, argv);

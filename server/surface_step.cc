@@ -6,6 +6,7 @@
 #include <cmath>
 #include <utility>
 
+#include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "core/geometry/vec.h"
 #include "core/sizing/spec_size_field.h"
@@ -44,6 +45,10 @@ void add_repair_notes(const SurfaceReport& report, std::vector<std::string>& not
   note(report.short_ridges_dropped,
        "ridges of the input that end freely and are shorter than twice the size were not kept as "
        "lines");
+  for (const std::string& stop : report.front_stops)
+    notes.push_back(absl::StrCat(
+        stop, "; the patch was re-triangulated from its own input triangles instead, split to the "
+              "size"));
   if (report.input_crossing_pairs > 0) {
     const Point& c = report.first_input_crossing;
     notes.push_back(absl::StrFormat(
@@ -193,6 +198,7 @@ void fill_surface_summary(const SurfaceOutcome& outcome, v1::SurfaceSummary& sum
   features.set_lines(count(report.lines));
   features.set_corners(count(report.corners));
   features.set_short_ridges_dropped(count(report.short_ridges_dropped));
+  features.set_patches_from_input(count(report.patches_from_input));
 
   v1::SurfaceDistance& distance = *summary.mutable_distance();
   distance.set_hausdorff(report.hausdorff);

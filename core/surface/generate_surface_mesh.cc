@@ -29,6 +29,7 @@
 #include "core/surface/discrete_surface.h"
 #include "core/surface/features.h"
 #include "core/surface/flip_edges.h"
+#include "core/surface/patch_from_input.h"
 #include "core/surface/gap_sizes.h"
 #include "core/surface/wall_sizes.h"
 #include "core/surface/smooth_points.h"
@@ -214,6 +215,7 @@ absl::Status sides_along_lines(SurfaceMeshState& s, std::span<const Index> more_
       ids[i] = s.add_point(split->points[i], s.field_size(split->points[i]), FaceId{host}, a);
     }
     side_count[l] = static_cast<Index>(last);
+    s.points_along_lines.push_back({ids, split->segment});
     // Attached sizes (eq. 15's delta_A): a line point carries the length of its sides.
     for (std::size_t i = 0; i < last; ++i) {
       s.line_sides.insert({std::min(ids[i], ids[i + 1]), std::max(ids[i], ids[i + 1])});
@@ -564,6 +566,16 @@ constexpr double kSmallWantedSize = 0.25;
 // the deviation asked (without it, up to 2.8 times).
 constexpr double kDeviationMargin = 2.25;
 
+// Not in the paper: the more rounds of flips, collapses and smoothing after a patch was
+// re-triangulated from its input (patch_from_input.h), in which the collapses work on every
+// triangle under kInputPatchBadAngleDeg (not only on those under 15°, as after the front): the
+// splits of the input's triangles leave rows of points closer than the size where long thin
+// triangles were split across (a coarse torus whose every input vertex lies on a ridge: 32.6%
+// of 30° or more after the rounds with 15°, 99.6% with 25°, 100% with 30°, 99.96% with 35°;
+// cgal_hand at its mean edge: 90.9% after one round, 94.9% after three with 15°, 99.2% with 30°).
+constexpr int kCleanUpRoundsAfterInputPatches = 2;
+constexpr double kInputPatchBadAngleDeg = 30.0;
+
 // Not in the paper: what the input looks like where a patch's front stopped, so that the message
 // names a cause the user can act on, as the volume front's does: the input's triangles near
 // there (their edges and smallest angle), the sharpest turn between two adjacent faces of one
@@ -723,10 +735,35 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
         kTrianglesPerInitialSide * static_cast<double>(patch_sides[p].size()) + 1000.0);
     front_params.max_back_offs =
         kMinBackOffs + static_cast<std::int64_t>(expected[p] / kExpectedTrianglesPerBackOff);
-    if (absl::Status st = mesh_patch(s, patch, patch_sides[p], boxes[p], front_params, progress);
-        !st.ok())
-      return explain_stuck(describe_where_stopped(std::move(st), s, **field, params.ridge_angle_deg),
-                           *clean, progress);
+    const std::size_t triangles_before = s.triangles.size();
+    const Index points_before = static_cast<Index>(s.points.size());
+    absl::Status st = params.every_patch_from_input
+                          ? absl::OkStatus()
+                          : mesh_patch(s, patch, patch_sides[p], boxes[p], front_params, progress);
+    if (!st.ok()) {
+      st = describe_where_stopped(std::move(st), s, **field, params.ridge_angle_deg);
+      if (st.code() != absl::StatusCode::kFailedPrecondition) return st;
+      // The front's triangles and points go: the patch is as before it.
+      for (std::size_t t = triangles_before; t < s.triangles.size(); ++t)
+        s.triangles[t][0] = kInvalidIndex;
+      s.compact_patch(points_before, triangles_before);
+      s.stopped_at.reset();
+      result.report.front_stops.emplace_back(st.message());
+    }
+    // Not in the paper: the patch's own input triangles, split to the size, in lieu of a front
+    // that stopped (patch_from_input.h); the report says which and why.
+    if (!st.ok() || params.every_patch_from_input) {
+      if (absl::Status fallback =
+              patch_from_input(s, patch, patch_sides[p], front_params.max_triangles, progress);
+          !fallback.ok()) {
+        if (fallback.code() != absl::StatusCode::kFailedPrecondition) return fallback;
+        return explain_stuck(absl::FailedPreconditionError(absl::StrCat(
+                                 st.ok() ? "" : st.message(), st.ok() ? "" : "; ",
+                                 fallback.message())),
+                             *clean, progress);
+      }
+      ++result.report.patches_from_input;
+    }
     if (static_cast<std::int64_t>(s.triangles.size()) > params.max_triangles)
       return absl::ResourceExhaustedError(absl::StrFormat(
           "the surface has %d triangles after %d of its %d patches, over the limit of %d",
@@ -735,27 +772,43 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   if (absl::Status st = check_patches_meet_on_lines(s); !st.ok())
     return explain_stuck(std::move(st), *clean, progress);
   clock.lap("front");
-  if (absl::StatusOr<std::int64_t> flips =
-          flip_edges(s.points, s.triangles, s.triangle_patch, s.line_sides, {}, progress);
-      !flips.ok())
-    return flips.status();
-  clock.lap("flips");
-  // Needles and caps that no flip mends lose their shortest edge (collapse_edges.h); the flips
-  // then run again over what changed.
-  if (absl::StatusOr<std::int64_t> collapses = collapse_edges(s, {}, progress); !collapses.ok()) {
-    return collapses.status();
-  } else if (*collapses > 0) {
+  // The clean-ups: flips, collapses, flips again, smoothing; each stage timed when `lap`.
+  const auto clean_up = [&](bool lap, const CollapseParams& collapse = {}) -> absl::Status {
     if (absl::StatusOr<std::int64_t> flips =
             flip_edges(s.points, s.triangles, s.triangle_patch, s.line_sides, {}, progress);
         !flips.ok())
       return flips.status();
+    if (lap) clock.lap("flips");
+    // Needles and caps that no flip mends lose their shortest edge (collapse_edges.h); the flips
+    // then run again over what changed.
+    if (absl::StatusOr<std::int64_t> collapses = collapse_edges(s, collapse, progress);
+        !collapses.ok()) {
+      return collapses.status();
+    } else if (*collapses > 0) {
+      if (absl::StatusOr<std::int64_t> flips =
+              flip_edges(s.points, s.triangles, s.triangle_patch, s.line_sides, {}, progress);
+          !flips.ok())
+        return flips.status();
+    }
+    if (lap) clock.lap("collapses");
+    // The points inside the patches relax towards their neighbours' mean, on the input (flips
+    // again after it change the angles by less than 0.1% of triangles on the corpus).
+    if (absl::StatusOr<std::int64_t> moves = smooth_points(s, {}, progress); !moves.ok())
+      return moves.status();
+    if (lap) clock.lap("smoothing");
+    return absl::OkStatus();
+  };
+  if (absl::Status st = clean_up(true); !st.ok()) return st;
+  // A patch re-triangulated from its input starts from the input's triangles split in two
+  // again and again: the clean-ups run kCleanUpRoundsAfterInputPatches more times then, their
+  // collapses on triangles under kInputPatchBadAngleDeg (as CGAL's isotropic_remeshing repeats
+  // its own and collapses short edges; not in the paper).
+  if (result.report.patches_from_input > 0) {
+    for (int round = 0; round < kCleanUpRoundsAfterInputPatches; ++round)
+      if (absl::Status st = clean_up(false, {.bad_angle_deg = kInputPatchBadAngleDeg}); !st.ok())
+        return st;
+    clock.lap("more clean-ups");
   }
-  clock.lap("collapses");
-  // The points inside the patches relax towards their neighbours' mean, on the input (flips
-  // again after it change the angles by less than 0.1% of triangles on the corpus).
-  if (absl::StatusOr<std::int64_t> moves = smooth_points(s, {}, progress); !moves.ok())
-    return moves.status();
-  clock.lap("smoothing");
 
   Mesh local;
   local.points = s.points;

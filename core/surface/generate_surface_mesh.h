@@ -23,6 +23,7 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "absl/status/status.h"
@@ -85,6 +86,10 @@ struct SurfaceParams {
   // count against its memory budget, since its own estimate sees the size field only (of_bullet:
   // 40k estimated, 148k made). Not in the paper.
   std::function<absl::Status(double expected_triangles)> admit_expected;
+  // Every patch re-triangulated from its own input triangles (patch_from_input.h), as a patch
+  // whose front stopped is, without trying the front: the fallback alone, to test and compare
+  // it. Not in the paper; off by default (the front's triangles are better).
+  bool every_patch_from_input = false;
 };
 
 // What was done to the input before meshing, and what came out (every count is exact).
@@ -114,6 +119,11 @@ struct SurfaceReport {
   // single component (the check costs O(M log M)).
   std::int64_t input_crossing_pairs = 0;
   Point first_input_crossing{0.0, 0.0, 0.0};
+  // Patches whose surface front stopped and that were re-triangulated from their own input
+  // triangles instead (patch_from_input.h), and why each front stopped (the message it would
+  // otherwise have failed with).
+  std::int64_t patches_from_input = 0;
+  std::vector<std::string> front_stops;
 };
 
 struct SurfaceResult {

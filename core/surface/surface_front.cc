@@ -1075,54 +1075,6 @@ absl::Status PatchFront::stuck(Index f, std::string_view why, std::int64_t trian
       static_cast<std::int64_t>(s_.triangles.size()) - triangles_before, front_.size()));
 }
 
-// The patch's triangles from `first` on are a closed cover of the region its initial sides
-// bound: every directed edge used once, and its reverse too unless it is an initial side, which
-// every one is (not in the paper: a check of the result, so that a fault of the front is a
-// FAILED_PRECONDITION naming where, never a surface with a hole or a fold). O(N log N).
-absl::Status check_patch_closed(const SurfaceMeshState& s, PatchId patch,
-                                const std::vector<Side>& sides, std::size_t first) {
-  std::vector<Side> edges;
-  edges.reserve(3 * (s.triangles.size() - first));
-  for (std::size_t t = first; t < s.triangles.size(); ++t)
-    for (int e = 0; e < 3; ++e) edges.push_back({s.triangles[t][e], s.triangles[t][(e + 1) % 3]});
-  std::sort(edges.begin(), edges.end());
-  std::vector<Side> initial = sides;
-  std::sort(initial.begin(), initial.end());
-  const auto fault = [&](const Side& e, std::string_view what) {
-    const Point x = s.surface.to_global(s.points[e[0]]);
-    return absl::FailedPreconditionError(absl::StrFormat(
-        "the surface front of patch %d (input tag %d) did not close it: edge (%d, %d) near (%g, "
-        "%g, %g) %s",
-        index_of(patch), s.features.patches[index_of(patch)].tag, e[0], e[1], x[0], x[1], x[2],
-        what));
-  };
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const Side& e = edges[i];
-    if (i + 1 < edges.size() && edges[i + 1] == e)
-      return fault(e, "is used the same way by two triangles (they overlap)");
-    if (!std::binary_search(edges.begin(), edges.end(), Side{e[1], e[0]}) &&
-        !std::binary_search(initial.begin(), initial.end(), e))
-      return fault(e, "has a triangle on one side only (a hole)");
-  }
-  for (const Side& v : initial)
-    if (!std::binary_search(edges.begin(), edges.end(), v))
-      return fault(v, "is a side of the patch's lines with no triangle on it");
-  return absl::OkStatus();
-}
-
-// Records the edges of the patch's triangles (from `first` on) that join two line points off
-// the lines, for the patches meshed after it (SurfaceMeshState::chords_between_line_points).
-void keep_chords_between_line_points(SurfaceMeshState& s, std::size_t first) {
-  for (std::size_t t = first; t < s.triangles.size(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const Index a = s.triangles[t][k], b = s.triangles[t][(k + 1) % 3];
-      const std::pair<Index, Index> edge{std::min(a, b), std::max(a, b)};
-      if (edge.second < s.line_points && !s.line_sides.contains(edge))
-        s.chords_between_line_points.insert(edge);
-    }
-  }
-}
-
 // A patch without lines (a closed smooth surface: a sphere, a torus) has no front to start
 // from: a seed triangle of the wanted size is laid on its first face, and its sides, turned
 // outward, are the front (not in the paper, which meshes patches bounded by lines).
@@ -1207,6 +1159,54 @@ std::vector<std::pair<std::size_t, std::size_t>> crossing_sides(const SurfaceMes
     }
   }
   return crossing;
+}
+
+// The patch's triangles from `first` on are a closed cover of the region its initial sides
+// bound: every directed edge used once, and its reverse too unless it is an initial side, which
+// every one is (not in the paper: a check of the result, so that a fault of the front is a
+// FAILED_PRECONDITION naming where, never a surface with a hole or a fold). O(N log N).
+absl::Status check_patch_closed(const SurfaceMeshState& s, PatchId patch,
+                                const std::vector<Side>& sides, std::size_t first) {
+  std::vector<Side> edges;
+  edges.reserve(3 * (s.triangles.size() - first));
+  for (std::size_t t = first; t < s.triangles.size(); ++t)
+    for (int e = 0; e < 3; ++e) edges.push_back({s.triangles[t][e], s.triangles[t][(e + 1) % 3]});
+  std::sort(edges.begin(), edges.end());
+  std::vector<Side> initial = sides;
+  std::sort(initial.begin(), initial.end());
+  const auto fault = [&](const Side& e, std::string_view what) {
+    const Point x = s.surface.to_global(s.points[e[0]]);
+    return absl::FailedPreconditionError(absl::StrFormat(
+        "the surface front of patch %d (input tag %d) did not close it: edge (%d, %d) near (%g, "
+        "%g, %g) %s",
+        index_of(patch), s.features.patches[index_of(patch)].tag, e[0], e[1], x[0], x[1], x[2],
+        what));
+  };
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const Side& e = edges[i];
+    if (i + 1 < edges.size() && edges[i + 1] == e)
+      return fault(e, "is used the same way by two triangles (they overlap)");
+    if (!std::binary_search(edges.begin(), edges.end(), Side{e[1], e[0]}) &&
+        !std::binary_search(initial.begin(), initial.end(), e))
+      return fault(e, "has a triangle on one side only (a hole)");
+  }
+  for (const Side& v : initial)
+    if (!std::binary_search(edges.begin(), edges.end(), v))
+      return fault(v, "is a side of the patch's lines with no triangle on it");
+  return absl::OkStatus();
+}
+
+// Records the edges of the patch's triangles (from `first` on) that join two line points off
+// the lines, for the patches meshed after it (SurfaceMeshState::chords_between_line_points).
+void keep_chords_between_line_points(SurfaceMeshState& s, std::size_t first) {
+  for (std::size_t t = first; t < s.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const Index a = s.triangles[t][k], b = s.triangles[t][(k + 1) % 3];
+      const std::pair<Index, Index> edge{std::min(a, b), std::max(a, b)};
+      if (edge.second < s.line_points && !s.line_sides.contains(edge))
+        s.chords_between_line_points.insert(edge);
+    }
+  }
 }
 
 absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Side>& sides,

@@ -74,6 +74,14 @@ struct SurfaceMeshState {
   absl::flat_hash_set<std::pair<Index, Index>> line_sides;
   // The corners and line points are points [0, line_points) (set once the lines are split).
   Index line_points = 0;
+  // The points of each discrete line in its order (ids: its first corner, the points between,
+  // its last corner) and the polyline segment each lies on (LineSplit::segment), one entry per
+  // features.lines; for a patch re-triangulated from its input (patch_from_input.h).
+  struct LinePoints {
+    std::vector<Index> ids;
+    std::vector<Index> segment;
+  };
+  std::vector<LinePoints> points_along_lines;
   // The edges of the patches meshed so far that join two line points off the lines, as (min,
   // max): two patches that meet at a corner where their lines turn can each cut the corner by
   // the same chord, and the surface would carry one edge four times (not in the paper).
@@ -127,6 +135,16 @@ FaceId patch_hint(const SurfaceMeshState& s, PatchId patch, Index p);
 std::vector<std::pair<std::size_t, std::size_t>> crossing_sides(const SurfaceMeshState& s,
                                                                 PatchId patch,
                                                                 std::span<const Side> sides);
+
+// The patch's triangles from `first` on are a closed cover of the region its initial `sides`
+// bound: every directed edge used once, and its reverse too unless it is an initial side, which
+// every one is. FAILED_PRECONDITION naming the first edge that is not. O(N log N).
+absl::Status check_patch_closed(const SurfaceMeshState& s, PatchId patch,
+                                const std::vector<Side>& sides, std::size_t first);
+
+// Records the edges of the patch's triangles (from `first` on) that join two line points off
+// the lines, for the patches meshed after it (SurfaceMeshState::chords_between_line_points).
+void keep_chords_between_line_points(SurfaceMeshState& s, std::size_t first);
 
 struct PatchFrontParams {
   // The front stops with FAILED_PRECONDITION after this many steps per side it started with

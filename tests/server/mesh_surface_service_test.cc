@@ -70,7 +70,9 @@ SurfaceResult result_with(Mesh mesh) {
                    .short_ridges_dropped = 5,
                    .hausdorff = 0.125,
                    .max_vertex_distance = 0.0625,
-                   .model_size = 1.75};
+                   .model_size = 1.75,
+                   .patches_from_input = 1,
+                   .front_stops = {"the surface front of patch 2 (input tag 0) got stuck"}};
   result.timings = {{"features", 0.5}, {"front", 0.25}};
   return result;
 }
@@ -282,10 +284,13 @@ TEST_F(MeshSurfaceServiceTest, WarningsComeBeforeTheSlicesAndTheSummaryLast) {
       warnings.push_back(response.warning().message());
     }
   }
-  ASSERT_EQ(warnings.size(), 5u);  // the four repair counts of result_with, the short ridges
+  // The four repair counts of result_with, the short ridges, the front that stopped.
+  ASSERT_EQ(warnings.size(), 6u);
   EXPECT_THAT(warnings[0], HasSubstr("1 duplicate triangles"));
   EXPECT_THAT(warnings[3], HasSubstr("4 triangles of the input were turned"));
   EXPECT_THAT(warnings[4], HasSubstr("5 ridges of the input that end freely"));
+  EXPECT_THAT(warnings[5], HasSubstr("the surface front of patch 2 (input tag 0) got stuck; the "
+                                     "patch was re-triangulated from its own input triangles"));
 }
 
 TEST_F(MeshSurfaceServiceTest, SummaryCarriesCountsQualityRepairFeaturesDistanceAndTimings) {
@@ -310,6 +315,7 @@ TEST_F(MeshSurfaceServiceTest, SummaryCarriesCountsQualityRepairFeaturesDistance
   EXPECT_EQ(summary.features().lines(), 6u);
   EXPECT_EQ(summary.features().corners(), 4u);
   EXPECT_EQ(summary.features().short_ridges_dropped(), 5u);
+  EXPECT_EQ(summary.features().patches_from_input(), 1u);
   EXPECT_EQ(summary.distance().hausdorff(), 0.125);
   EXPECT_EQ(summary.distance().max_vertex_distance(), 0.0625);
   EXPECT_EQ(summary.distance().model_size(), 1.75);

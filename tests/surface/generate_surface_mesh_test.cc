@@ -13,6 +13,8 @@
 #include <limits>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/common/progress.h"
 #include "core/geometry/closest_points.h"
@@ -50,6 +52,14 @@ Figures figures_of(const Mesh& m) {
 void expect_closed_valid(const Mesh& m) {
   const ValidationReport report = validate_surface(m);
   EXPECT_TRUE(report.valid()) << report.to_string();
+}
+
+// The names of the checks that failed (an open surface fails "closed" only).
+std::vector<std::string> failed_checks(const ValidationReport& report) {
+  std::vector<std::string> names;
+  for (const Check& check : report.checks)
+    if (check.outcome == CheckOutcome::kFailed) names.push_back(check.name);
+  return names;
 }
 
 // The volume mesher fills `surface` (closed, outward) at `size` (coarse, for speed) with a mesh
@@ -330,15 +340,16 @@ class CancelAfter final : public Progress {
 };
 
 // Issue 12: every step of the surface job looks at its Progress (features, curvature, lines,
-// each patch's front, the flips, the smoothing, the distance; the wall sizes when asked), and a
-// cancel seen at any look ends the job with CANCELLED; a job never cancelled gives the same
-// surface as without a Progress.
+// each patch's front, the flips, the smoothing, the distance; the wall sizes when asked; each
+// patch re-triangulated from its input, when so), and a cancel seen at any look ends the job
+// with CANCELLED; a job never cancelled gives the same surface as without a Progress.
 TEST(GenerateSurfaceMesh, StopsWithCancelledAtEveryLook) {
   const Mesh input = testing::closed_cylinder(1.0, 2.0, 48, 12);
-  for (const double walls : {0.0, 1.0}) {
+  for (const auto& [walls, from_input] : {std::pair{0.0, false}, {1.0, false}, {0.0, true}}) {
     SurfaceParams params;
     params.size = 0.1;
     params.wall_sizes = walls;
+    params.every_patch_from_input = from_input;
     const absl::StatusOr<SurfaceResult> plain = generate_surface_mesh(input, params);
     ASSERT_TRUE(plain.ok()) << plain.status();
     CancelAfter never(std::int64_t{1} << 40);
@@ -347,8 +358,9 @@ TEST(GenerateSurfaceMesh, StopsWithCancelledAtEveryLook) {
     EXPECT_EQ(watched->mesh.points, plain->mesh.points);
     EXPECT_EQ(watched->mesh.triangles, plain->mesh.triangles);
     const std::int64_t looks = never.calls();
-    std::printf("cylinder, wall sizes %g: %zu triangles, %lld looks at the Progress\n", walls,
-                plain->mesh.triangles.size(), static_cast<long long>(looks));
+    std::printf("cylinder, wall sizes %g%s: %zu triangles, %lld looks at the Progress\n", walls,
+                from_input ? ", from its input" : "", plain->mesh.triangles.size(),
+                static_cast<long long>(looks));
     ASSERT_GE(looks, 8);  // at least one per step
     std::set<std::int64_t> at = {0, 1, 2, 3, looks / 4, looks / 2, looks - 3, looks - 2, looks - 1};
     for (std::int64_t k = 4; k < looks; k += std::max<std::int64_t>(1, looks / 40)) at.insert(k);
@@ -356,9 +368,10 @@ TEST(GenerateSurfaceMesh, StopsWithCancelledAtEveryLook) {
       CancelAfter progress(k);
       const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params, progress);
       EXPECT_EQ(r.status().code(), absl::StatusCode::kCancelled)
-          << "wall sizes " << walls << ", cancelled at look " << k;
+          << "wall sizes " << walls << ", from input " << from_input << ", cancelled at look " << k;
       EXPECT_EQ(progress.calls(), k + 1)
-          << "looks after the cancel, wall sizes " << walls << ", cancelled at look " << k;
+          << "looks after the cancel, wall sizes " << walls << ", from input " << from_input
+          << ", cancelled at look " << k;
     }
   }
 }
@@ -761,6 +774,124 @@ TEST(Regression, Issue10ThinBladeOfARemeshedRotorFillsWithoutFlatTets) {
   ASSERT_TRUE(r.ok()) << r.status();
   expect_closed_valid(r->mesh);
   EXPECT_GE(filled_min_dihedral("cgal_rotor", r->mesh, 0.021353), 19.0);
+}
+
+// A patch re-triangulated from its own input triangles (patch_from_input.h), for every patch
+// (SurfaceParams::every_patch_from_input): closed and valid where the input is, every vertex on
+// the input, the lines' points shared with no gap, edges about the size where the input is
+// coarser than it (the input's own vertices stay where it is finer), 99% of the triangles with
+// a smallest angle of 30° or more (issue 11's bar for the front). The inputs: a coarse
+// sphere asked finer (no line), a torus, a cube (12 ridges, 8 corners kept exactly, no triangle
+// across a ridge), a noisy sphere (triangles down to 8°) and an open terrain in UTM-like
+// coordinates (its rim a line).
+TEST(PatchFromInput, EveryPatchClosesOnTheInputAtTheSize) {
+  struct Case {
+    const char* name;
+    Mesh surface;
+    double size;
+    bool closed = true;
+    bool finer_input = false;  // the input's own vertices stay: edges shorter than the size
+  };
+  const Case cases[] = {
+      {"coarse sphere", sphere_surface({0, 0, 0}, 1.0, 0.3), 0.08},
+      {"torus", torus_surface(1.0, 0.35, 0.2), 0.06},
+      {"cube", box_surface({0, 0, 0}, {1, 1, 1}, 0.3), 0.07},
+      {"graded noisy sphere", testing::graded_noisy_sphere(0.015, 0.12, 0.2, 5), 0.12, true, true},
+      {"terrain", testing::terrain_grid(5e6, 5e6, 100.0, 80.0, 8,
+                                        [](double x, double y) {
+                                          return 1e3 + 5.0 * std::sin((x - 5e6) / 15.0) *
+                                                           std::cos((y - 5e6) / 20.0);
+                                        }),
+       3.0, false}};
+  for (const Case& c : cases) {
+    SurfaceParams params;
+    params.size = c.size;
+    params.curvature_angle_deg = 0.0;  // the size asked, to judge the edges by
+    params.every_patch_from_input = true;
+    const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(c.surface, params);
+    ASSERT_TRUE(r.ok()) << c.name << ": " << r.status();
+    print(c.name, *r);
+    const ValidationReport report = validate_surface(r->mesh);
+    if (c.closed) {
+      EXPECT_TRUE(report.valid()) << c.name << ": " << report.to_string();
+    } else {
+      EXPECT_TRUE(failed_checks(report) == std::vector<std::string>{"closed"})
+          << c.name << ": " << report.to_string();
+    }
+    EXPECT_EQ(r->report.patches_from_input, r->report.patches) << c.name;
+    EXPECT_TRUE(r->report.front_stops.empty()) << c.name;  // no front was tried
+    EXPECT_LE(r->report.max_vertex_distance, 1e-9 * r->report.model_size) << c.name;
+    const Figures f = figures_of(r->mesh);
+    if (!c.finer_input) EXPECT_GT(f.mean_edge, 0.75 * c.size) << c.name;
+    EXPECT_LT(f.mean_edge, 1.2 * c.size) << c.name;
+    EXPECT_GE(f.share_30, 0.99) << c.name;
+  }
+}
+
+TEST(PatchFromInput, CubeKeepsItsRidgesAndCornersAndFills) {
+  const Mesh input = box_surface({0, 0, 0}, {1, 1, 1}, 0.3);
+  SurfaceParams params;
+  params.size = 0.1;
+  params.every_patch_from_input = true;
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  ASSERT_TRUE(r.ok()) << r.status();
+  EXPECT_EQ(r->report.patches, 6);
+  EXPECT_EQ(r->report.corners, 8);
+  expect_box_ridges_and_corners(r->mesh, {0, 0, 0}, {1, 1, 1});
+  expect_fills_with_valid_tets("cube from its input", r->mesh, 0.1);
+}
+
+// A ridge that ends inside its patch (a crease z = |x| fading out across y): its points lie
+// inside the patch, with the patch on both sides; the input's vertices along it are removed on
+// both sides, and the crease is kept (every triangle lies on one side of it).
+TEST(PatchFromInput, ARidgeEndingInsideThePatchIsKept) {
+  const Mesh input = testing::terrain_grid(-1.0, -1.0, 2.0, 2.0, 8, [](double x, double y) {
+    return std::abs(x) * std::clamp(-y, 0.0, 1.0);
+  });
+  SurfaceParams params;
+  params.size = 0.1;
+  params.curvature_angle_deg = 0.0;
+  params.every_patch_from_input = true;
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  ASSERT_TRUE(r.ok()) << r.status();
+  print("fading crease", *r);
+  EXPECT_EQ(r->report.patches, 1);
+  EXPECT_GE(r->report.lines, 2);  // the rim and the crease
+  EXPECT_LE(r->report.max_vertex_distance, 1e-9 * r->report.model_size);
+  const ValidationReport report = validate_surface(r->mesh);
+  EXPECT_TRUE(failed_checks(report) == std::vector<std::string>{"closed"}) << report.to_string();
+  int across = 0;  // triangles with points on both sides of the crease x = 0 where it is sharp
+  for (const Triangle& t : r->mesh.triangles) {
+    bool left = false, right = false;
+    for (const Index q : t) {
+      const Point& x = r->mesh.points[q];
+      if (x[1] > -0.5) continue;
+      left = left || x[0] < -1e-12;
+      right = right || x[0] > 1e-12;
+    }
+    across += left && right;
+  }
+  EXPECT_EQ(across, 0);
+}
+
+// cgal_hand at its mean edge: the front of patch 0 stopped on a crease of 98–107° whose ridge
+// ends inside the patch, after every back-off (the job failed with FAILED_PRECONDITION). The
+// patch is re-triangulated from its input triangles instead: the surface is closed and valid,
+// on the input, 99.2% of its triangles at 30° or more, and the report says which front stopped,
+// where and why.
+TEST(Regression, Issue11AFrontThatStopsFallsBackToThePatchsInput) {
+  const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge("cgal_hand.stl");
+  ASSERT_TRUE(r.ok()) << r.status();
+  print("cgal_hand", *r);
+  expect_closed_valid(r->mesh);
+  EXPECT_EQ(r->report.patches_from_input, 1);
+  ASSERT_EQ(r->report.front_stops.size(), 1u);
+  EXPECT_NE(r->report.front_stops[0].find("the surface front of patch 0"), std::string::npos)
+      << r->report.front_stops[0];
+  EXPECT_NE(r->report.front_stops[0].find("near ("), std::string::npos);
+  EXPECT_LE(r->report.max_vertex_distance, 1e-9 * r->report.model_size);
+  EXPECT_LT(r->report.hausdorff, 0.01 * r->report.model_size);
+  EXPECT_GE(figures_of(r->mesh).share_30, 0.98);
 }
 
 }  // namespace

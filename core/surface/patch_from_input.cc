@@ -1,0 +1,446 @@
+#include "core/surface/patch_from_input.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string_view>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "absl/container/flat_hash_map.h"
+#include "absl/container/flat_hash_set.h"
+#include "absl/strings/str_format.h"
+#include "core/geometry/vec.h"
+#include "core/mesh/simplex_incidence.h"
+#include "core/quality/measures.h"
+#include "core/sizing/attached_sizes.h"
+#include "core/surface/flip_edges.h"
+
+namespace afmesh {
+namespace {
+
+// Not in the paper: no split or merge turns a triangle by more than this from the one it replaces
+// (the bound of the flips, collapses and smoothing that follow).
+constexpr double kMaxNormalTurnDeg = 30.0;
+// Not in the paper: edges longer than this times the size wanted at their middle are split (the
+// bound of CGAL's isotropic_remeshing), so that the edges end between 2/3 and 4/3 of it.
+constexpr double kSplitOver = 4.0 / 3.0;
+// Each pass of split_long_edges halves the longest edges: 64 passes reach any ratio a double can
+// hold.
+constexpr int kMaxSplitPasses = 64;
+
+Point normal_of(const std::vector<Point>& p, const Triangle& t) {
+  return cross(sub(p[t[1]], p[t[0]]), sub(p[t[2]], p[t[0]]));
+}
+
+// Whether a triangle whose (unnormalised) normal was `before` may become one with `after`: it keeps
+// an area and turns by at most kMaxNormalTurnDeg.
+bool turns_little(const Point& before, const Point& after) {
+  const double a = norm(after), b = norm(before);
+  if (!(a > 0.0) || !(b > 0.0)) return false;
+  return dot(before, after) >= std::cos(kMaxNormalTurnDeg * std::numbers::pi / 180.0) * a * b;
+}
+
+// The patch's triangles while they are built, over the points of s (their incidence kept).
+class InputPatch {
+ public:
+  InputPatch(SurfaceMeshState& s, PatchId patch, Progress& progress)
+      : s_(s), patch_(patch), progress_(progress), cancel_(progress, 1024) {}
+
+  absl::Status take_input_faces();
+  absl::Status insert_line_points();
+  absl::Status remove_input_line_vertices();
+  absl::Status split_long_edges(std::int64_t max_triangles);
+  void append_to_state() const;
+
+ private:
+  bool live(Index t) const { return tris_[t][0] != kInvalidIndex; }
+  void add(const Triangle& t);
+  void replace(Index t, const Triangle& with);
+  void drop(Index t);
+  // The live triangles with both a and b, into `out`.
+  void triangles_with(Index a, Index b, std::vector<Index>& out) const;
+  // Splits edge (a, b) at point m (every triangle on it into two); with `check`, only when no new
+  // triangle turns from its old one by more than kMaxNormalTurnDeg. False when not done.
+  bool split(Index a, Index b, Index m, bool check);
+  // Removes point x, whose neighbours along its line are y1 and y2: its fan of triangles goes, and
+  // the polygon left on each side of the line, closed by the side (y1, y2), is triangulated for the
+  // largest smallest angle, each new triangle within kMaxNormalTurnDeg of one of the fan and no new
+  // edge one the patch has already (a vertex removal, which a collapse of x into y1 or y2 is one
+  // case of). False, with nothing changed, when no such triangulation exists.
+  bool remove_line_vertex(Index x, Index y1, Index y2);
+  // The size wanted at x between points a and b: the field's, bounded by their attached sizes grown
+  // over the distance (eq. 15, size_grown_over), so that the triangles grade out from short line
+  // sides as the front's do.
+  double size_at(const Point& x, Index a, Index b) const {
+    return std::min({s_.field_size(x),
+                     size_grown_over(s_.point_size[a], s_.growth, distance(x, s_.points[a])),
+                     size_grown_over(s_.point_size[b], s_.growth, distance(x, s_.points[b]))});
+  }
+  // The point of s at input vertex v, made on first use.
+  Index point_at(Index v, FaceId face);
+  absl::Status fault(Index at, std::string_view what) const;
+
+  SurfaceMeshState& s_;
+  PatchId patch_;
+  Progress& progress_;
+  CancelCheck cancel_;
+  std::vector<Triangle> tris_;  // tris_[t][0] == kInvalidIndex: dropped
+  std::int64_t live_count_ = 0;
+  SimplexIncidence<3> incidence_;
+  absl::flat_hash_map<Index, Index> point_of_vertex_;  // input vertex -> point of s
+  absl::flat_hash_set<Index> line_vertices_;           // inner vertices of the patch's lines
+  absl::flat_hash_set<Index> pending_;                 // points at them, still to be removed
+  mutable std::vector<Index> scratch_, fan_x_;
+};
+
+void InputPatch::add(const Triangle& t) {
+  tris_.push_back(t);
+  incidence_.add(tris_, static_cast<Index>(tris_.size() - 1));
+  ++live_count_;
+}
+
+void InputPatch::replace(Index t, const Triangle& with) {
+  incidence_.remove(tris_, t);
+  tris_[t] = with;
+  incidence_.add(tris_, t);
+}
+
+void InputPatch::drop(Index t) {
+  incidence_.remove(tris_, t);
+  tris_[t][0] = kInvalidIndex;
+  --live_count_;
+}
+
+void InputPatch::triangles_with(Index a, Index b, std::vector<Index>& out) const {
+  out.clear();
+  scratch_.clear();
+  incidence_.elements_of(tris_, a, scratch_);
+  for (const Index t : scratch_)
+    if (has_corner(tris_[t], b)) out.push_back(t);
+  std::sort(out.begin(), out.end());
+}
+
+absl::Status InputPatch::fault(Index at, std::string_view what) const {
+  const Point x = s_.surface.to_global(s_.points[at]);
+  return absl::FailedPreconditionError(absl::StrFormat(
+      "patch %d (input tag %d) could not be re-triangulated from its input triangles either: %s "
+      "near (%g, %g, %g)",
+      index_of(patch_), s_.features.patches[index_of(patch_)].tag, what, x[0], x[1], x[2]));
+}
+
+Index InputPatch::point_at(Index v, FaceId face) {
+  auto [it, fresh] = point_of_vertex_.try_emplace(v, kInvalidIndex);
+  if (fresh) {
+    const Point& x = s_.surface.local_points()[v];
+    const bool on_line = line_vertices_.contains(v);
+    it->second = s_.add_point(x, s_.field_size(x), face, on_line ? v : kInvalidIndex);
+    if (on_line) pending_.insert(it->second);
+  }
+  return it->second;
+}
+
+// The patch's input faces, found from its first face across the edges inside it, as triangles over
+// points of s: the corners' own points (shared with the other patches), a new point at every other
+// input vertex (on the input).
+absl::Status InputPatch::take_input_faces() {
+  const SurfaceFeatures& features = s_.features;
+  const DiscreteSurface& surface = s_.surface;
+  // Every line's ends are corners with their points (sides_along_lines).
+  for (std::size_t l = 0; l < features.lines.size(); ++l) {
+    const std::vector<Index>& ids = s_.points_along_lines[l].ids;
+    point_of_vertex_.try_emplace(features.lines[l].vertices.front(), ids.front());
+    point_of_vertex_.try_emplace(features.lines[l].vertices.back(), ids.back());
+  }
+  for (const LineId l : features.patches[index_of(patch_)].lines) {
+    const std::vector<Index>& vertices = features.lines[index_of(l)].vertices;
+    for (std::size_t i = 1; i + 1 < vertices.size(); ++i) line_vertices_.insert(vertices[i]);
+  }
+  std::vector<Index> faces{index_of(features.patches[index_of(patch_)].first_face)};
+  absl::flat_hash_set<Index> seen{faces[0]};
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    if (cancel_.due()) return absl::CancelledError("surface meshing cancelled");
+    for (const Index g : surface.neighbours().across[faces[i]])
+      if (g != kInvalidIndex && features.face_patch[g] == patch_ && seen.insert(g).second)
+        faces.push_back(g);
+  }
+  std::sort(faces.begin(), faces.end());
+  for (const Index f : faces) {
+    Triangle t;
+    for (int k = 0; k < 3; ++k) t[k] = point_at(surface.triangles()[f][k], FaceId{f});
+    add(t);
+  }
+  return absl::OkStatus();
+}
+
+bool InputPatch::split(Index a, Index b, Index m, bool check) {
+  std::vector<Index> on_edge;
+  triangles_with(a, b, on_edge);
+  if (on_edge.empty()) return false;
+  // Each triangle (x, y, w) with {x, y} = {a, b}, in its own turn.
+  const auto corners = [&](Index t) {
+    const Triangle& tri = tris_[t];
+    int k = 0;
+    while (!((tri[k] == a || tri[k] == b) && (tri[(k + 1) % 3] == a || tri[(k + 1) % 3] == b))) ++k;
+    return std::array<Index, 3>{tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]};
+  };
+  if (check) {
+    for (const Index t : on_edge) {
+      const auto [x, y, w] = corners(t);
+      const Point before = normal_of(s_.points, tris_[t]);
+      if (!turns_little(before, normal_of(s_.points, {x, m, w})) ||
+          !turns_little(before, normal_of(s_.points, {m, y, w})))
+        return false;
+    }
+  }
+  for (const Index t : on_edge) {
+    const auto [x, y, w] = corners(t);
+    replace(t, {x, m, w});
+    add({m, y, w});
+  }
+  return true;
+}
+
+// Step 1: the points of each line of the patch, in the line's order, split the input edges they lie
+// on (LineSplit::segment); a point never leaves its edge, so no triangle turns.
+absl::Status InputPatch::insert_line_points() {
+  for (const LineId l : s_.features.patches[index_of(patch_)].lines) {
+    const std::vector<Index>& vertices = s_.features.lines[index_of(l)].vertices;
+    const SurfaceMeshState::LinePoints& along = s_.points_along_lines[index_of(l)];
+    const std::size_t last = along.ids.size() - 1;
+    std::size_t i = 1;
+    for (std::size_t seg = 0; seg + 1 < vertices.size(); ++seg) {
+      const auto found_a = point_of_vertex_.find(vertices[seg]);
+      const auto found_b = point_of_vertex_.find(vertices[seg + 1]);
+      if (found_a == point_of_vertex_.end() || found_b == point_of_vertex_.end())
+        return fault(along.ids[0], "a line of the patch runs off its input faces");
+      Index left = found_a->second;
+      for (; i < last && along.segment[i] == static_cast<Index>(seg); ++i) {
+        if (cancel_.due()) return absl::CancelledError("surface meshing cancelled");
+        if (!split(left, found_b->second, along.ids[i], /*check=*/false))
+          return fault(along.ids[i],
+                       "a line point lies on an input edge of no triangle of the patch");
+        left = along.ids[i];
+      }
+    }
+  }
+  return absl::OkStatus();
+}
+
+bool InputPatch::remove_line_vertex(Index x, Index y1, Index y2) {
+  fan_x_.clear();
+  incidence_.elements_of(tris_, x, fan_x_);
+  // The link of x: a -> b for each triangle (x, a, b), with one way out of and into each point.
+  absl::flat_hash_map<Index, Index> next;
+  absl::flat_hash_set<Index> has_in;
+  for (const Index t : fan_x_) {
+    const Triangle& tri = tris_[t];
+    const int k = tri[0] == x ? 0 : tri[1] == x ? 1 : 2;
+    const Index a = tri[(k + 1) % 3], b = tri[(k + 2) % 3];
+    if (!next.try_emplace(a, b).second || !has_in.insert(b).second) return false;
+  }
+  // The link cut at y1 and y2 into chains from one to the other (one for a line on the patch's rim,
+  // two for a line inside it), each a polygon closed by the side (last, first).
+  std::vector<std::vector<Index>> chains;
+  std::size_t linked = 0;
+  for (const Index start : {y1, y2}) {
+    const auto out = next.find(start);
+    if (out == next.end()) continue;
+    std::vector<Index> chain{start};
+    for (Index q = out->second;; q = next.at(q)) {
+      chain.push_back(q);
+      ++linked;
+      if (q == y1 || q == y2) break;
+      if (q == x || !next.contains(q) || chain.size() > next.size() + 1) return false;
+    }
+    if (chain.back() == start) return false;
+    chains.push_back(std::move(chain));
+  }
+  if (chains.empty() || linked != next.size()) return false;
+  // Each polygon triangulated for the largest smallest angle (dynamic programming over its
+  // diagonals), every triangle within kMaxNormalTurnDeg of a triangle of x's fan, and no diagonal
+  // an edge the patch has already.
+  std::vector<Point> old_normals;
+  for (const Index t : fan_x_) old_normals.push_back(normal_of(s_.points, tris_[t]));
+  std::vector<Triangle> made;
+  for (const std::vector<Index>& c : chains) {
+    const std::size_t m = c.size() - 1;
+    if (m < 2) continue;
+    const std::size_t n = m + 1;
+    constexpr double kInvalid = -1.0;
+    std::vector<double> best(n * n, kInvalid);
+    std::vector<std::size_t> apex(n * n, 0);
+    std::vector<Index> on_edge;
+    // Whether chord (c_i, c_j) of the polygon may be an edge.
+    const auto usable = [&](std::size_t i, std::size_t j) {
+      if (j == i + 1 || (i == 0 && j == m)) return true;
+      triangles_with(c[i], c[j], on_edge);
+      return on_edge.empty();
+    };
+    for (std::size_t i = 0; i + 1 < n; ++i) best[i * n + i + 1] = 180.0;  // an edge: no triangle
+    for (std::size_t span = 2; span <= m; ++span) {
+      for (std::size_t i = 0; i + span < n; ++i) {
+        const std::size_t j = i + span;
+        if (!usable(i, j)) continue;
+        for (std::size_t k = i + 1; k < j; ++k) {
+          const double inner = std::min(best[i * n + k], best[k * n + j]);
+          if (inner <= best[i * n + j]) continue;
+          const Point nt = normal_of(s_.points, {c[i], c[k], c[j]});
+          if (std::none_of(old_normals.begin(), old_normals.end(),
+                           [&](const Point& o) { return turns_little(o, nt); }))
+            continue;
+          const double q = std::min(
+              inner, triangle_min_angle_deg(s_.points[c[i]], s_.points[c[k]], s_.points[c[j]]));
+          if (q > best[i * n + j]) best[i * n + j] = q, apex[i * n + j] = k;
+        }
+      }
+    }
+    if (!(best[m] > 0.0)) return false;  // best[0 * n + m]
+    std::vector<std::pair<std::size_t, std::size_t>> todo{{0, m}};
+    while (!todo.empty()) {
+      const auto [i, j] = todo.back();
+      todo.pop_back();
+      if (j == i + 1) continue;
+      const std::size_t k = apex[i * n + j];
+      made.push_back({c[i], c[k], c[j]});
+      todo.push_back({i, k});
+      todo.push_back({k, j});
+    }
+  }
+  const std::vector<Index> fan = fan_x_;
+  for (const Index t : fan) drop(t);
+  for (const Triangle& t : made) add(t);
+  return true;
+}
+
+// Step 2: along each line of the patch, in its order, the points at input vertices are removed
+// (remove_line_vertex), pass after pass while one goes; one that never can is a fault.
+absl::Status InputPatch::remove_input_line_vertices() {
+  for (const LineId l : s_.features.patches[index_of(patch_)].lines) {
+    const std::vector<Index>& vertices = s_.features.lines[index_of(l)].vertices;
+    const SurfaceMeshState::LinePoints& along = s_.points_along_lines[index_of(l)];
+    const std::size_t last = along.ids.size() - 1;
+    // The line's points and input vertices in its order.
+    std::vector<Index> chain{along.ids[0]};
+    std::size_t i = 1;
+    for (std::size_t seg = 0; seg + 1 < vertices.size(); ++seg) {
+      for (; i < last && along.segment[i] == static_cast<Index>(seg); ++i)
+        chain.push_back(along.ids[i]);
+      if (seg + 2 < vertices.size()) chain.push_back(point_of_vertex_.at(vertices[seg + 1]));
+    }
+    chain.push_back(along.ids[last]);
+    std::vector<std::size_t> prev(chain.size()), next(chain.size());
+    for (std::size_t j = 0; j < chain.size(); ++j) prev[j] = j - 1, next[j] = j + 1;
+    std::vector<bool> gone(chain.size(), false);
+    for (bool merged = true; merged;) {
+      merged = false;
+      for (std::size_t j = 1; j + 1 < chain.size(); ++j) {
+        if (gone[j] || !pending_.contains(chain[j])) continue;
+        if (cancel_.due()) return absl::CancelledError("surface meshing cancelled");
+        const Index x = chain[j];
+        const Index y1 = chain[prev[j]], y2 = chain[next[j]];
+        if (!remove_line_vertex(x, y1, y2)) continue;
+        pending_.erase(x);
+        gone[j] = merged = true;
+        next[prev[j]] = next[j];
+        prev[next[j]] = prev[j];
+      }
+    }
+    for (std::size_t j = 1; j + 1 < chain.size(); ++j)
+      if (!gone[j] && pending_.contains(chain[j]))
+        return fault(chain[j],
+                     "an input vertex on a line cannot be removed without folding a triangle");
+  }
+  if (!pending_.empty()) return fault(*pending_.begin(), "an input vertex on a line is left");
+  return absl::OkStatus();
+}
+
+// Step 3: the edges off the lines longer than kSplitOver times the size at their middle, the
+// longest relative to it first, split at their middle moved onto the patch (S8), pass after pass.
+// An edge whose split would turn a triangle by more than kMaxNormalTurnDeg stays.
+absl::Status InputPatch::split_long_edges(std::int64_t max_triangles) {
+  absl::flat_hash_set<std::pair<Index, Index>> kept;
+  std::vector<std::pair<Index, Index>> edges;
+  std::vector<std::tuple<double, Index, Index>> long_edges;
+  // flip_edges takes the live triangles only, all of this patch.
+  std::erase_if(tris_, [](const Triangle& t) { return t[0] == kInvalidIndex; });
+  std::vector<Index> same_patch;
+  for (int pass = 0; pass < kMaxSplitPasses; ++pass) {
+    if (pass > 0) {
+      same_patch.assign(tris_.size(), index_of(patch_));
+      if (absl::StatusOr<std::int64_t> flips =
+              flip_edges(s_.points, tris_, same_patch, s_.line_sides, {}, progress_);
+          !flips.ok())
+        return flips.status();
+    }
+    incidence_ = SimplexIncidence<3>::of(tris_);
+    edges.clear();
+    for (std::size_t t = 0; t < tris_.size(); ++t) {
+      if (!live(static_cast<Index>(t))) continue;
+      for (int k = 0; k < 3; ++k) {
+        const Index a = tris_[t][k], b = tris_[t][(k + 1) % 3];
+        const std::pair<Index, Index> e{std::min(a, b), std::max(a, b)};
+        if (!s_.line_sides.contains(e) && !kept.contains(e)) edges.push_back(e);
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    long_edges.clear();
+    for (const auto& [a, b] : edges) {
+      if (cancel_.due()) return absl::CancelledError("surface meshing cancelled");
+      const Point mid = scale(afmesh::add(s_.points[a], s_.points[b]), 0.5);
+      const double ratio = norm(sub(s_.points[b], s_.points[a])) / size_at(mid, a, b);
+      if (ratio > kSplitOver) long_edges.emplace_back(-ratio, a, b);
+    }
+    if (long_edges.empty()) return absl::OkStatus();
+    std::sort(long_edges.begin(), long_edges.end());
+    for (const auto& [minus_ratio, a, b] : long_edges) {
+      if (cancel_.due()) return absl::CancelledError("surface meshing cancelled");
+      const Point mid = scale(afmesh::add(s_.points[a], s_.points[b]), 0.5);
+      const Located on =
+          locate_in_patch(s_.surface, s_.features, patch_, mid, patch_hint(s_, patch_, a));
+      const Index m = s_.add_point(on.closest, size_at(on.closest, a, b), on.face, kInvalidIndex);
+      if (!split(a, b, m, /*check=*/true)) {
+        s_.drop_last_point();
+        kept.insert({a, b});
+        continue;
+      }
+      if (live_count_ > max_triangles)
+        return fault(m, absl::StrFormat("it needs more than %d triangles", max_triangles));
+    }
+  }
+  return absl::OkStatus();
+}
+
+void InputPatch::append_to_state() const {
+  for (std::size_t t = 0; t < tris_.size(); ++t)
+    if (live(static_cast<Index>(t))) s_.add_triangle(tris_[t], patch_);
+}
+
+}  // namespace
+
+absl::Status patch_from_input(SurfaceMeshState& s, PatchId patch, const std::vector<Side>& sides,
+                              std::int64_t max_triangles, Progress& progress) {
+  const std::size_t first = s.triangles.size();
+  const Index points_before = static_cast<Index>(s.points.size());
+  // s as before the call: its triangles from `first` on and the points they alone used go.
+  const auto undo = [&](absl::Status st) {
+    for (std::size_t t = first; t < s.triangles.size(); ++t) s.triangles[t][0] = kInvalidIndex;
+    s.compact_patch(points_before, first);
+    return st;
+  };
+  InputPatch built(s, patch, progress);
+  for (const auto& step : {&InputPatch::take_input_faces, &InputPatch::insert_line_points,
+                           &InputPatch::remove_input_line_vertices})
+    if (absl::Status st = (built.*step)(); !st.ok()) return undo(std::move(st));
+  if (absl::Status st = built.split_long_edges(max_triangles); !st.ok()) return undo(std::move(st));
+  built.append_to_state();
+  s.compact_patch(points_before, first);  // drops the points merged away
+  if (absl::Status closed = check_patch_closed(s, patch, sides, first); !closed.ok())
+    return undo(std::move(closed));
+  keep_chords_between_line_points(s, first);
+  return absl::OkStatus();
+}
+
+}  // namespace afmesh
