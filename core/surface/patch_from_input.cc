@@ -78,6 +78,14 @@ class InputPatch {
                      size_grown_over(s_.point_size[a], s_.growth, distance(x, s_.points[a])),
                      size_grown_over(s_.point_size[b], s_.growth, distance(x, s_.points[b]))});
   }
+  // A line of the patch in its order: its points (LinePoints::ids) and, between them, its
+  // inner input vertices (`input` set, `id` the input vertex), each point after the vertex that
+  // starts the segment it lies on.
+  struct OnLine {
+    Index id;
+    bool input;
+  };
+  std::vector<OnLine> line_in_order(LineId l) const;
   // The point of s at input vertex v, made on first use.
   Index point_at(Index v, FaceId face);
   absl::Status fault(Index at, std::string_view what) const;
@@ -202,27 +210,44 @@ bool InputPatch::split(Index a, Index b, Index m, bool check) {
   return true;
 }
 
-// Step 1: the points of each line of the patch, in the line's order, split the input edges they lie
-// on (LineSplit::segment); a point never leaves its edge, so no triangle turns.
+std::vector<InputPatch::OnLine> InputPatch::line_in_order(LineId l) const {
+  const std::vector<Index>& vertices = s_.features.lines[index_of(l)].vertices;
+  const SurfaceMeshState::LinePoints& along = s_.points_along_lines[index_of(l)];
+  const std::size_t last = along.ids.size() - 1;
+  std::vector<OnLine> out{{along.ids[0], false}};
+  std::size_t i = 1;
+  for (std::size_t seg = 0; seg + 1 < vertices.size(); ++seg) {
+    for (; i < last && along.segment[i] == static_cast<Index>(seg); ++i)
+      out.push_back({along.ids[i], false});
+    if (seg + 2 < vertices.size()) out.push_back({vertices[seg + 1], true});
+  }
+  out.push_back({along.ids[last], false});
+  return out;
+}
+
+// Step 1: the points of each line of the patch, in the line's order, split the input edges they
+// lie on (LineSplit::segment): from the last point or input vertex before to the next input
+// vertex or corner. A point never leaves its edge, so no triangle turns.
 absl::Status InputPatch::insert_line_points() {
   for (const LineId l : s_.features.patches[index_of(patch_)].lines) {
-    const std::vector<Index>& vertices = s_.features.lines[index_of(l)].vertices;
-    const SurfaceMeshState::LinePoints& along = s_.points_along_lines[index_of(l)];
-    const std::size_t last = along.ids.size() - 1;
-    std::size_t i = 1;
-    for (std::size_t seg = 0; seg + 1 < vertices.size(); ++seg) {
-      const auto found_a = point_of_vertex_.find(vertices[seg]);
-      const auto found_b = point_of_vertex_.find(vertices[seg + 1]);
-      if (found_a == point_of_vertex_.end() || found_b == point_of_vertex_.end())
-        return fault(along.ids[0], "a line of the patch runs off its input faces");
-      Index left = found_a->second;
-      for (; i < last && along.segment[i] == static_cast<Index>(seg); ++i) {
-        if (cancel_.due()) return absl::CancelledError("surface meshing cancelled");
-        if (!split(left, found_b->second, along.ids[i], /*check=*/false))
-          return fault(along.ids[i],
-                       "a line point lies on an input edge of no triangle of the patch");
-        left = along.ids[i];
+    const std::vector<OnLine> line = line_in_order(l);
+    for (const OnLine& on : line)
+      if (on.input && !point_of_vertex_.contains(on.id))
+        return fault(line[0].id, "a line of the patch runs off its input faces");
+    // The point at each entry's next input vertex (the line's last corner at the end).
+    std::vector<Index> ahead(line.size(), line.back().id);
+    for (std::size_t j = line.size() - 1; j-- > 0;)
+      ahead[j] = line[j + 1].input ? point_of_vertex_.at(line[j + 1].id) : ahead[j + 1];
+    Index left = line[0].id;
+    for (std::size_t j = 1; j + 1 < line.size(); ++j) {
+      if (line[j].input) {
+        left = point_of_vertex_.at(line[j].id);
+        continue;
       }
+      if (cancel_.due()) return absl::CancelledError("surface meshing cancelled");
+      if (!split(left, ahead[j], line[j].id, /*check=*/false))
+        return fault(line[j].id, "a line point lies on an input edge of no triangle of the patch");
+      left = line[j].id;
     }
   }
   return absl::OkStatus();
@@ -318,18 +343,10 @@ bool InputPatch::remove_line_vertex(Index x, Index y1, Index y2) {
 // (remove_line_vertex), pass after pass while one goes; one that never can is a fault.
 absl::Status InputPatch::remove_input_line_vertices() {
   for (const LineId l : s_.features.patches[index_of(patch_)].lines) {
-    const std::vector<Index>& vertices = s_.features.lines[index_of(l)].vertices;
-    const SurfaceMeshState::LinePoints& along = s_.points_along_lines[index_of(l)];
-    const std::size_t last = along.ids.size() - 1;
-    // The line's points and input vertices in its order.
-    std::vector<Index> chain{along.ids[0]};
-    std::size_t i = 1;
-    for (std::size_t seg = 0; seg + 1 < vertices.size(); ++seg) {
-      for (; i < last && along.segment[i] == static_cast<Index>(seg); ++i)
-        chain.push_back(along.ids[i]);
-      if (seg + 2 < vertices.size()) chain.push_back(point_of_vertex_.at(vertices[seg + 1]));
-    }
-    chain.push_back(along.ids[last]);
+    // The line's points and the points at its input vertices, in its order.
+    std::vector<Index> chain;
+    for (const OnLine& on : line_in_order(l))
+      chain.push_back(on.input ? point_of_vertex_.at(on.id) : on.id);
     std::vector<std::size_t> prev(chain.size()), next(chain.size());
     for (std::size_t j = 0; j < chain.size(); ++j) prev[j] = j - 1, next[j] = j + 1;
     std::vector<bool> gone(chain.size(), false);
