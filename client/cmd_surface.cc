@@ -36,6 +36,10 @@ void print_summary(const std::string& output, const SurfaceSummary& summary) {
               static_cast<unsigned long long>(summary.patches),
               static_cast<unsigned long long>(summary.lines),
               static_cast<unsigned long long>(summary.corners));
+  if (summary.patches_from_input > 0)
+    std::printf("  fallback   %llu patches re-triangulated from their input (their fronts "
+                "stopped: see the warnings)\n",
+                static_cast<unsigned long long>(summary.patches_from_input));
   std::printf("  distance   Hausdorff %.4g, vertices at most %.4g (model size %.4g)\n",
               summary.hausdorff, summary.max_vertex_distance, summary.model_size);
   print_timings(summary.timings);

@@ -242,6 +242,7 @@ SurfaceSummary plain_summary(const v1::SurfaceSummary& summary) {
   plain.patches = summary.features().patches();
   plain.lines = summary.features().lines();
   plain.corners = summary.features().corners();
+  plain.patches_from_input = summary.features().patches_from_input();
   plain.hausdorff = summary.distance().hausdorff();
   plain.max_vertex_distance = summary.distance().max_vertex_distance();
   plain.model_size = summary.distance().model_size();

@@ -114,6 +114,7 @@ struct SurfaceSummary {
   std::uint64_t patches = 0;
   std::uint64_t lines = 0;
   std::uint64_t corners = 0;
+  std::uint64_t patches_from_input = 0;  // re-triangulated from their input: a front stopped
   double hausdorff = 0.0;
   double max_vertex_distance = 0.0;
   double model_size = 0.0;

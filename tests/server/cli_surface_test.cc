@@ -215,5 +215,28 @@ TEST_F(CliSurfaceTest, CurvatureAngleSetsHowFineACurvedSurfaceIsMeshed) {
   EXPECT_LT(tight, chord);
 }
 
+// A front that stops no longer fails the call (cgal_hand at its mean edge, 0.054: patch 0's front
+// stops on a crease whose ridge ends inside it): the patch is re-triangulated from its input
+// triangles, the CLI prints the server's warning with where the front stopped and a line of the
+// summary for it, and the surface written is valid.
+TEST_F(CliSurfaceTest, AStoppedFrontIsAWarningAndThePatchComesFromItsInput) {
+  const fs::path hand = fs::path(AFMESH_SOURCE_DIR) / ".." / "shared" / "corpus" / "cgal_hand.stl";
+  ASSERT_TRUE(fs::exists(hand)) << hand;
+  const fs::path result = dir_ / "hand.stl";
+  ASSERT_EQ(run("surface " + shell_quoted(hand) + " -o " + shell_quoted(result) +
+                " --size 0.054074"),
+            0)
+      << stderr_text();
+  EXPECT_THAT(stderr_text(), HasSubstr("warning: the surface front of patch 0 (input tag 0) got "
+                                       "stuck"));
+  EXPECT_THAT(stderr_text(), HasSubstr("the patch was re-triangulated from its own input "
+                                       "triangles instead"));
+  EXPECT_THAT(stdout_text(), HasSubstr("1 patches re-triangulated from their input"));
+  const absl::StatusOr<Mesh> mesh = read_mesh(result.string());
+  ASSERT_TRUE(mesh.ok()) << mesh.status();
+  const ValidationReport report = validate_surface(*mesh);
+  EXPECT_TRUE(report.valid()) << report.to_string();
+}
+
 }  // namespace
 }  // namespace afmesh
