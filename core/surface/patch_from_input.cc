@@ -45,13 +45,17 @@ bool turns_little(const Point& before, const Point& after) {
 // The patch's triangles while they are built, over the points of s (their incidence kept).
 class InputPatch {
  public:
-  InputPatch(SurfaceMeshState& s, PatchId patch, Progress& progress)
-      : s_(s), patch_(patch), progress_(progress), cancel_(progress, 1024) {}
+  InputPatch(SurfaceMeshState& s, PatchId patch, std::int64_t max_triangles, Progress& progress)
+      : s_(s),
+        patch_(patch),
+        max_triangles_(max_triangles),
+        progress_(progress),
+        cancel_(progress, 1024) {}
 
   absl::Status take_input_faces();
   absl::Status insert_line_points();
   absl::Status remove_input_line_vertices();
-  absl::Status split_long_edges(std::int64_t max_triangles);
+  absl::Status split_long_edges();
   void append_to_state() const;
 
  private:
@@ -88,10 +92,12 @@ class InputPatch {
   std::vector<OnLine> line_in_order(LineId l) const;
   // The point of s at input vertex v, made on first use.
   Index point_at(Index v, FaceId face);
-  absl::Status fault(Index at, std::string_view what) const;
+  // FAILED_PRECONDITION: the patch could not be made, `what` near x (local frame).
+  absl::Status fault(const Point& x, std::string_view what) const;
 
   SurfaceMeshState& s_;
   PatchId patch_;
+  std::int64_t max_triangles_;
   Progress& progress_;
   CancelCheck cancel_;
   std::vector<Triangle> tris_;  // tris_[t][0] == kInvalidIndex: dropped
@@ -130,8 +136,8 @@ void InputPatch::triangles_with(Index a, Index b, std::vector<Index>& out) const
   std::sort(out.begin(), out.end());
 }
 
-absl::Status InputPatch::fault(Index at, std::string_view what) const {
-  const Point x = s_.surface.to_global(s_.points[at]);
+absl::Status InputPatch::fault(const Point& local, std::string_view what) const {
+  const Point x = s_.surface.to_global(local);
   return absl::FailedPreconditionError(absl::StrFormat(
       "patch %d (input tag %d) could not be re-triangulated from its input triangles either: %s "
       "near (%g, %g, %g)",
@@ -173,6 +179,11 @@ absl::Status InputPatch::take_input_faces() {
       if (g != kInvalidIndex && features.face_patch[g] == patch_ && seen.insert(g).second)
         faces.push_back(g);
   }
+  // An input far finer than the size would come out as fine (its vertices stay): refused.
+  if (static_cast<std::int64_t>(faces.size()) > max_triangles_)
+    return fault(surface.centroid(FaceId{faces[0]}),
+                 absl::StrFormat("its %d input triangles are more than the %d its size asks for",
+                                 faces.size(), max_triangles_));
   std::sort(faces.begin(), faces.end());
   for (const Index f : faces) {
     Triangle t;
@@ -233,7 +244,7 @@ absl::Status InputPatch::insert_line_points() {
     const std::vector<OnLine> line = line_in_order(l);
     for (const OnLine& on : line)
       if (on.input && !point_of_vertex_.contains(on.id))
-        return fault(line[0].id, "a line of the patch runs off its input faces");
+        return fault(s_.points[line[0].id], "a line of the patch runs off its input faces");
     // The point at each entry's next input vertex (the line's last corner at the end).
     std::vector<Index> ahead(line.size(), line.back().id);
     for (std::size_t j = line.size() - 1; j-- > 0;)
@@ -246,7 +257,8 @@ absl::Status InputPatch::insert_line_points() {
       }
       if (cancel_.due()) return absl::CancelledError("surface meshing cancelled");
       if (!split(left, ahead[j], line[j].id, /*check=*/false))
-        return fault(line[j].id, "a line point lies on an input edge of no triangle of the patch");
+        return fault(s_.points[line[j].id],
+                     "a line point lies on an input edge of no triangle of the patch");
       left = line[j].id;
     }
   }
@@ -366,17 +378,18 @@ absl::Status InputPatch::remove_input_line_vertices() {
     }
     for (std::size_t j = 1; j + 1 < chain.size(); ++j)
       if (!gone[j] && pending_.contains(chain[j]))
-        return fault(chain[j],
+        return fault(s_.points[chain[j]],
                      "an input vertex on a line cannot be removed without folding a triangle");
   }
-  if (!pending_.empty()) return fault(*pending_.begin(), "an input vertex on a line is left");
+  if (!pending_.empty())
+    return fault(s_.points[*pending_.begin()], "an input vertex on a line is left");
   return absl::OkStatus();
 }
 
 // Step 3: the edges off the lines longer than kSplitOver times the size at their middle, the
 // longest relative to it first, split at their middle moved onto the patch (S8), pass after pass.
 // An edge whose split would turn a triangle by more than kMaxNormalTurnDeg stays.
-absl::Status InputPatch::split_long_edges(std::int64_t max_triangles) {
+absl::Status InputPatch::split_long_edges() {
   absl::flat_hash_set<std::pair<Index, Index>> kept;
   std::vector<std::pair<Index, Index>> edges;
   std::vector<std::tuple<double, Index, Index>> long_edges;
@@ -423,8 +436,9 @@ absl::Status InputPatch::split_long_edges(std::int64_t max_triangles) {
         kept.insert({a, b});
         continue;
       }
-      if (live_count_ > max_triangles)
-        return fault(m, absl::StrFormat("it needs more than %d triangles", max_triangles));
+      if (live_count_ > max_triangles_)
+        return fault(s_.points[m],
+                     absl::StrFormat("it needs more than %d triangles", max_triangles_));
     }
   }
   return absl::OkStatus();
@@ -447,11 +461,10 @@ absl::Status patch_from_input(SurfaceMeshState& s, PatchId patch, const std::vec
     s.compact_patch(points_before, first);
     return st;
   };
-  InputPatch built(s, patch, progress);
+  InputPatch built(s, patch, max_triangles, progress);
   for (const auto& step : {&InputPatch::take_input_faces, &InputPatch::insert_line_points,
-                           &InputPatch::remove_input_line_vertices})
+                           &InputPatch::remove_input_line_vertices, &InputPatch::split_long_edges})
     if (absl::Status st = (built.*step)(); !st.ok()) return undo(std::move(st));
-  if (absl::Status st = built.split_long_edges(max_triangles); !st.ok()) return undo(std::move(st));
   built.append_to_state();
   s.compact_patch(points_before, first);  // drops the points merged away
   if (absl::Status closed = check_patch_closed(s, patch, sides, first); !closed.ok())

@@ -822,7 +822,9 @@ TEST(PatchFromInput, EveryPatchClosesOnTheInputAtTheSize) {
     EXPECT_TRUE(r->report.front_stops.empty()) << c.name;  // no front was tried
     EXPECT_LE(r->report.max_vertex_distance, 1e-9 * r->report.model_size) << c.name;
     const Figures f = figures_of(r->mesh);
-    if (!c.finer_input) EXPECT_GT(f.mean_edge, 0.75 * c.size) << c.name;
+    if (!c.finer_input) {
+      EXPECT_GT(f.mean_edge, 0.75 * c.size) << c.name;
+    }
     EXPECT_LT(f.mean_edge, 1.2 * c.size) << c.name;
     EXPECT_GE(f.share_30, 0.99) << c.name;
   }
@@ -839,6 +841,23 @@ TEST(PatchFromInput, CubeKeepsItsRidgesAndCornersAndFills) {
   EXPECT_EQ(r->report.corners, 8);
   expect_box_ridges_and_corners(r->mesh, {0, 0, 0}, {1, 1, 1});
   expect_fills_with_valid_tets("cube from its input", r->mesh, 0.1);
+}
+
+// The fallback keeps the input's own vertices, so an input far finer than the size asked would
+// come back as fine: a patch with more input triangles than its size asks for is refused with
+// FAILED_PRECONDITION saying so (a sphere of ~10,000 triangles asked at size 1).
+TEST(PatchFromInput, AnInputFarFinerThanTheSizeIsRefused) {
+  SurfaceParams params;
+  params.size = 1.0;
+  params.every_patch_from_input = true;
+  const absl::StatusOr<SurfaceResult> r =
+      generate_surface_mesh(sphere_surface({0, 0, 0}, 1.0, 0.04), params);
+  ASSERT_EQ(r.status().code(), absl::StatusCode::kFailedPrecondition) << r.status();
+  EXPECT_NE(r.status().message().find("could not be re-triangulated from its input triangles"),
+            std::string::npos)
+      << r.status();
+  EXPECT_NE(r.status().message().find("input triangles are more than the"), std::string::npos)
+      << r.status();
 }
 
 // A ridge that ends inside its patch (a crease z = |x| fading out across y): its points lie
