@@ -66,13 +66,14 @@ class InputPatch {
   // The live triangles with both a and b, into `out`.
   void triangles_with(Index a, Index b, std::vector<Index>& out) const;
   // Splits edge (a, b) at point m (every triangle on it into two); with `check`, only when no new
-  // triangle turns from its old one by more than kMaxNormalTurnDeg. False when not done.
+  // triangle turns from its old one by more than kMaxNormalTurnDeg, without, only when both
+  // have an area. False, with nothing changed, when not done.
   bool split(Index a, Index b, Index m, bool check);
   // Removes point x, whose neighbours along its line are y1 and y2: its fan of triangles goes, and
   // the polygon left on each side of the line, closed by the side (y1, y2), is triangulated for the
-  // largest smallest angle, each new triangle within kMaxNormalTurnDeg of one of the fan and no new
-  // edge one the patch has already (a vertex removal, which a collapse of x into y1 or y2 is one
-  // case of). False, with nothing changed, when no such triangulation exists.
+  // largest smallest angle, each new triangle within kMaxNormalTurnDeg of one of the fan on its
+  // side and no new edge one the patch has already (a vertex removal, which a collapse of x into
+  // y1 or y2 is one case of). False, with nothing changed, when no such triangulation exists.
   bool remove_line_vertex(Index x, Index y1, Index y2);
   // The size wanted at x between points a and b: the field's, bounded by their attached sizes grown
   // over the distance (eq. 15, size_grown_over), so that the triangles grade out from short line
@@ -204,14 +205,20 @@ bool InputPatch::split(Index a, Index b, Index m, bool check) {
     while (!((tri[k] == a || tri[k] == b) && (tri[(k + 1) % 3] == a || tri[(k + 1) % 3] == b))) ++k;
     return std::array<Index, 3>{tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]};
   };
-  if (check) {
-    for (const Index t : on_edge) {
-      const auto [x, y, w] = corners(t);
-      const Point before = normal_of(s_.points, tris_[t]);
-      if (!turns_little(before, normal_of(s_.points, {x, m, w})) ||
-          !turns_little(before, normal_of(s_.points, {m, y, w})))
-        return false;
-    }
+  // A line point may lie exactly on an input vertex of its line (split_line's point at the end of
+  // its segment): the triangle of no area it makes goes with that vertex (step 2).
+  const auto goes_later = [&](Index q) {
+    return pending_.contains(q) && s_.points[q] == s_.points[m];
+  };
+  for (const Index t : on_edge) {
+    const auto [x, y, w] = corners(t);
+    const Point before = normal_of(s_.points, tris_[t]);
+    const Point first = normal_of(s_.points, {x, m, w});
+    const Point second = normal_of(s_.points, {m, y, w});
+    if (check ? !turns_little(before, first) || !turns_little(before, second)
+              : (!(squared_norm(first) > 0.0) && !goes_later(x)) ||
+                    (!(squared_norm(second) > 0.0) && !goes_later(y)))
+      return false;  // a fold, or (unchecked) a triangle of no area that would stay
   }
   for (const Index t : on_edge) {
     const auto [x, y, w] = corners(t);
@@ -298,11 +305,20 @@ bool InputPatch::remove_line_vertex(Index x, Index y1, Index y2) {
   // Each polygon triangulated for the largest smallest angle (dynamic programming over its
   // diagonals), every triangle within kMaxNormalTurnDeg of a triangle of x's fan, and no diagonal
   // an edge the patch has already.
-  std::vector<Point> old_normals;
-  for (const Index t : fan_x_) old_normals.push_back(normal_of(s_.points, tris_[t]));
+  absl::flat_hash_map<Index, Point> normal_after;  // a -> the normal of triangle (x, a, b)
+  for (const Index t : fan_x_) {
+    const Triangle& tri = tris_[t];
+    normal_after[tri[(std::find(tri.begin(), tri.end(), x) - tri.begin() + 1) % 3]] =
+        normal_of(s_.points, tri);
+  }
   std::vector<Triangle> made;
+  std::vector<Point> old_normals;
   for (const std::vector<Index>& c : chains) {
     const std::size_t m = c.size() - 1;
+    // The fan's triangles on this side of the line only: a triangle turned as the other side's
+    // would fold across a crease the line follows.
+    old_normals.clear();
+    for (std::size_t k = 0; k < m; ++k) old_normals.push_back(normal_after.at(c[k]));
     if (m < 2) continue;
     const std::size_t n = m + 1;
     constexpr double kInvalid = -1.0;
