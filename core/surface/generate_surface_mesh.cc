@@ -307,10 +307,15 @@ std::vector<Box> patch_boxes(const DiscreteSurface& surface, const SurfaceFeatur
 // of an equilateral triangle of the size wanted at their centroids (a bound for the front: a
 // patch meshed far finer than asked stops, kMaxTrianglesOverExpected), plus
 // kTrianglesPerInitialSide for each side the patch starts with: sides far shorter than the size
-// (lines split finer where they run close, crossing_sides) grade out over several rings of
-// triangles each (gmsh_lever at twice its mean edge: 4 per side stopped it, 8 close it).
+// (lines split finer where they run close, crossing_sides; gap sizes) grade out over several
+// rings of triangles each. Sizes growing from a side of length l at the rate c_i - 1 per unit
+// distance (eq. 15 over a distance) to the size h take about (1 - l / h) / (0.433 (c_i - 1))
+// triangles per side, at most 11.5 at the least growth, 1.2 (kMinAttachedGrowth): 24 is twice
+// that. (gmsh_lever at twice its mean edge: 4 per side stopped it, 8 closed it once; since the
+// gap sizes it stopped at 8 with 395 sides left in a patch of 14,904 triangles, and closes at 24
+// with 52,692 triangles in all.)
 constexpr double kMaxTrianglesOverExpected = 10.0;
-constexpr double kTrianglesPerInitialSide = 8.0;
+constexpr double kTrianglesPerInitialSide = 24.0;
 // Not in the paper: the back-offs allowed in a patch (PatchFrontParams::max_back_offs), a few
 // plus one per this many of the triangles it should get.
 constexpr std::int64_t kMinBackOffs = 50;
