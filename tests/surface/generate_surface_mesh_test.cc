@@ -843,6 +843,34 @@ TEST(PatchFromInput, CubeKeepsItsRidgesAndCornersAndFills) {
   expect_fills_with_valid_tets("cube from its input", r->mesh, 0.1);
 }
 
+// Three sheets meeting along one segment (a T: the segment's edges have three faces): the line
+// along it is shared by three patches, each re-triangulated from its input on the same points.
+// Every edge of the output off that line has two triangles, and the line's sides three.
+TEST(PatchFromInput, ThreePatchesMeetOnOneLine) {
+  SurfaceParams params;
+  params.size = 0.1;
+  params.every_patch_from_input = true;
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(testing::three_sheet_t(4), params);
+  ASSERT_TRUE(r.ok()) << r.status();
+  print("T of three sheets", *r);
+  EXPECT_EQ(r->report.patches_from_input, r->report.patches);
+  EXPECT_LE(r->report.max_vertex_distance, 1e-9 * r->report.model_size);
+  const TriangleTopology topology = analyze_triangle_topology(r->mesh.triangles);
+  std::int64_t spine_edges = 0;
+  for (const EdgeGroup& g : topology.nonmanifold_edges) {
+    EXPECT_EQ(g.triangles.size(), 3u);
+    const Point& a = r->mesh.points[g.a];
+    const Point& b = r->mesh.points[g.b];
+    EXPECT_TRUE(a[0] == 0.0 && a[2] == 0.0 && b[0] == 0.0 && b[2] == 0.0)
+        << "a non-manifold edge off the spine";
+    ++spine_edges;
+  }
+  EXPECT_GE(spine_edges, 8);  // the spine, 1 long, at the size 0.1
+  EXPECT_TRUE(topology.misoriented_edges.empty());
+  const Figures f = figures_of(r->mesh);
+  EXPECT_GE(f.share_30, 0.99);
+}
+
 // The fallback keeps the input's own vertices, so an input far finer than the size asked would
 // come back as fine: a patch with more input triangles than its size asks for is refused with
 // FAILED_PRECONDITION saying so (a sphere of ~10,000 triangles asked at size 1).
