@@ -29,6 +29,11 @@ constexpr double kSplitOver = 4.0 / 3.0;
 // Each pass of split_long_edges halves the longest edges: 64 passes reach any ratio a double can
 // hold.
 constexpr int kMaxSplitPasses = 64;
+// Not in the paper: edges off the lines shorter than this times the size wanted at their middle
+// lose a point inside the patch (the bound of CGAL's isotropic_remeshing), where the input is
+// finer than the size; at most kMaxCollapsePasses passes.
+constexpr double kCollapseUnder = 4.0 / 5.0;
+constexpr int kMaxCollapsePasses = 16;
 
 Point normal_of(const std::vector<Point>& p, const Triangle& t) {
   return cross(sub(p[t[1]], p[t[0]]), sub(p[t[2]], p[t[0]]));
@@ -56,6 +61,7 @@ class InputPatch {
   absl::Status insert_line_points();
   absl::Status remove_input_line_vertices();
   absl::Status split_long_edges();
+  absl::Status collapse_short_edges();
   void append_to_state() const;
 
  private:
@@ -91,6 +97,11 @@ class InputPatch {
     bool input;
   };
   std::vector<OnLine> line_in_order(LineId l) const;
+  // Merges point x (a point of this patch, not on a line) into y along their edge when x and y
+  // share only the two triangles of the edge's neighbours (the link condition), no moved
+  // triangle turns by more than kMaxNormalTurnDeg or loses its area, and no edge it makes at y
+  // is longer than kSplitOver times the size. False, with nothing changed, otherwise.
+  bool collapse(Index x, Index y);
   // The point of s at input vertex v, made on first use.
   Index point_at(Index v, FaceId face);
   // FAILED_PRECONDITION: the patch could not be made, `what` near x (local frame).
@@ -180,7 +191,8 @@ absl::Status InputPatch::take_input_faces() {
       if (g != kInvalidIndex && features.face_patch[g] == patch_ && seen.insert(g).second)
         faces.push_back(g);
   }
-  // An input far finer than the size would come out as fine (its vertices stay): refused.
+  // A bound on the work and memory, as the front's: more input triangles than the patch may
+  // have are refused before anything is built.
   if (static_cast<std::int64_t>(faces.size()) > max_triangles_)
     return fault(surface.centroid(FaceId{faces[0]}),
                  absl::StrFormat("its %d input triangles are more than the %d its size asks for",
@@ -460,6 +472,89 @@ absl::Status InputPatch::split_long_edges() {
   return absl::OkStatus();
 }
 
+bool InputPatch::collapse(Index x, Index y) {
+  fan_x_.clear();
+  incidence_.elements_of(tris_, x, fan_x_);
+  std::vector<Index> shared, moved;
+  for (const Index t : fan_x_) (has_corner(tris_[t], y) ? shared : moved).push_back(t);
+  if (shared.size() != 2) return false;
+  const auto around = [&](Index q) {
+    std::vector<Index> fan, out;
+    incidence_.elements_of(tris_, q, fan);
+    for (const Index t : fan)
+      for (const Index r : tris_[t])
+        if (r != q) out.push_back(r);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  };
+  const std::vector<Index> around_x = around(x), around_y = around(y);
+  std::vector<Index> common;
+  std::set_intersection(around_x.begin(), around_x.end(), around_y.begin(), around_y.end(),
+                        std::back_inserter(common));
+  if (common.size() != 2) return false;
+  for (const Index t : moved) {
+    Triangle after = tris_[t];
+    for (Index& q : after) q = q == x ? y : q;
+    if (!turns_little(normal_of(s_.points, tris_[t]), normal_of(s_.points, after))) return false;
+    for (const Index w : after) {
+      if (w == y) continue;
+      const Point mid = scale(afmesh::add(s_.points[y], s_.points[w]), 0.5);
+      if (distance(s_.points[y], s_.points[w]) > kSplitOver * size_at(mid, y, w)) return false;
+    }
+  }
+  for (const Index t : shared) drop(t);
+  for (const Index t : moved) {
+    Triangle after = tris_[t];
+    for (Index& q : after) q = q == x ? y : q;
+    replace(t, after);
+  }
+  return true;
+}
+
+// Step 4 (not in the paper): where the input is finer than the size, the edges off the lines
+// shorter than kCollapseUnder times the size at their middle, the shortest relative to it first,
+// lose a point of the patch (collapse), pass after pass, each pass followed by flips. Line points
+// never move.
+absl::Status InputPatch::collapse_short_edges() {
+  const auto movable = [&](Index q) { return q >= s_.line_points; };
+  std::vector<std::tuple<double, Index, Index>> short_edges;
+  std::vector<Index> same_patch;
+  std::vector<Index> on_edge;
+  for (int pass = 0; pass < kMaxCollapsePasses; ++pass) {
+    std::erase_if(tris_, [](const Triangle& t) { return t[0] == kInvalidIndex; });
+    incidence_ = SimplexIncidence<3>::of(tris_);
+    short_edges.clear();
+    for (const Triangle& t : tris_) {
+      for (int k = 0; k < 3; ++k) {
+        const Index a = t[k], b = t[(k + 1) % 3];
+        if (a > b || s_.line_sides.contains({a, b}) || (!movable(a) && !movable(b))) continue;
+        if (cancel_.due()) return absl::CancelledError("surface meshing cancelled");
+        const Point mid = scale(afmesh::add(s_.points[a], s_.points[b]), 0.5);
+        const double ratio = distance(s_.points[a], s_.points[b]) / size_at(mid, a, b);
+        if (ratio < kCollapseUnder) short_edges.emplace_back(ratio, a, b);
+      }
+    }
+    if (short_edges.empty()) return absl::OkStatus();
+    std::sort(short_edges.begin(), short_edges.end());
+    std::int64_t made = 0;
+    for (const auto& [ratio, a, b] : short_edges) {
+      if (cancel_.due()) return absl::CancelledError("surface meshing cancelled");
+      triangles_with(a, b, on_edge);  // gone when a point of it was merged away
+      if (on_edge.empty()) continue;
+      if ((movable(a) && collapse(a, b)) || (movable(b) && collapse(b, a))) ++made;
+    }
+    if (made == 0) return absl::OkStatus();
+    std::erase_if(tris_, [](const Triangle& t) { return t[0] == kInvalidIndex; });
+    same_patch.assign(tris_.size(), index_of(patch_));
+    if (absl::StatusOr<std::int64_t> flips =
+            flip_edges(s_.points, tris_, same_patch, s_.line_sides, {}, progress_);
+        !flips.ok())
+      return flips.status();
+  }
+  return absl::OkStatus();
+}
+
 void InputPatch::append_to_state() const {
   for (std::size_t t = 0; t < tris_.size(); ++t)
     if (live(static_cast<Index>(t))) s_.add_triangle(tris_[t], patch_);
@@ -479,7 +574,8 @@ absl::Status patch_from_input(SurfaceMeshState& s, PatchId patch, const std::vec
   };
   InputPatch built(s, patch, max_triangles, progress);
   for (const auto& step : {&InputPatch::take_input_faces, &InputPatch::insert_line_points,
-                           &InputPatch::remove_input_line_vertices, &InputPatch::split_long_edges})
+                           &InputPatch::remove_input_line_vertices, &InputPatch::split_long_edges,
+                           &InputPatch::collapse_short_edges})
     if (absl::Status st = (built.*step)(); !st.ok()) return undo(std::move(st));
   built.append_to_state();
   s.compact_patch(points_before, first);  // drops the points merged away

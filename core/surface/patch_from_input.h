@@ -13,11 +13,15 @@
 //  3. split_long_edges: edges off the lines longer than kSplitOver times the size wanted at their
 //     middle (eq. 15 over the distance from their ends) are split there, longest relative to the
 //     size first, the new point on the patch (S8): a triangle split inside one input face stays
-//     in it. After each pass of splits the edges are flipped for larger angles (flip_edges).
+//     in it. After each pass of splits the edges are flipped for larger angles (flip_edges);
+//  4. collapse_short_edges: where the input is finer than the size, edges off the lines shorter
+//     than kCollapseUnder times it lose a point of the patch (an edge collapse that keeps the
+//     surface a manifold, turns no triangle by more than kMaxNormalTurnDeg and makes no edge
+//     longer than kSplitOver times the size), then flips again.
 //
 // The flips, collapses and smoothing that follow every patch then shape the triangles (run more
-// than once when a patch was made so). The input's interior vertices stay (on the input): where
-// the input is finer than the size, so is the patch.
+// than once when a patch was made so). Every point stays on the input: the input's vertices,
+// the lines' points, the splits' middles moved onto the patch.
 #pragma once
 
 #include <cstdint>
@@ -32,7 +36,8 @@ namespace afmesh {
 
 // Appends to `s` the triangles of `patch` built as above from its input faces, conforming to its
 // initial `sides` (those of mesh_patch; empty for a patch without lines), with at most
-// `max_triangles` triangles. FAILED_PRECONDITION when a step cannot be done without folding a
+// `max_triangles` triangles at any step (a patch with more input triangles is refused before
+// any work: a bound on the work and memory, as the front's). FAILED_PRECONDITION when a step cannot be done without folding a
 // triangle or when the result is not a closed cover of the patch (check_patch_closed), naming
 // where; `s` is then as before the call. CANCELLED once progress is. O(T log T) for the T triangles
 // made.
