@@ -749,9 +749,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
       st = describe_where_stopped(std::move(st), s, **field, params.ridge_angle_deg);
       if (st.code() != absl::StatusCode::kFailedPrecondition) return st;
       // The front's triangles and points go: the patch is as before it.
-      for (std::size_t t = triangles_before; t < s.triangles.size(); ++t)
-        s.triangles[t][0] = kInvalidIndex;
-      s.compact_patch(points_before, triangles_before);
+      s.take_back_patch(points_before, triangles_before);
       s.stopped_at.reset();
       result.report.front_stops.emplace_back(st.message());
     }

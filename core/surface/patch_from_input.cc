@@ -566,10 +566,9 @@ absl::Status patch_from_input(SurfaceMeshState& s, PatchId patch, const std::vec
                               std::int64_t max_triangles, Progress& progress) {
   const std::size_t first = s.triangles.size();
   const Index points_before = static_cast<Index>(s.points.size());
-  // s as before the call: its triangles from `first` on and the points they alone used go.
+  // s as before the call.
   const auto undo = [&](absl::Status st) {
-    for (std::size_t t = first; t < s.triangles.size(); ++t) s.triangles[t][0] = kInvalidIndex;
-    s.compact_patch(points_before, first);
+    s.take_back_patch(points_before, first);
     return st;
   };
   InputPatch built(s, patch, max_triangles, progress);

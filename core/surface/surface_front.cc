@@ -81,6 +81,11 @@ void SurfaceMeshState::compact_patch(Index first_point, std::size_t first_triang
       if (q >= first_point) q = new_index[q - first_point];
 }
 
+void SurfaceMeshState::take_back_patch(Index first_point, std::size_t first_triangle) {
+  for (std::size_t t = first_triangle; t < triangles.size(); ++t) triangles[t][0] = kInvalidIndex;
+  compact_patch(first_point, first_triangle);
+}
+
 namespace {
 
 bool in_patch(const SurfaceFeatures& features, PatchId patch, Index face) {

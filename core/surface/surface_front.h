@@ -111,6 +111,9 @@ struct SurfaceMeshState {
   // on uses, renumbering the rest (every array kept parallel). The points and triangles before
   // are untouched: a patch's own points are used by its triangles only.
   void compact_patch(Index first_point, std::size_t first_triangle);
+  // Takes a patch back: drops every triangle from `first_triangle` on and the points from
+  // `first_point` on (compact_patch), so that the state is as before the patch was begun.
+  void take_back_patch(Index first_point, std::size_t first_triangle);
 };
 
 // S2 within one patch: the face of `patch` nearest to x (local frame), walking from `hint` (a
