@@ -5,6 +5,7 @@
 // them); the caller keeps the element array, which may grow between calls.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -63,5 +64,19 @@ class SimplexIncidence {
   std::vector<Index> first_;                  // per point: its last added live element
   std::vector<std::array<Index, Arity>> next_;  // per element and corner: the next in the list
 };
+
+// The points other than p of the elements `fan` (indices into `elements`), each once,
+// ascending: p's neighbours when `fan` is the elements round p (SimplexIncidence::elements_of),
+// for the link condition of an edge collapse.
+template <std::size_t Arity>
+void corners_of_fan(const std::vector<std::array<Index, Arity>>& elements,
+                    const std::vector<Index>& fan, Index p, std::vector<Index>& out) {
+  out.clear();
+  for (const Index t : fan)
+    for (const Index r : elements[t])
+      if (r != p) out.push_back(r);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
 
 }  // namespace afmesh

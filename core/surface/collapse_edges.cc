@@ -24,17 +24,6 @@ struct Trial {
   std::vector<Index> neighbours_a, neighbours_b;
 };
 
-// The points joined to q by the triangles of `fan` (each once, sorted).
-void neighbours_of(const std::vector<Triangle>& triangles, const std::vector<Index>& fan, Index q,
-                   std::vector<Index>& out) {
-  out.clear();
-  for (const Index t : fan)
-    for (const Index r : triangles[t])
-      if (r != q) out.push_back(r);
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-}
-
 // Whether merging patch point a into point b keeps the surface a manifold, folds nothing and
 // raises the smallest angle of a's fan (collapse_edges.h); fills trial.shared and trial.moved.
 bool collapse_is_better(const SurfaceMeshState& s, const SimplexIncidence<3>& incidence, Index a,
@@ -49,8 +38,8 @@ bool collapse_is_better(const SurfaceMeshState& s, const SimplexIncidence<3>& in
     (has_corner(s.triangles[t], b) ? trial.shared : trial.moved).push_back(t);
   if (trial.shared.size() != 2) return false;
   // The link condition: a and b have as common neighbours only the two opposite corners.
-  neighbours_of(s.triangles, trial.fan_a, a, trial.neighbours_a);
-  neighbours_of(s.triangles, trial.fan_b, b, trial.neighbours_b);
+  corners_of_fan(s.triangles, trial.fan_a, a, trial.neighbours_a);
+  corners_of_fan(s.triangles, trial.fan_b, b, trial.neighbours_b);
   int common = 0;
   for (const Index q : trial.neighbours_a)
     common += q != b && std::binary_search(trial.neighbours_b.begin(), trial.neighbours_b.end(), q);

@@ -478,17 +478,11 @@ bool InputPatch::collapse(Index x, Index y) {
   std::vector<Index> shared, moved;
   for (const Index t : fan_x_) (has_corner(tris_[t], y) ? shared : moved).push_back(t);
   if (shared.size() != 2) return false;
-  const auto around = [&](Index q) {
-    std::vector<Index> fan, out;
-    incidence_.elements_of(tris_, q, fan);
-    for (const Index t : fan)
-      for (const Index r : tris_[t])
-        if (r != q) out.push_back(r);
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-    return out;
-  };
-  const std::vector<Index> around_x = around(x), around_y = around(y);
+  // The link condition: x and y have as common neighbours only the two opposite corners.
+  std::vector<Index> fan_y, around_x, around_y;
+  incidence_.elements_of(tris_, y, fan_y);
+  corners_of_fan(tris_, fan_x_, x, around_x);
+  corners_of_fan(tris_, fan_y, y, around_y);
   std::vector<Index> common;
   std::set_intersection(around_x.begin(), around_x.end(), around_y.begin(), around_y.end(),
                         std::back_inserter(common));
