@@ -29,9 +29,13 @@ void print_summary(const std::string& output, const SurfaceSummary& summary) {
   std::printf("%s: %llu points, %llu triangles\n", output.c_str(),
               static_cast<unsigned long long>(summary.point_count),
               static_cast<unsigned long long>(summary.triangle_count));
-  std::printf("  angles     min %.2f°  max %.2f°  (%.3f%% of triangles < 30°, %llu < 15°)\n",
+  std::printf("  angles     min %.2f°  max %.2f°  (%.3f%% of triangles < 30°, %llu < 15°",
               summary.min_angle_deg, summary.max_angle_deg, 100 * summary.share_below_30_deg,
               static_cast<unsigned long long>(summary.count_below_15_deg));
+  if (summary.count_below_15_deg > 0)
+    std::printf(", %llu of them on input triangles as thin",
+                static_cast<unsigned long long>(summary.count_below_15_deg_on_thinner_input));
+  std::printf(")\n");
   std::printf("  features   %llu patches, %llu lines, %llu corners\n",
               static_cast<unsigned long long>(summary.patches),
               static_cast<unsigned long long>(summary.lines),

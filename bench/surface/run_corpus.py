@@ -9,8 +9,10 @@ per the corpus README's 'closed' column and the only checks that fail are closed
 refused = the input was refused before meshing (INVALID_ARGUMENT), stopped = the mesher stopped
 (FAILED_PRECONDITION or another error), timeout = killed after --timeout seconds), triangles, cpu s
 (user + system of the child, so a loaded machine does not inflate it), wall s, min angle, % of
-triangles with smallest angle >= 30 degrees, Hausdorff / bounding-box diagonal, and the first line
-of the message when the run did not succeed.
+triangles with smallest angle >= 30 degrees, the triangles under 15 degrees and how many of them lie
+on an input triangle whose own smallest angle is no larger (as "N/K": the input's slivers between
+its lines, kept or spanned from line to line), Hausdorff / bounding-box diagonal, and the first
+line of the message when the run did not succeed.
 
 With --volume, every file whose surface came out valid and closed is also filled with tets: the
 bench writes the surface (--out, Medit .mesh: shortest round-trip doubles), `afmesh volume` meshes
@@ -168,8 +170,8 @@ def main():
     total_cpu = 0.0
     if not args.json:
         volume_header = "%-9s %8s %7s %7s " % ("volume", "tets", "min dih", "vol s")
-        print("%-24s %-8s %8s %7s %7s %6s %6s %9s %s %s" % (
-            "file", "outcome", "tris", "cpu s", "wall s", "min", "%>=30", "H/diag",
+        print("%-24s %-8s %8s %7s %7s %6s %6s %9s %9s %s %s" % (
+            "file", "outcome", "tris", "cpu s", "wall s", "min", "%>=30", "<15/thin", "H/diag",
             volume_header if args.volume else "", "message"))
     for name in names:
         argv = [args.bench, "--input", os.path.join(corpus, name), "--json",
@@ -204,9 +206,11 @@ def main():
                     "%.2f" % v["min_dihedral"] if "min_dihedral" in v else "-",
                     "%.2f" % v["wall"] if "wall" in v else "-")
                 short = v.get("message") or short
-            print("%-24s %-8s %8s %7.2f %7.2f %6s %6s %9s %s %s" % (
+            thin = ("%d/%d" % (r["under_15"], r["under_15_on_thinner_input"])
+                    if "under_15_on_thinner_input" in r else "-")
+            print("%-24s %-8s %8s %7.2f %7.2f %6s %6s %9s %9s %s %s" % (
                 name[:-4], outcome, cell("triangles", "%d"), cpu, wall,
-                cell("min_angle", "%.1f"), cell("share_at_least_30", "%.1f", 100.0),
+                cell("min_angle", "%.1f"), cell("share_at_least_30", "%.1f", 100.0), thin,
                 cell("hausdorff_over_diagonal", "%.2e"), volume_cells, short[:160]))
         sys.stdout.flush()
     summary = ", ".join("%s %d" % (k, counts.get(k, 0))

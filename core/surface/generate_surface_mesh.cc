@@ -546,6 +546,28 @@ absl::Status check_result_does_not_cross_itself(const Mesh& result,
       crossings->pairs, c[0], c[1], c[2]));
 }
 
+std::int64_t thin_triangles_on_thinner_input(const Mesh& output, std::span<const FaceId> hosts,
+                                             const DiscreteSurface& input, double thin_deg) {
+  // An input face kept as it is has the same angle up to the rounding of its points' moves
+  // between frames.
+  constexpr double kSameAngleDeg = 1e-6;
+  std::int64_t count = 0;
+  for (const Triangle& t : output.triangles) {
+    const double angle =
+        triangle_min_angle_deg(output.points[t[0]], output.points[t[1]], output.points[t[2]]);
+    if (!(angle < thin_deg)) continue;
+    const Point centroid = scale(
+        add(output.points[t[0]], add(output.points[t[1]], output.points[t[2]])), 1.0 / 3.0);
+    const FaceId hint = static_cast<std::size_t>(t[0]) < hosts.size() ? hosts[t[0]] : kNoFace;
+    const Located at = input.locate(centroid, hint);
+    if (at.face == kNoFace) continue;
+    const Triangle& f = input.triangle(at.face);
+    const std::vector<Point>& p = input.local_points();
+    if (triangle_min_angle_deg(p[f[0]], p[f[1]], p[f[2]]) <= angle + kSameAngleDeg) ++count;
+  }
+  return count;
+}
+
 absl::Status explain_stuck(absl::Status stuck, const Mesh& clean, Progress& progress) {
   if (stuck.code() != absl::StatusCode::kFailedPrecondition) return stuck;
   const absl::StatusOr<SurfaceCrossings> crossings = surface_crossings(clean, {}, progress);
@@ -832,6 +854,8 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
     input_in_output_frame.points.push_back(output->to_local(p));
   input_in_output_frame.triangles = surface->triangles();
   std::vector<FaceId> output_hosts = s.host;
+  result.report.thin_triangles_on_thinner_input =
+      thin_triangles_on_thinner_input(local, s.host, *surface);
   const absl::StatusOr<double> out_to_in =
       sampled_distance(local, output->neighbours(), *surface, &output_hosts, 0.0,
                        &result.report.max_vertex_distance, progress);

@@ -32,6 +32,7 @@
 #include "core/common/stage_timing.h"
 #include "core/mesh/mesh.h"
 #include "core/sizing/size_spec.h"
+#include "core/surface/discrete_surface.h"
 
 namespace afmesh {
 
@@ -124,6 +125,9 @@ struct SurfaceReport {
   // otherwise have failed with).
   std::int64_t patches_from_input = 0;
   std::vector<std::string> front_stops;
+  // Of the output's triangles under kThinTriangleDeg (15°), those on an input triangle whose
+  // own smallest angle is no larger (thin_triangles_on_thinner_input).
+  std::int64_t thin_triangles_on_thinner_input = 0;
 };
 
 struct SurfaceResult {
@@ -171,5 +175,20 @@ absl::StatusOr<SurfaceCrossings> surface_crossings(
 absl::Status check_result_does_not_cross_itself(const Mesh& result,
                                                 std::span<const std::int32_t> components,
                                                 Progress& progress = no_progress());
+
+// The smallest angle under which a triangle of the output is thin (issue 11: "none under 15°
+// away from input corners whose own angle is smaller").
+inline constexpr double kThinTriangleDeg = 15.0;
+
+// Not in the paper: how many triangles of `output` (in `input`'s local frame; hosts[i] a face of
+// `input` near point i, or kNoFace) have a smallest angle under `thin_deg` and lie on an input
+// triangle whose own smallest angle is no larger: the input face nearest their centroid, found
+// by a walk from the host of their first point. Such triangles are the input's own: a sliver
+// face whose every edge is a line (its own patch, kept as it is), or a strip between two lines
+// narrower than the gap floor (kMinGapSizes) spanned from line to line. The rest are the
+// mesher's to answer for. O(T) plus one walk per thin triangle.
+std::int64_t thin_triangles_on_thinner_input(const Mesh& output, std::span<const FaceId> hosts,
+                                             const DiscreteSurface& input,
+                                             double thin_deg = kThinTriangleDeg);
 
 }  // namespace afmesh
