@@ -33,8 +33,8 @@ void print_summary(const std::string& output, const SurfaceSummary& summary) {
               summary.min_angle_deg, summary.max_angle_deg, 100 * summary.share_below_30_deg,
               static_cast<unsigned long long>(summary.count_below_15_deg));
   if (summary.count_below_15_deg > 0)
-    std::printf(", %llu of them on input triangles as thin",
-                static_cast<unsigned long long>(summary.count_below_15_deg_on_thinner_input));
+    std::printf(", %llu of them at input triangles or corners as thin",
+                static_cast<unsigned long long>(summary.count_below_15_deg_at_thinner_input));
   std::printf(")\n");
   std::printf("  features   %llu patches, %llu lines, %llu corners\n",
               static_cast<unsigned long long>(summary.patches),

@@ -239,8 +239,8 @@ SurfaceSummary plain_summary(const v1::SurfaceSummary& summary) {
   plain.max_angle_deg = summary.quality().max_angle_deg();
   plain.share_below_30_deg = summary.quality().share_below_30_deg();
   plain.count_below_15_deg = summary.quality().count_below_15_deg();
-  plain.count_below_15_deg_on_thinner_input =
-      summary.quality().count_below_15_deg_on_thinner_input();
+  plain.count_below_15_deg_at_thinner_input =
+      summary.quality().count_below_15_deg_at_thinner_input();
   plain.patches = summary.features().patches();
   plain.lines = summary.features().lines();
   plain.corners = summary.features().corners();

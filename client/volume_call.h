@@ -111,7 +111,7 @@ struct SurfaceSummary {
   double max_angle_deg = 0.0;
   double share_below_30_deg = 0.0;
   std::uint64_t count_below_15_deg = 0;
-  std::uint64_t count_below_15_deg_on_thinner_input = 0;  // on input triangles as thin
+  std::uint64_t count_below_15_deg_at_thinner_input = 0;  // at input triangles or corners as thin
   std::uint64_t patches = 0;
   std::uint64_t lines = 0;
   std::uint64_t corners = 0;

@@ -180,8 +180,8 @@ void fill_surface_summary(const SurfaceOutcome& outcome, v1::SurfaceSummary& sum
   quality.set_max_angle_deg(outcome.quality.max_angle_deg);
   quality.set_share_below_30_deg(outcome.quality.share_below_30_deg);
   quality.set_count_below_15_deg(static_cast<std::uint64_t>(outcome.quality.count_below_15_deg));
-  quality.set_count_below_15_deg_on_thinner_input(
-      static_cast<std::uint64_t>(outcome.result.report.thin_triangles_on_thinner_input));
+  quality.set_count_below_15_deg_at_thinner_input(
+      static_cast<std::uint64_t>(outcome.result.report.thin_triangles_at_thinner_input));
 
   const SurfaceReport& report = outcome.result.report;
   const auto count = [](std::int64_t n) {

@@ -206,8 +206,8 @@ def main():
                     "%.2f" % v["min_dihedral"] if "min_dihedral" in v else "-",
                     "%.2f" % v["wall"] if "wall" in v else "-")
                 short = v.get("message") or short
-            thin = ("%d/%d" % (r["under_15"], r["under_15_on_thinner_input"])
-                    if "under_15_on_thinner_input" in r else "-")
+            thin = ("%d/%d" % (r["under_15"], r["under_15_at_thinner_input"])
+                    if "under_15_at_thinner_input" in r else "-")
             print("%-24s %-8s %8s %7.2f %7.2f %6s %6s %9s %9s %s %s" % (
                 name[:-4], outcome, cell("triangles", "%d"), cpu, wall,
                 cell("min_angle", "%.1f"), cell("share_at_least_30", "%.1f", 100.0), thin,

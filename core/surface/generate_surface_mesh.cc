@@ -19,6 +19,7 @@
 #include "absl/strings/str_format.h"
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
+#include "core/mesh/simplex_incidence.h"
 #include "core/quality/measures.h"
 #include "core/quality/mesh_topology.h"
 #include "core/quality/validate.h"
@@ -546,11 +547,14 @@ absl::Status check_result_does_not_cross_itself(const Mesh& result,
       crossings->pairs, c[0], c[1], c[2]));
 }
 
-std::int64_t thin_triangles_on_thinner_input(const Mesh& output, std::span<const FaceId> hosts,
+std::int64_t thin_triangles_at_thinner_input(const Mesh& output, std::span<const FaceId> hosts,
+                                             std::span<const Index> triangle_patch,
                                              const DiscreteSurface& input, double thin_deg) {
   // An input face kept as it is has the same angle up to the rounding of its points' moves
   // between frames.
   constexpr double kSameAngleDeg = 1e-6;
+  std::optional<SimplexIncidence<3>> incidence;  // made at the first thin triangle that needs it
+  std::vector<Index> fan;
   std::int64_t count = 0;
   for (const Triangle& t : output.triangles) {
     const double angle =
@@ -560,10 +564,34 @@ std::int64_t thin_triangles_on_thinner_input(const Mesh& output, std::span<const
         add(output.points[t[0]], add(output.points[t[1]], output.points[t[2]])), 1.0 / 3.0);
     const FaceId hint = static_cast<std::size_t>(t[0]) < hosts.size() ? hosts[t[0]] : kNoFace;
     const Located at = input.locate(centroid, hint);
-    if (at.face == kNoFace) continue;
-    const Triangle& f = input.triangle(at.face);
-    const std::vector<Point>& p = input.local_points();
-    if (triangle_min_angle_deg(p[f[0]], p[f[1]], p[f[2]]) <= angle + kSameAngleDeg) ++count;
+    if (at.face != kNoFace) {
+      const Triangle& f = input.triangle(at.face);
+      const std::vector<Point>& p = input.local_points();
+      if (triangle_min_angle_deg(p[f[0]], p[f[1]], p[f[2]]) <= angle + kSameAngleDeg) {
+        ++count;
+        continue;
+      }
+    }
+    if (triangle_patch.size() != output.triangles.size()) continue;
+    // The smallest angle is at the corner facing the shortest edge.
+    int corner = 0;
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) {
+      const double l =
+          squared_norm(sub(output.points[t[(k + 2) % 3]], output.points[t[(k + 1) % 3]]));
+      if (l < shortest) {
+        shortest = l;
+        corner = k;
+      }
+    }
+    if (!incidence) incidence.emplace(SimplexIncidence<3>::of(output.triangles));
+    const Index self = static_cast<Index>(&t - output.triangles.data());
+    fan.clear();
+    incidence->elements_of(output.triangles, t[corner], fan);
+    if (std::none_of(fan.begin(), fan.end(), [&](Index u) {
+          return u != self && triangle_patch[u] == triangle_patch[self];
+        }))
+      ++count;
   }
   return count;
 }
@@ -854,8 +882,8 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
     input_in_output_frame.points.push_back(output->to_local(p));
   input_in_output_frame.triangles = surface->triangles();
   std::vector<FaceId> output_hosts = s.host;
-  result.report.thin_triangles_on_thinner_input =
-      thin_triangles_on_thinner_input(local, s.host, *surface);
+  result.report.thin_triangles_at_thinner_input =
+      thin_triangles_at_thinner_input(local, s.host, s.triangle_patch, *surface);
   const absl::StatusOr<double> out_to_in =
       sampled_distance(local, output->neighbours(), *surface, &output_hosts, 0.0,
                        &result.report.max_vertex_distance, progress);

@@ -125,9 +125,9 @@ struct SurfaceReport {
   // otherwise have failed with).
   std::int64_t patches_from_input = 0;
   std::vector<std::string> front_stops;
-  // Of the output's triangles under kThinTriangleDeg (15°), those on an input triangle whose
-  // own smallest angle is no larger (thin_triangles_on_thinner_input).
-  std::int64_t thin_triangles_on_thinner_input = 0;
+  // Of the output's triangles under kThinTriangleDeg (15°), those on an input triangle or at a
+  // corner between lines whose own angle is no larger (thin_triangles_at_thinner_input).
+  std::int64_t thin_triangles_at_thinner_input = 0;
 };
 
 struct SurfaceResult {
@@ -181,13 +181,19 @@ absl::Status check_result_does_not_cross_itself(const Mesh& result,
 inline constexpr double kThinTriangleDeg = 15.0;
 
 // Not in the paper: how many triangles of `output` (in `input`'s local frame; hosts[i] a face of
-// `input` near point i, or kNoFace) have a smallest angle under `thin_deg` and lie on an input
-// triangle whose own smallest angle is no larger: the input face nearest their centroid, found
-// by a walk from the host of their first point. Such triangles are the input's own: a sliver
-// face whose every edge is a line (its own patch, kept as it is), or a strip between two lines
-// narrower than the gap floor (kMinGapSizes) spanned from line to line. The rest are the
-// mesher's to answer for. O(T) plus one walk per thin triangle.
-std::int64_t thin_triangles_on_thinner_input(const Mesh& output, std::span<const FaceId> hosts,
+// `input` near point i, or kNoFace; triangle_patch[t] the patch triangle t was meshed in, or
+// empty) have a smallest angle under `thin_deg` and are as thin as the input there:
+//  - on an input triangle whose own smallest angle is no larger (the input face nearest their
+//    centroid, found by a walk from the host of their first point): a sliver face whose every
+//    edge is a line (its own patch, kept as it is), or a strip between two lines narrower than
+//    the gap floor (kMinGapSizes) spanned from line to line;
+//  - or alone in their patch at the corner of their smallest angle: both its edges there are
+//    line sides, so the angle is the one the lines make at that corner (a corner sharper than
+//    the triangle's other angles allow; issue 11's bar: "none under 15° away from input corners
+//    whose own angle is smaller").
+// The rest are the mesher's to answer for. O(T) plus one walk per thin triangle.
+std::int64_t thin_triangles_at_thinner_input(const Mesh& output, std::span<const FaceId> hosts,
+                                             std::span<const Index> triangle_patch,
                                              const DiscreteSurface& input,
                                              double thin_deg = kThinTriangleDeg);
 

@@ -73,7 +73,7 @@ SurfaceResult result_with(Mesh mesh) {
                    .model_size = 1.75,
                    .patches_from_input = 1,
                    .front_stops = {"the surface front of patch 2 (input tag 0) got stuck"},
-                   .thin_triangles_on_thinner_input = 7};
+                   .thin_triangles_at_thinner_input = 7};
   result.timings = {{"features", 0.5}, {"front", 0.25}};
   return result;
 }
@@ -307,7 +307,7 @@ TEST_F(MeshSurfaceServiceTest, SummaryCarriesCountsQualityRepairFeaturesDistance
   EXPECT_EQ(summary.quality().share_below_30_deg(), 0.0);
   EXPECT_EQ(summary.quality().count_below_15_deg(), 0u);
   // The core's count, passed on as it is (the fake job's report).
-  EXPECT_EQ(summary.quality().count_below_15_deg_on_thinner_input(), 7u);
+  EXPECT_EQ(summary.quality().count_below_15_deg_at_thinner_input(), 7u);
   EXPECT_EQ(summary.repair().duplicate_triangles_dropped(), 1u);
   EXPECT_EQ(summary.repair().degenerate_triangles_dropped(), 2u);
   EXPECT_EQ(summary.repair().unused_points_dropped(), 3u);

@@ -922,10 +922,10 @@ TEST(PatchFromInput, ARidgeEndingInsideThePatchIsKept) {
   EXPECT_EQ(across, 0);
 }
 
-// The triangles under 15° on input triangles at least as thin (issue 11's bar exempts those at
-// input corners sharper than them): a square halved (45°) beside a sliver (2.3°). A thin
-// triangle in the square is the mesher's; the sliver kept as it is, the input's; a triangle
-// thinner than the sliver inside it, the mesher's; a good one is not looked at.
+// The triangles under 15° on input triangles or at corners at least as thin (issue 11's bar
+// exempts those at input corners sharper than them): a square halved (45°) beside a sliver
+// (2.3°). A thin triangle in the square is the mesher's; the sliver kept as it is, the input's;
+// a triangle thinner than the sliver inside it, the mesher's; a good one is not looked at.
 TEST(ThinTriangles, OnlyThoseOnInputTrianglesAsThinAreTheInputs) {
   Mesh input;
   input.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
@@ -952,11 +952,21 @@ TEST(ThinTriangles, OnlyThoseOnInputTrianglesAsThinAreTheInputs) {
         for (const Point& x : output.points) hosts.push_back(surface->nearest_face(x).face);
       return hosts;
     };
-    EXPECT_EQ(thin_triangles_on_thinner_input(in_square, hosts_of(in_square), *surface), 0);
-    EXPECT_EQ(thin_triangles_on_thinner_input(sliver_kept, hosts_of(sliver_kept), *surface), 1);
-    EXPECT_EQ(thin_triangles_on_thinner_input(thinner, hosts_of(thinner), *surface), 0);
-    EXPECT_EQ(thin_triangles_on_thinner_input(good, hosts_of(good), *surface), 0);
+    EXPECT_EQ(thin_triangles_at_thinner_input(in_square, hosts_of(in_square), {}, *surface), 0);
+    EXPECT_EQ(thin_triangles_at_thinner_input(sliver_kept, hosts_of(sliver_kept), {}, *surface),
+              1);
+    EXPECT_EQ(thin_triangles_at_thinner_input(thinner, hosts_of(thinner), {}, *surface), 0);
+    EXPECT_EQ(thin_triangles_at_thinner_input(good, hosts_of(good), {}, *surface), 0);
   }
+  // A thin triangle in the square, 3.2° at (0, 0), beside another at that corner: of its own
+  // patch, the corner's angle is wider than the thin one's (the mesher's); of another patch,
+  // the thin one alone spans its patch's corner between two lines (the input's).
+  const Mesh at_corner =
+      output_with({{0, 0, 0}, {1, 0, 0}, {0.9, 0.05, 0}, {0.3, 0.5, 0}}, {{0, 1, 2}, {0, 2, 3}});
+  const std::vector<Index> one_patch = {0, 0};
+  const std::vector<Index> two_patches = {0, 1};
+  EXPECT_EQ(thin_triangles_at_thinner_input(at_corner, {}, one_patch, *surface), 0);
+  EXPECT_EQ(thin_triangles_at_thinner_input(at_corner, {}, two_patches, *surface), 1);
   // End to end: a sphere has none under 15°; a lone sliver (an open surface whose three edges
   // are lines) is spanned from line to line, its thin triangles counted as its own.
   SurfaceParams params;
@@ -964,7 +974,7 @@ TEST(ThinTriangles, OnlyThoseOnInputTrianglesAsThinAreTheInputs) {
   absl::StatusOr<SurfaceResult> sphere =
       generate_surface_mesh(sphere_surface({0, 0, 0}, 1.0, 0.05), params);
   ASSERT_TRUE(sphere.ok()) << sphere.status();
-  EXPECT_EQ(sphere->report.thin_triangles_on_thinner_input, 0);
+  EXPECT_EQ(sphere->report.thin_triangles_at_thinner_input, 0);
   Mesh lone;
   lone.points = {{2, 0, 0}, {3, 0, 0}, {2.5, 0.02, 0}};
   lone.triangles = {{0, 1, 2}};
@@ -975,9 +985,9 @@ TEST(ThinTriangles, OnlyThoseOnInputTrianglesAsThinAreTheInputs) {
     thin += triangle_quality(spanned->mesh.points, t).min_angle_deg < kThinTriangleDeg;
   std::printf("lone sliver: %zu triangles, %lld under 15°, %lld on the input as thin\n",
               spanned->mesh.triangles.size(), static_cast<long long>(thin),
-              static_cast<long long>(spanned->report.thin_triangles_on_thinner_input));
-  EXPECT_GT(spanned->report.thin_triangles_on_thinner_input, 0);
-  EXPECT_LE(spanned->report.thin_triangles_on_thinner_input, thin);
+              static_cast<long long>(spanned->report.thin_triangles_at_thinner_input));
+  EXPECT_GT(spanned->report.thin_triangles_at_thinner_input, 0);
+  EXPECT_LE(spanned->report.thin_triangles_at_thinner_input, thin);
 }
 
 // cgal_hand at its mean edge: the front of patch 0 stopped on a crease of 98–107° whose ridge
