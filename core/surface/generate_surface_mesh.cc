@@ -330,6 +330,68 @@ constexpr double kExpectedTrianglesPerBackOff = 100.0;
 // success). Where the input itself has several fans (a non-manifold vertex, or a vertex of a
 // non-manifold edge), so may the output at the points of its lines there. A fault is a
 // FAILED_PRECONDITION naming where, never a folded or open surface. O(M log M) for M triangles.
+// The vertices of `triangles` round which they form two fans or more (analyze_triangle_topology,
+// whose cost is in the highest index: over a copy numbered from 0), with their own indices.
+std::vector<VertexFans> fanned_vertices(const std::vector<Triangle>& triangles) {
+  absl::flat_hash_map<Index, Index> local;
+  std::vector<Index> global;
+  std::vector<Triangle> renumbered;
+  renumbered.reserve(triangles.size());
+  for (const Triangle& t : triangles) {
+    Triangle r;
+    for (int k = 0; k < 3; ++k) {
+      const auto [it, added] = local.try_emplace(t[k], static_cast<Index>(global.size()));
+      if (added) global.push_back(t[k]);
+      r[k] = it->second;
+    }
+    renumbered.push_back(r);
+  }
+  std::vector<VertexFans> fans = analyze_triangle_topology(renumbered).nonmanifold_vertices;
+  for (VertexFans& v : fans) v.vertex = global[v.vertex];
+  return fans;
+}
+
+// Not in the paper: the triangles a patch's front made (from `first_triangle` on) form no more
+// fans round each of its line points than the patch's input faces do round the same place (one
+// on an input edge; at an input vertex, as many as the patch's faces there). A front that
+// closed a corner's wedge on the wrong side of its lines leaves a fan of its own there, over
+// another patch's place: TR12J_OCC, where a dangling ridge of patch 196 ends at a corner of the
+// three-face patch 384, and the wedge between 384's two lines, seen from 196 across a sharp
+// crease, was closed by one triangle of 196; the job failed later, when the patches were
+// checked together (check_patches_meet_on_lines). FAILED_PRECONDITION now, so that the patch is
+// re-triangulated from its input (patch_from_input.h) before the next one is meshed. O(T log T)
+// for the patch's T triangles.
+absl::Status check_patch_fans(const SurfaceMeshState& s, PatchId patch,
+                              std::size_t first_triangle) {
+  std::vector<Triangle> mine;
+  for (std::size_t t = first_triangle; t < s.triangles.size(); ++t)
+    if (s.triangles[t][0] != kInvalidIndex) mine.push_back(s.triangles[t]);  // live ones
+  for (const VertexFans& v : fanned_vertices(mine)) {
+    if (v.vertex >= s.line_points) continue;
+    // A line point inside an input edge has the patch's faces on one side, or on both of a
+    // line inside the patch: one fan. At an input vertex (its anchor, the same point), the
+    // patch's faces there may form several.
+    int input = 1;
+    if (const Index anchor = s.anchor[v.vertex];
+        anchor != kInvalidIndex && s.points[v.vertex] == s.surface.local_points()[anchor]) {
+      std::vector<Triangle> faces;
+      for (const Index f : s.surface.faces_at(anchor))
+        if (s.features.face_patch[f] == patch) faces.push_back(s.surface.triangles()[f]);
+      for (const VertexFans& u : fanned_vertices(faces))
+        if (u.vertex == anchor) input = u.fan_count;
+    }
+    if (v.fan_count <= input) continue;
+    const Point x = s.surface.to_global(s.points[v.vertex]);
+    return absl::FailedPreconditionError(absl::StrFormat(
+        "the surface front of patch %d (input tag %d) left %d fans of triangles round line point "
+        "%d near (%g, %g, %g), where the patch's input faces form %d: a triangle closed a corner "
+        "on the far side of its lines",
+        index_of(patch), s.features.patches[index_of(patch)].tag, v.fan_count, v.vertex, x[0],
+        x[1], x[2], input));
+  }
+  return absl::OkStatus();
+}
+
 absl::Status check_patches_meet_on_lines(const SurfaceMeshState& s) {
   const TriangleTopology topology = analyze_triangle_topology(s.triangles);
   if (!topology.nonmanifold_vertices.empty()) {
@@ -795,6 +857,8 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
     absl::Status st = params.every_patch_from_input
                           ? absl::OkStatus()
                           : mesh_patch(s, patch, patch_sides[p], boxes[p], front_params, progress);
+    if (st.ok() && !params.every_patch_from_input)
+      st = check_patch_fans(s, patch, triangles_before);
     if (!st.ok()) {
       st = describe_where_stopped(std::move(st), s, **field, params.ridge_angle_deg);
       if (st.code() != absl::StatusCode::kFailedPrecondition) return st;

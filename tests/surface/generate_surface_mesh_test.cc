@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <limits>
 #include <set>
@@ -19,6 +20,7 @@
 #include "core/common/progress.h"
 #include "core/geometry/closest_points.h"
 #include "core/geometry/vec.h"
+#include "core/io/mesh_io.h"
 #include "core/quality/measures.h"
 #include "core/quality/mesh_topology.h"
 #include "core/quality/validate.h"
@@ -920,6 +922,34 @@ TEST(PatchFromInput, ARidgeEndingInsideThePatchIsKept) {
     across += left && right;
   }
   EXPECT_EQ(across, 0);
+}
+
+// occt-misc's TR12J_OCC.stl (a clean CAD tessellation) within 90 of a corner where three lines
+// meet: a ridge ending there inside a patch, and the two lines of a three-face patch. The
+// patch round it closed the small patch's wedge with one triangle of its own, across the sharp
+// crease, and the job failed when the patches were checked together ("the surface fronts of
+// the patches overlap ... form 2 fans"). The patch's own fans are checked as soon as it is
+// meshed (check_patch_fans): it is re-triangulated from its input, and the job succeeds.
+TEST(Regression, Issue11AWedgeClosedOnTheFarSideOfItsLinesFallsBack) {
+  const absl::StatusOr<Mesh> input = read_mesh(
+      (std::filesystem::path(AFMESH_SOURCE_DIR) / "tests" / "data" / "tr12j_corner_wedge.stl")
+          .string());
+  ASSERT_TRUE(input.ok()) << input.status();
+  SurfaceParams params;
+  params.size = 11.5819;  // the whole file's mean edge
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(*input, params);
+  ASSERT_TRUE(r.ok()) << r.status();
+  for (const std::string& stop : r->report.front_stops)
+    std::printf("front stop: %s\n", stop.c_str());
+  // Open (a piece cut out of a closed part): only "closed" fails.
+  EXPECT_EQ(failed_checks(validate_surface(r->mesh)), std::vector<std::string>{"closed"});
+  EXPECT_GE(r->report.patches_from_input, 1);
+  EXPECT_TRUE(std::any_of(r->report.front_stops.begin(), r->report.front_stops.end(),
+                          [](const std::string& stop) {
+                            return stop.find("fans of triangles round line point") !=
+                                   std::string::npos;
+                          }));
+  EXPECT_LE(r->report.max_vertex_distance, 1e-9 * r->report.model_size);
 }
 
 // The triangles under 15° on input triangles or at corners at least as thin (issue 11's bar
