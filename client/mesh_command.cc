@@ -375,7 +375,8 @@ void add_surface_angle_flags(CLI::App& command, MeshCommandOptions& options) {
       .add_option("--wall-sizes", options.wall_sizes_flag,
                   "elements at most F times the thickness of the solid IN bounds where its walls "
                   "are thinner than the size, down to 0.15 of the size, so that a volume's tets "
-                  "do not span them flat (1 is a good choice; default 0: none)")
+                  "do not span them flat (default: 1 for volume --remesh-surface, 0: none for "
+                  "surface)")
       ->check(CLI::Range(0.0, 100.0) & !CLI::IsMember({100.0}));
 }
 

@@ -81,7 +81,7 @@ absl::Status surface_params_from(const VolumeParams& size, const SurfaceAngles& 
     return st;
   if (absl::Status st = check_optional_bound(
           angles.wall_sizes, prefix,
-          {"wall_sizes", 100.0, "wall thicknesses", "no wall bound", SurfaceParams{}.wall_sizes});
+          {"wall_sizes", 100.0, "wall thicknesses", "no wall bound", params.wall_sizes});
       !st.ok())
     return st;
   params.size = size.size;

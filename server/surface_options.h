@@ -29,7 +29,8 @@ SurfaceAngles angles_of(const v1::VolumeOptions& options);
 bool any_angle_given(const SurfaceAngles& angles);
 
 // `params` with the size of `size` (its size, growth and specification, already checked by
-// VolumeInput) and `angles` (defaults as SurfaceParams'). INVALID_ARGUMENT naming
+// VolumeInput) and `angles`; what `angles` leaves unset keeps the value `params` comes with (its
+// default: SurfaceParams', or kVolumeFrontWallSizes for a volume's front). INVALID_ARGUMENT naming
 // "<prefix>ridge_angle_deg" outside (0, 180), "<prefix>corner_angle_deg" outside (0, 180] or
 // "<prefix>curvature_angle_deg" outside [0, 180), "<prefix>curvature_deviation" outside [0, 1)
 // or "<prefix>wall_sizes" outside [0, 100).

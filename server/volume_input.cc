@@ -175,12 +175,19 @@ absl::Status VolumeInput::surface_options(const v1::VolumeOptions& options) {
         : angles_.curvature_deviation.has_value() ? "curvature_deviation"
                                                   : "wall_sizes"));
   }
-  SurfaceParams checked;
+  SurfaceParams checked = front_surface_defaults();
   return surface_params_from(params_, angles_, "options.", checked);
 }
 
-SurfaceParams VolumeInput::surface_params() const {
+// The surface step re-triangulates a volume's front: its thin walls bounded by default.
+SurfaceParams VolumeInput::front_surface_defaults() {
   SurfaceParams params;
+  params.wall_sizes = kVolumeFrontWallSizes;
+  return params;
+}
+
+SurfaceParams VolumeInput::surface_params() const {
+  SurfaceParams params = front_surface_defaults();
   (void)surface_params_from(params_, angles_, "options.", params);
   return params;
 }

@@ -55,6 +55,7 @@ class VolumeInput {
   // surface_params() (the size of params() and the header's angles and curvature deviation,
   // checked when it came: INVALID_ARGUMENT naming options.ridge_angle_deg / corner_angle_deg /
   // curvature_angle_deg / curvature_deviation, or any given without options.remesh_surface).
+  // The surface's wall sizes are kVolumeFrontWallSizes unless the header sets them.
   bool remesh_surface() const { return remesh_surface_; }
   SurfaceParams surface_params() const;
   // options.environments of the header (crossing environments, paper §2).
@@ -65,6 +66,7 @@ class VolumeInput {
  private:
   absl::Status add_header(const v1::MeshVolumeHeader& header);
   absl::Status surface_options(const v1::VolumeOptions& options);
+  static SurfaceParams front_surface_defaults();
   absl::Status add_points(const v1::PointSlice& slice);
   absl::Status add_triangles(const v1::TriangleSlice& slice);
   absl::Status add_grid_slice(const v1::BackgroundGridSlice& slice);

@@ -729,13 +729,30 @@ TEST_F(MeshSurfaceServiceTest, VolumeCarriesTheCurvatureAngleOnlyWithRemeshSurfa
               HasSubstr("options.wall_sizes is set, but options.remesh_surface is not"));
 }
 
+// A volume's front re-triangulated first bounds its thin walls unless told not to: unset is
+// kVolumeFrontWallSizes (MeshSurface's own default stays none), 0 turns it off, a value reaches
+// the job as it is, and a bad one is refused naming that default.
 TEST_F(MeshSurfaceServiceTest, VolumeCarriesTheWallSizesWithRemeshSurface) {
   start(fixed_job(probe_, tetrahedron_front()));
   std::vector<v1::MeshVolumeResponse> responses;
+  ASSERT_TRUE(call_volume(remesh_requests(0.0, 0.0, true), responses).status.ok());
+  EXPECT_EQ(probe_->params.wall_sizes, kVolumeFrontWallSizes);
+  EXPECT_EQ(kVolumeFrontWallSizes, 1.0);
+  EXPECT_EQ(SurfaceParams{}.wall_sizes, 0.0);
+  for (const double walls : {0.0, 2.5}) {
+    std::vector<v1::MeshVolumeRequest> requests = remesh_requests(0.0, 0.0, true);
+    requests[0].mutable_header()->mutable_options()->set_wall_sizes(walls);
+    probe_->surface_runs.store(0);  // the probe keeps the first run's params
+    ASSERT_TRUE(call_volume(requests, responses).status.ok());
+    EXPECT_EQ(probe_->params.wall_sizes, walls);
+  }
   std::vector<v1::MeshVolumeRequest> requests = remesh_requests(0.0, 0.0, true);
-  requests[0].mutable_header()->mutable_options()->set_wall_sizes(1.0);
-  ASSERT_TRUE(call_volume(requests, responses).status.ok());
-  EXPECT_EQ(probe_->params.wall_sizes, 1.0);
+  requests[0].mutable_header()->mutable_options()->set_wall_sizes(-1.0);
+  const Outcome outcome = call_volume(requests, responses);
+  EXPECT_EQ(outcome.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_THAT(outcome.status.error_message(),
+              HasSubstr("options.wall_sizes must be in [0, 100) wall thicknesses (0: no wall "
+                        "bound; unset: 1), got -1"));
 }
 
 TEST_F(MeshSurfaceServiceTest, VolumeCarriesTheCurvatureDeviationWithRemeshSurface) {
