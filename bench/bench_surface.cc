@@ -50,7 +50,7 @@ int run(const std::string& input, SurfaceParams params, const std::string& out, 
     const double a = triangle_quality(m.points, t).min_angle_deg;
     min_angle = std::min(min_angle, a);
     at_least_30 += a >= 30.0;
-    under_15 += a < 15.0;
+    under_15 += a < kThinTriangleDeg;
     for (int k = 0; k < 3; ++k) edges += norm(sub(m.points[t[(k + 1) % 3]], m.points[t[k]]));
   }
   const auto n = static_cast<double>(m.triangles.size());

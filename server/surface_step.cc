@@ -82,7 +82,7 @@ SurfaceQualityFigures surface_quality(const Mesh& surface) {
     figures.max_angle_deg =
         std::max(figures.max_angle_deg, *std::max_element(angles.begin(), angles.end()));
     below_30 += smallest < 30.0 ? 1 : 0;
-    figures.count_below_15_deg += smallest < 15.0 ? 1 : 0;
+    figures.count_below_15_deg += smallest < kThinTriangleDeg ? 1 : 0;
   }
   figures.share_below_30_deg =
       static_cast<double>(below_30) / static_cast<double>(surface.triangles.size());

@@ -321,15 +321,6 @@ constexpr double kTrianglesPerInitialSide = 24.0;
 // plus one per this many of the triangles it should get.
 constexpr std::int64_t kMinBackOffs = 50;
 constexpr double kExpectedTrianglesPerBackOff = 100.0;
-// The patches together: an edge off the discrete lines is used by two triangles, once each way
-// (not in the paper; each patch is checked closed by mesh_patch, but two patches could still
-// cover the same place, where their lines leave a gap between corners), and the triangles
-// round each point form one fan wherever the input's do (two patches that cover the same place
-// round a line point meet it in two fans: cgal_dino with 0.001 of its diagonal asked as the
-// deviation came out with such a point and 8 crossing pairs of triangles, returned as a
-// success). Where the input itself has several fans (a non-manifold vertex, or a vertex of a
-// non-manifold edge), so may the output at the points of its lines there. A fault is a
-// FAILED_PRECONDITION naming where, never a folded or open surface. O(M log M) for M triangles.
 // The vertices of `triangles` round which they form two fans or more (analyze_triangle_topology,
 // whose cost is in the highest index: over a copy numbered from 0), with their own indices.
 std::vector<VertexFans> fanned_vertices(const std::vector<Triangle>& triangles) {
@@ -392,6 +383,15 @@ absl::Status check_patch_fans(const SurfaceMeshState& s, PatchId patch,
   return absl::OkStatus();
 }
 
+// The patches together: an edge off the discrete lines is used by two triangles, once each way
+// (not in the paper; each patch is checked closed by mesh_patch, but two patches could still
+// cover the same place, where their lines leave a gap between corners), and the triangles
+// round each point form one fan wherever the input's do (two patches that cover the same place
+// round a line point meet it in two fans: cgal_dino with 0.001 of its diagonal asked as the
+// deviation came out with such a point and 8 crossing pairs of triangles, returned as a
+// success). Where the input itself has several fans (a non-manifold vertex, or a vertex of a
+// non-manifold edge), so may the output at the points of its lines there. A fault is a
+// FAILED_PRECONDITION naming where, never a folded or open surface. O(M log M) for M triangles.
 absl::Status check_patches_meet_on_lines(const SurfaceMeshState& s) {
   const TriangleTopology topology = analyze_triangle_topology(s.triangles);
   if (!topology.nonmanifold_vertices.empty()) {
@@ -618,7 +618,8 @@ std::int64_t thin_triangles_at_thinner_input(const Mesh& output, std::span<const
   std::optional<SimplexIncidence<3>> incidence;  // made at the first thin triangle that needs it
   std::vector<Index> fan;
   std::int64_t count = 0;
-  for (const Triangle& t : output.triangles) {
+  for (Index self = 0; self < static_cast<Index>(output.triangles.size()); ++self) {
+    const Triangle& t = output.triangles[self];
     const double angle =
         triangle_min_angle_deg(output.points[t[0]], output.points[t[1]], output.points[t[2]]);
     if (!(angle < thin_deg)) continue;
@@ -647,7 +648,6 @@ std::int64_t thin_triangles_at_thinner_input(const Mesh& output, std::span<const
       }
     }
     if (!incidence) incidence.emplace(SimplexIncidence<3>::of(output.triangles));
-    const Index self = static_cast<Index>(&t - output.triangles.data());
     fan.clear();
     incidence->elements_of(output.triangles, t[corner], fan);
     if (std::none_of(fan.begin(), fan.end(), [&](Index u) {
