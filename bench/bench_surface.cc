@@ -106,14 +106,14 @@ int run(const std::string& input, SurfaceParams params, const std::string& out, 
   } else {
     std::printf(
         "%s: size %g: %.0f triangles in %.3f s (%.0f/s), %.0f bytes/triangle peak; min angle "
-        "%.2f, >= 30: %.2f%%, < 15: %lld (%lld at input triangles or corners as thin); mean edge / h %.3f; Hausdorff %.2e of the diagonal; "
-        "%lld patches (%lld from their input), %lld lines, %lld corners (%lld short free ridges "
-        "dropped); dropped %lld degenerate, %lld duplicate, reoriented %lld; %s\n  stages (s): "
-        "%s\n",
+        "%.2f, >= 30: %.2f%%, < 15: %lld (%lld at input triangles or corners as thin); mean "
+        "edge / h %.3f; Hausdorff %.2e of the diagonal; %lld patches (%lld from their input), "
+        "%lld lines, %lld corners (%lld short free ridges dropped); dropped %lld degenerate, %lld "
+        "duplicate, reoriented %lld; %s\n  stages (s): %s\n",
         input.c_str(), params.size, n, seconds, n / seconds,
         static_cast<double>(memory.growth_bytes()) / n, min_angle, 100.0 * at_least_30 / n,
-        static_cast<long long>(under_15), static_cast<long long>(r.thin_triangles_at_thinner_input),
-        edges / (3 * n) / params.size,
+        static_cast<long long>(under_15),
+        static_cast<long long>(r.thin_triangles_at_thinner_input), edges / (3 * n) / params.size,
         r.hausdorff / r.model_size, static_cast<long long>(r.patches),
         static_cast<long long>(r.patches_from_input), static_cast<long long>(r.lines),
         static_cast<long long>(r.corners),

@@ -354,9 +354,10 @@ std::vector<VertexFans> fanned_vertices(const std::vector<Triangle>& triangles) 
 // for the patch's T triangles.
 absl::Status check_patch_fans(const SurfaceMeshState& s, PatchId patch,
                               std::size_t first_triangle) {
-  std::vector<Triangle> mine;
-  for (std::size_t t = first_triangle; t < s.triangles.size(); ++t)
-    if (s.triangles[t][0] != kInvalidIndex) mine.push_back(s.triangles[t]);  // live ones
+  // mesh_patch compacted the patch before it returned: every triangle from first_triangle on
+  // is live.
+  const std::vector<Triangle> mine(
+      s.triangles.begin() + static_cast<std::ptrdiff_t>(first_triangle), s.triangles.end());
   for (const VertexFans& v : fanned_vertices(mine)) {
     if (v.vertex >= s.line_points) continue;
     // A line point inside an input edge has the patch's faces on one side, or on both of a

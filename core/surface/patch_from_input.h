@@ -37,10 +37,10 @@ namespace afmesh {
 // Appends to `s` the triangles of `patch` built as above from its input faces, conforming to its
 // initial `sides` (those of mesh_patch; empty for a patch without lines), with at most
 // `max_triangles` triangles at any step (a patch with more input triangles is refused before
-// any work: a bound on the work and memory, as the front's). FAILED_PRECONDITION when a step cannot be done without folding a
-// triangle or when the result is not a closed cover of the patch (check_patch_closed), naming
-// where; `s` is then as before the call. CANCELLED once progress is. O(T log T) for the T triangles
-// made.
+// any work: a bound on the work and memory, as the front's). FAILED_PRECONDITION when a step
+// cannot be done without folding a triangle or when the result is not a closed cover of the
+// patch (check_patch_closed), naming where; `s` is then as before the call. CANCELLED once
+// progress is. O(T log T) for the T triangles made.
 absl::Status patch_from_input(SurfaceMeshState& s, PatchId patch, const std::vector<Side>& sides,
                               std::int64_t max_triangles, Progress& progress = no_progress());
 
