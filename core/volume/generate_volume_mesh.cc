@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <string>
 
@@ -19,6 +18,7 @@
 #include "core/quality/validate_common.h"
 #include "core/sizing/attached_sizes.h"
 #include "core/sizing/spec_size_field.h"
+#include "core/volume/end_game_watch.h"
 #include "core/volume/estimate_elements.h"
 #include "core/volume/front_steps.h"
 
@@ -299,33 +299,6 @@ absl::Status failure_at_face(const MesherState& s, const Mesh& input, Index face
                    describe_input_near_face(s, input, v, x)));
 }
 
-// Not in the paper: the end game must shrink the front. Once the elements hold all but
-// kEndGameShare of the enclosed volume, the front may only get smaller; a front whose smallest
-// size is not beaten for kEndGameSteps + kEndGameStepsPerFace × that size fills the last gaps
-// with ever smaller elements and would never close (a cube of edges 0.15 at size 0.02: the
-// volume meshed after 1M steps, then 800k tets more without end).
-constexpr double kEndGameShare = 1e-3;
-constexpr std::int64_t kEndGameSteps = 20000;
-constexpr std::int64_t kEndGameStepsPerFace = 20;
-
-class EndGameWatch {
- public:
-  // True when the end game has stopped making progress (call once per step).
-  bool stalled(const MesherState& s, double domain_volume, std::int64_t step) {
-    if (s.meshed_volume < domain_volume * (1.0 - kEndGameShare)) return false;
-    if (s.front.size() < smallest_front_) {
-      smallest_front_ = s.front.size();
-      since_ = step;
-    }
-    return step - since_ > kEndGameSteps + kEndGameStepsPerFace * smallest_front_;
-  }
-  std::int64_t smallest_front() const { return smallest_front_; }
-
- private:
-  std::int64_t smallest_front_ = std::numeric_limits<std::int64_t>::max();
-  std::int64_t since_ = 0;
-};
-
 absl::Status end_game_report(const MesherState& s, const Mesh& input, Index face,
                              double domain_volume, std::int64_t smallest_front) {
   return failure_at_face(
@@ -426,7 +399,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
     return st;
 
   BackOffCounts back_off_counts;
-  EndGameWatch end_game;
+  volume::EndGameWatch end_game;
   ReopeningWatch reopenings(domain_volume);
   std::int64_t steps = 0;
   while (std::optional<Index> face = s.front.pop()) {                  // F6, F11
@@ -434,7 +407,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
     reopenings.step(s);
     if (std::string overrun = budget_overrun(s, budget, expected_tets); !overrun.empty())
       return failure_at_face(s, front, *face, overrun);
-    if (end_game.stalled(s, domain_volume, steps))
+    if (end_game.stalled(s.meshed_volume, domain_volume, s.front.size(), steps))
       return end_game_report(s, front, *face, domain_volume, end_game.smallest_front());
     if (steps % kCancelCheckInterval == 0) {
       if (progress.cancelled()) return absl::CancelledError("volume meshing cancelled");

@@ -1,11 +1,13 @@
 // A target size well below the input surface's edge lengths (paper §1, F5/F9 with eq. 15): the
 // front must shrink its elements from the coarse boundary down to the size wanted inside and
 // still close, also along the solid's edges, where two boundary faces meet at 90°.
+#include <cstdint>
 #include <string>
 
 #include "core/io/mesh_io.h"
 #include "core/quality/validate.h"
 #include "core/shapes/shapes.h"
+#include "core/volume/end_game_watch.h"
 #include "core/volume/generate_volume_mesh.h"
 #include "gtest/gtest.h"
 
@@ -56,6 +58,30 @@ TEST(Regression, Issue10EndGameThatStopsClosingEndsTheJob) {
   EXPECT_NE(result.status().message().find("input edges far longer than the size"),
             std::string::npos)
       << result.status();
+}
+
+// Issue 10 part 2 (never hang): the end game's watch. Before the elements hold all but
+// EndGameWatch::kShare of the volume it never fires; after, a front that does not beat its
+// smallest size for kSteps + kStepsPerFace × that size has stalled, and every new record starts
+// the count again.
+TEST(EndGameWatch, FiresOnlyWhenTheLastFacesStopShrinking) {
+  using volume::EndGameWatch;
+  EndGameWatch watch;
+  const double all = 1.0, nearly = 1.0 - 0.5 * EndGameWatch::kShare;
+  for (std::int64_t step = 0; step < 10 * EndGameWatch::kSteps; ++step)
+    ASSERT_FALSE(watch.stalled(0.5, all, 100, step)) << step;  // not in the end game yet
+  const std::int64_t start = 10 * EndGameWatch::kSteps;
+  const std::int64_t patience = EndGameWatch::kSteps + EndGameWatch::kStepsPerFace * 100;
+  EXPECT_FALSE(watch.stalled(nearly, all, 100, start));  // the first record
+  EXPECT_EQ(watch.smallest_front(), 100);
+  EXPECT_FALSE(watch.stalled(nearly, all, 150, start + patience));  // larger: not a record
+  EXPECT_TRUE(watch.stalled(nearly, all, 150, start + patience + 1));
+  EXPECT_FALSE(watch.stalled(nearly, all, 99, start + patience + 2));  // a record: count again
+  EXPECT_EQ(watch.smallest_front(), 99);
+  const std::int64_t record = start + patience + 2;
+  const std::int64_t patience_now = EndGameWatch::kSteps + EndGameWatch::kStepsPerFace * 99;
+  EXPECT_FALSE(watch.stalled(nearly, all, 120, record + patience_now));
+  EXPECT_TRUE(watch.stalled(nearly, all, 120, record + patience_now + 1));
 }
 
 }  // namespace
