@@ -9,8 +9,8 @@ namespace afmesh::volume {
 // The end game must shrink the front. Once the elements hold all but kShare of the enclosed
 // volume, the front may only get smaller; a front whose smallest size is not beaten for
 // kSteps + kStepsPerFace × that size fills the last gaps with ever smaller elements and would
-// never close (a cube of edges 0.15 at size 0.02: the volume meshed after 1M steps, then 800k
-// tets more without end).
+// never close (a cube of edges 0.15 at size 0.02, before coarse faces retried their later rules
+// at once: the volume meshed after 1M steps, then 800k tets more without end).
 class EndGameWatch {
  public:
   static constexpr double kShare = 1e-3;

@@ -146,6 +146,21 @@ bool delete_face_with_later_rules(MesherState& s, Index face) {
   return false;
 }
 
+// Not in the paper: a coarse face, one whose element is clamped above the size wanted there
+// (element_size_for_target: a face of an input much coarser than the size), also retries at once
+// under the later rules (delete_face_with_later_rules). Such faces are queued first to grade the
+// front down from the boundary's size (queue_key_for_element); where a wall is thinner than
+// their elements, the first rules find no point (the best point too near the opposite wall),
+// and deferred, a coarse face waited while the finer front grown beside it filled the gap under
+// it, where only ever smaller elements fit then (Regression.Issue10ThinWallCoarserThanTheSize-
+// Meshes: a plate 2 thick, triangulated at 5.5 on one side, at size 1.145; gmsh_t13_data's
+// surface, walls 2 thick with triangles up to 6.7, at sizes 0.8 to 1.3).
+bool is_coarse_face(const MesherState& s, Index face) {
+  const Triangle& v = s.front.item(face).v;
+  const double target = volume::target_size_for_face(s, v);
+  return volume::element_size_for_target(s, v, target) > target;
+}
+
 // Not in the paper: what the input looks like where the front failed, so that the message names
 // a cause the user can act on. Looks at the input triangles that come within `radius` of x
 // (triangles_near: a scan of the input, made once, when the job has already failed).
@@ -420,7 +435,8 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
       progress.report("front", std::min(0.99, static_cast<double>(s.live_tets) / expected_tets));
     }
     if (delete_face(s, *face, s.front.item(*face).attempts)) continue;
-    if (s.sliver_front && delete_face_with_later_rules(s, *face)) continue;
+    if ((s.sliver_front || is_coarse_face(s, *face)) && delete_face_with_later_rules(s, *face))
+      continue;
     const FrontItem<3>& f = s.front.item(*face);
     if (f.attempts + 1 < kAttemptsBeforeBackOff) {
       s.front.defer(*face, volume::queue_size_for_face(s, f.v));
