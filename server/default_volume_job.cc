@@ -71,11 +71,12 @@ absl::StatusOr<VolumeJobOutput> run_volume_job(const Mesh& front, const VolumePa
                                                Progress& progress) {
   absl::StatusOr<VolumeResult> volume = generate_volume_mesh(front, params, progress);
   if (!volume.ok()) return volume.status();
+  std::vector<std::string> warnings = std::move(volume->warnings);
   VolumeJobOutput output{
       .volume = *std::move(volume),
       .quality = {},
       .validation = {},
-      .warnings = {},
+      .warnings = std::move(warnings),
       .repair = {},
       .estimated_tets = 0,
       .surface = std::nullopt};

@@ -80,6 +80,10 @@ struct VolumeResult {
   // tets: positive orientation; triangles: the input front unchanged (with its tags).
   Mesh mesh;
   std::vector<StageTiming> timings;
+  // One per time the front stopped and was meshed again with the size halved where it stopped
+  // (not in the paper: a front whose back-off fails, among sliver input triangles, up to 8
+  // times): why it stopped, and where the size was halved.
+  std::vector<std::string> warnings;
 };
 
 // Checks that `front` is a valid input front: finite coordinates, indices in range, no degenerate
@@ -97,7 +101,9 @@ absl::StatusOr<std::unique_ptr<SizeField>> make_size_field(const VolumeParams& p
                                                            const Mesh& front);
 
 // Fills the volume enclosed by `front` (outward-oriented closed triangles) with tetrahedra whose
-// boundary faces are exactly the front's triangles.
+// boundary faces are exactly the front's triangles. Where the front gets stuck (its back-off
+// fails), it is meshed again with the size halved within 3 sizes of there, at most 8 times, each
+// said in VolumeResult::warnings (not with crossing environments).
 // Errors: INVALID_ARGUMENT (bad front or params), CANCELLED (progress.cancelled()),
 // FAILED_PRECONDITION (the front could not be closed; the message says where).
 absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const VolumeParams& params,

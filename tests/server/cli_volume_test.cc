@@ -145,6 +145,18 @@ TEST_F(CliVolumeTest, FlippedFacetsAndAnOutwardCavityAreRepairedWithAWarning) {
   EXPECT_GT(outer, 0u);
 }
 
+// The core's warnings reach the user: occt-misc's shape.stl at its mean edge is meshed again
+// with the size halved where its front stopped, each time a warning, and the mesh is valid.
+TEST_F(CliVolumeTest, FrontMeshedAgainWhereItStoppedIsWarnedAbout) {
+  const std::string in = std::string(AFMESH_SOURCE_DIR) + "/tests/data/occt_shape.stl";
+  const fs::path out = dir_ / "shape.vtu";
+  ASSERT_EQ(run_volume(shell_quoted(in) + " -o " + shell_quoted(out) + " --json"), 0)
+      << stderr_text();
+  EXPECT_THAT(stderr_text(), HasSubstr("warning: the front got stuck at face"));
+  EXPECT_THAT(stderr_text(), HasSubstr("meshed again with the size halved within"));
+  EXPECT_THAT(stdout_text(), HasSubstr("\"passed\": true"));
+}
+
 TEST_F(CliVolumeTest, MissingInputFileExitsWithBadInput) {
   EXPECT_EQ(run_volume(shell_quoted(dir_ / "absent.stl") + " -o " + shell_quoted(dir_ / "v.msh")),
             3);
