@@ -1349,6 +1349,5 @@ TEST_F(MesherServiceTest, AFrontFarCoarserThanTheSizeAskedIsWarnedAbout) {
   EXPECT_THAT(warnings, HasSubstr("re-triangulate the surface at the size first"));
 }
 
-
 }  // namespace
 }  // namespace afmesh::server
