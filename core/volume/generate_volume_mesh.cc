@@ -474,9 +474,10 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
 
 // Not in the paper (kMaxLocalRefinements): the run's size specification (made from its uniform
 // size and growth when it has none) gains a point source at x, halving the size `field` gives
-// there within kLocalRefinementRadius of it. Sliver input triangles (CAD tessellations) leave
-// the front pockets no element of their sizes fits; smaller elements there do.
-void refine_where_stuck(VolumeParams& run, const SizeField& field, const Point& x) {
+// there within kLocalRefinementRadius of it; returns that radius. Sliver input triangles (CAD
+// tessellations) leave the front pockets no element of their sizes fits; smaller elements there
+// do.
+double refine_where_stuck(VolumeParams& run, const SizeField& field, const Point& x) {
   if (!run.spec) run.spec = SizeSpec{.max_size = run.size, .growth = run.growth};
   const double local = field.size_at(x);
   run.spec->sources.push_back({.points = {x},
@@ -484,6 +485,7 @@ void refine_where_stuck(VolumeParams& run, const SizeField& field, const Point& 
                                .r0 = kLocalRefinementRadius * local,
                                .r1 = local,
                                .law = PowerLaw{.gamma = 1.0}});
+  return kLocalRefinementRadius * local;
 }
 
 }  // namespace
@@ -529,29 +531,25 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
   // F1–F11, and again with the size halved where the back-off failed (refine_where_stuck, not
   // in the paper), each time said in a warning; the last failure names every such place.
   absl::StatusOr<Mesh> mesh = absl::UnknownError("not run");
+  std::string where;  // the places the size was halved, for the last failure
   for (int refinement = 0;; ++refinement) {
     std::optional<Point> stopped_near;
     mesh = advance_front(front, run, **size_field, growth, clock, progress, stopped_near);
     if (mesh.ok() || !stopped_near || refinement == kMaxLocalRefinements ||
         !run.face_environments.empty())
       break;
+    const Point& x = *stopped_near;
+    const std::string place = absl::StrFormat("(%g, %g, %g)", x[0], x[1], x[2]);
+    const double radius = refine_where_stuck(run, **size_field, x);
     result.warnings.push_back(absl::StrCat(
         mesh.status().message(),
-        absl::StrFormat("; meshed again with the size halved within %g of (%g, %g, %g)",
-                        kLocalRefinementRadius * (*size_field)->size_at(*stopped_near),
-                        (*stopped_near)[0], (*stopped_near)[1], (*stopped_near)[2])));
-    refine_where_stuck(run, **size_field, *stopped_near);
+        absl::StrFormat("; meshed again with the size halved within %g of %s", radius, place)));
+    absl::StrAppend(&where, where.empty() ? "" : ", ", place);
     size_field = make_size_field(run, front);
     if (!size_field.ok()) return size_field.status();
   }
   if (!mesh.ok()) {
     if (result.warnings.empty()) return mesh.status();
-    std::string where;
-    const std::vector<SizeSource>& sources = run.spec->sources;
-    for (std::size_t i = sources.size() - result.warnings.size(); i < sources.size(); ++i)
-      absl::StrAppend(&where, where.empty() ? "" : ", ",
-                      absl::StrFormat("(%g, %g, %g)", sources[i].points[0][0],
-                                      sources[i].points[0][1], sources[i].points[0][2]));
     return absl::Status(mesh.status().code(),
                         absl::StrCat(mesh.status().message(),
                                      absl::StrFormat("; after meshing again %d times with the "
