@@ -22,12 +22,15 @@
 #include <memory>
 #include <string>
 
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "client/commands.h"
 #include "client/mesh_command.h"
 #include "client/volume_call.h"
 #include "core/environments/environments.h"
 #include "core/io/mesh_io.h"
+#include "core/volume/generate_volume_mesh.h"
 
 namespace afmesh::cli {
 namespace {
@@ -79,6 +82,20 @@ void print_summary(const std::string& output, const VolumeSummary& summary) {
   print_timings(summary.timings);
 }
 
+// A front that stopped where a re-triangulated surface would not (the server's message says so,
+// kRetriangulatedSurfaceAdvice) is told which flag does that, unless it was given.
+absl::StatusOr<MeshAnswer> with_remesh_hint(absl::StatusOr<MeshAnswer> answer,
+                                            bool remesh_surface) {
+  if (answer.ok() || remesh_surface ||
+      answer.status().code() != absl::StatusCode::kFailedPrecondition ||
+      !absl::StrContains(answer.status().message(), kRetriangulatedSurfaceAdvice))
+    return answer;
+  return absl::FailedPreconditionError(
+      absl::StrCat(answer.status().message(),
+                   "; --remesh-surface re-triangulates IN at the size first, in the same call "
+                   "(OUT's boundary is then the new surface)"));
+}
+
 int run_volume(const VolumeCommandOptions& options) {
   MeshCommand command;
   command.name = "volume";
@@ -95,8 +112,10 @@ int run_volume(const VolumeCommandOptions& options) {
   command.call = [](const std::string& address, const Mesh& front,
                     const VolumeCallOptions& call_options, const ProgressCallback& on_progress,
                     const WarningCallback& on_warning) -> absl::StatusOr<MeshAnswer> {
-    return mesh_answer(call_mesh_volume(address, front, call_options, on_progress, on_warning),
-                       print_summary);
+    return with_remesh_hint(
+        mesh_answer(call_mesh_volume(address, front, call_options, on_progress, on_warning),
+                    print_summary),
+        call_options.remesh_surface);
   };
   return run_mesh_command(options.mesh, std::move(command));
 }

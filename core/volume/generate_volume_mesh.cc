@@ -186,13 +186,15 @@ std::string describe_input_near(const Mesh& input, const Point& x, double radius
       "angles down to %.3g degrees",
       count, radius, shortest, longest, size, smallest_angle);
   if (smallest_angle < kSliverAngleDeg) {
-    absl::StrAppend(&text, ": sliver triangles, whose elements are slivers too; the front could "
-                           "not close among them. Re-triangulating the surface with "
-                           "better-shaped triangles avoids this");
+    absl::StrAppend(&text,
+                    ": sliver triangles, whose elements are slivers too; the front could not "
+                    "close among them: ",
+                    kRetriangulatedSurfaceAdvice, " with better-shaped triangles avoids this");
   } else if (shortest > 4.0 * size) {
-    absl::StrAppend(&text, ": input edges far longer than the size, which the front must grade "
-                           "down from in the gaps along them; a size nearer the input's edges, "
-                           "or a surface re-triangulated at the size, avoids this");
+    absl::StrAppend(&text,
+                    ": input edges far longer than the size, which the front must grade down "
+                    "from in the gaps along them; a size nearer the input's edges, or ",
+                    kRetriangulatedSurfaceAdvice, " at the size, avoids this");
   } else if (shortest < 0.2 * size) {
     absl::StrAppend(&text, ": input edges far shorter than the size; a smaller size, or a larger "
                            "--growth, gives the front room to grade");

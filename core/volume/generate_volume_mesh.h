@@ -28,6 +28,11 @@ namespace afmesh {
 // the boundary; the boundary's finer sizes grow into it by at least this factor per element.
 inline constexpr double kMinAttachedGrowth = 1.2;
 
+// Not in the paper: the words a failure's message uses where a re-triangulated surface would
+// avoid what stopped the front (sliver triangles, input edges far longer than the size), so
+// that a client able to re-triangulate first (`afmesh volume --remesh-surface`) can say how.
+inline constexpr char kRetriangulatedSurfaceAdvice[] = "a surface re-triangulated";
+
 struct VolumeParams {
   // Target edge length h of the uniform size field (> 0, in the units of the points).
   double size = 0.0;

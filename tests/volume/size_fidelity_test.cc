@@ -167,6 +167,7 @@ TEST(Regression, Issue10SliverFrontThatCannotCloseStopsWithinItsBudget) {
   const std::string message(result.status().message());
   EXPECT_NE(message.find(" near ("), std::string::npos) << message;
   EXPECT_NE(message.find("sliver triangles"), std::string::npos) << message;
+  EXPECT_NE(message.find(kRetriangulatedSurfaceAdvice), std::string::npos) << message;
   const std::int64_t built = count_before(message, "tets built");
   EXPECT_GT(built, 0) << message;
   EXPECT_LE(built, budget.tets_built) << message;
