@@ -15,6 +15,7 @@
 #include "core/io/mesh_io.h"
 #include "core/quality/validate.h"
 #include "core/shapes/shapes.h"
+#include "core/volume/generate_volume_mesh.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
 #include "tests/server/cli_test_support.h"
@@ -169,7 +170,7 @@ TEST_F(CliVolumeTest, SliverFrontThatStopsIsToldOfRemeshSurface) {
             6)
       << stderr_text();
   EXPECT_THAT(stderr_text(), HasSubstr("sliver triangles"));
-  EXPECT_THAT(stderr_text(), HasSubstr("a surface re-triangulated"));
+  EXPECT_THAT(stderr_text(), HasSubstr(kRetriangulatedSurfaceAdvice));
   EXPECT_THAT(stderr_text(), HasSubstr("--remesh-surface re-triangulates IN at the size first"));
   EXPECT_FALSE(fs::exists(out));
 }

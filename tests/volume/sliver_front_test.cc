@@ -203,7 +203,6 @@ TEST(Regression, Issue10PocketWithAThinKernelMeshes) {
   }
 }
 
-
 // Regression for issue 10 part 3: occt-misc's shape.stl as given (494 triangles, slivers down to
 // 4 degrees around a thin bent ring) at its mean edge, 26.108: the front got stuck, wherever it
 // backed off, in the ring's pockets of sliver faces. Meshed again with the size halved where it
