@@ -15,7 +15,18 @@ std::size_t corner_of(const std::array<Index, Arity>& v, Index p) {
 template <std::size_t Arity>
 AdvancingFront<Arity>::AdvancingFront(const std::vector<Point>& points, const Box& domain,
                                       double cell_size)
-    : points_(points), bins_(domain, cell_size) {}
+    : points_(points), domain_(domain), bins_(domain, cell_size) {}
+
+template <std::size_t Arity>
+void AdvancingFront<Arity>::use_adaptive_bins() {
+  if (bins_.adaptive()) return;
+  FrontBins tree(domain_, bins_.cell_size(), FrontBins::Adaptive{});
+  for (Index p = 0; p < static_cast<Index>(first_item_.size()); ++p)
+    if (first_item_[p] != kInvalidIndex) tree.insert_point(p, points_[p]);
+  for (Index f = 0; f < static_cast<Index>(items_.size()); ++f)
+    if (items_[f].alive) tree.insert_item(f, box_of(items_[f].v));
+  bins_ = std::move(tree);
+}
 
 template <std::size_t Arity>
 Box AdvancingFront<Arity>::box_of(const Simplex& v) const {

@@ -96,6 +96,11 @@ class AdvancingFront {
     return p < static_cast<Index>(first_item_.size()) && first_item_[p] != kInvalidIndex;
   }
   const FrontBins& bins() const { return bins_; }
+  // Moves the live points and items into adaptive bins (FrontBins::Adaptive: an octree), for a
+  // front whose element sizes turn out to span orders of magnitude. Queries then answer the same
+  // sets (in another order).
+  void use_adaptive_bins();
+  bool adaptive_bins() const { return bins_.adaptive(); }
 
  private:
   Box box_of(const Simplex& v) const;
@@ -110,6 +115,7 @@ class AdvancingFront {
   std::int64_t live_ = 0;
   FrontQueue queue_;
   std::vector<Index> first_item_;  // per point: the first live item of its list, or kInvalidIndex
+  Box domain_;                     // the bins' domain
   FrontBins bins_;
 };
 

@@ -41,15 +41,25 @@ std::array<std::uint32_t, 2> FrontBins::cell_words(const CellBox& ends, const Ce
   return {lo, hi};
 }
 
+FrontBins::FrontBins(const Box& domain, double cell_size, Adaptive)
+    : origin_(domain.lo),
+      cell_(cell_size),
+      point_cells_(1),
+      item_cells_(1),
+      tree_(std::make_unique<FrontTree>(domain)) {}
+
 void FrontBins::insert_point(Index p, const Point& x) {
+  if (tree_) return tree_->insert_point(p, x);
   point_cells_.push_back(point_cell(x), p);
 }
 
 void FrontBins::erase_point(Index p, const Point& x) {
+  if (tree_) return tree_->erase_point(p, x);
   point_cells_.erase_first(point_cell(x), [p](Index q) { return q == p; });
 }
 
 void FrontBins::insert_item(Index f, const Box& box) {
+  if (tree_) return tree_->insert_item(f, box);
   CellRange r;
   CellBox ends;
   span_of(box, r, ends);
@@ -60,6 +70,7 @@ void FrontBins::insert_item(Index f, const Box& box) {
 }
 
 void FrontBins::erase_item(Index f, const Box& box) {
+  if (tree_) return tree_->erase_item(f, box);
   for_each_cell(cells_of(box), [&](std::int64_t c, std::int64_t, std::int64_t, std::int64_t) {
     item_cells_.erase_first(static_cast<std::size_t>(c),
                             [f](const ItemEntry& e) { return e.item == f; });

@@ -18,8 +18,10 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "core/front/front_tree.h"
 #include "core/mesh/mesh.h"
 #include "core/spatial/box.h"
 #include "core/spatial/cell_lists.h"
@@ -32,6 +34,10 @@ class FrontBins {
   // border cells, which keeps queries correct). `cell_size` > 0 is the wanted edge of a cell;
   // it is enlarged so the grid has at most `max_cells` cells.
   FrontBins(const Box& domain, double cell_size, std::int64_t max_cells = std::int64_t{1} << 22);
+  // Adaptive bins: an octree (front_tree.h) in lieu of the grid, for fronts whose element sizes
+  // span orders of magnitude (the cell size is then only reported).
+  struct Adaptive {};
+  FrontBins(const Box& domain, double cell_size, Adaptive);
 
   void insert_point(Index p, const Point& x);
   void erase_point(Index p, const Point& x);
@@ -43,6 +49,7 @@ class FrontBins {
   // insertions and removals (deterministic, not sorted). fn must not change the bins.
   template <typename Fn>
   void for_each_point_near(const Box& box, Fn&& fn) const {
+    if (tree_) return tree_->for_each_point_near(box, fn);
     for_each_cell(cells_of(box), [&](std::int64_t c, std::int64_t, std::int64_t, std::int64_t) {
       point_cells_.for_each(static_cast<std::size_t>(c), fn);
     });
@@ -58,6 +65,7 @@ class FrontBins {
   void items_near(const Box& box, std::vector<Index>& out) const;
 
   double cell_size() const { return cell_; }
+  bool adaptive() const { return tree_ != nullptr; }
 
  private:
   using CellRange = std::array<std::array<std::int64_t, 2>, 3>;  // [axis][lo, hi] inclusive
@@ -133,6 +141,7 @@ class FrontBins {
   static std::array<std::uint32_t, 2> cell_words(const CellBox& ends, const CellRange& r,
                                                  std::int64_t i, std::int64_t j, std::int64_t k);
   CellLists<ItemEntry, kItemRun> item_cells_;
+  std::unique_ptr<FrontTree> tree_;  // set: adaptive bins, the grid unused
 };
 
 // An item's entry passes in cell (i, j, k) of the query's range when, on each axis, the query's
@@ -143,6 +152,7 @@ class FrontBins {
 // before fn sees them.
 template <typename Fn>
 bool FrontBins::find_item_near(const Box& box, Fn&& fn) const {
+  if (tree_) return tree_->find_item_near(box, fn);
   CellRange r;
   CellBox ends;
   span_of(box, r, ends);

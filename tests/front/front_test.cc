@@ -179,6 +179,105 @@ TEST(AdvancingFront, QueuePopsSmallestFirstAndDeferredLast) {
   EXPECT_FALSE(front.pop().has_value());
 }
 
+// Adaptive bins (FrontBins::Adaptive, an octree): points and items whose sizes span six orders of
+// magnitude (a cluster a millionth of the domain wide beside points spread over all of it, some
+// past the domain), inserted, partly erased, queried with boxes of every scale. Every point inside
+// a box and every item overlapping it is listed exactly once, and only those.
+TEST(FrontBins, AdaptiveBinsAnswerExactlyAcrossScales) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 11.0), unit(0.0, 1.0);
+  const Point cluster{3.0, 4.0, 5.0};
+  const auto point_at = [&](int i) -> Point {
+    if (i % 2 == 0) return {u(rng), u(rng), u(rng)};
+    const double r = std::pow(10.0, -6.0 * unit(rng));  // 1e-6 .. 1 from the cluster
+    return {cluster[0] + r * (unit(rng) - 0.5), cluster[1] + r * (unit(rng) - 0.5),
+            cluster[2] + r * (unit(rng) - 0.5)};
+  };
+  std::vector<Point> pts(3000);
+  std::vector<Box> boxes(3000);
+  FrontBins bins(Box{{0, 0, 0}, {10, 10, 10}}, 0.5, FrontBins::Adaptive{});
+  EXPECT_TRUE(bins.adaptive());
+  for (Index i = 0; i < 3000; ++i) {
+    pts[i] = point_at(i);
+    const double e = std::pow(10.0, -6.0 * unit(rng));
+    boxes[i] = Box{pts[i], {pts[i][0] + e, pts[i][1] + 2 * e, pts[i][2] + e}};
+    bins.insert_point(i, pts[i]);
+    bins.insert_item(i, boxes[i]);
+  }
+  for (Index i = 0; i < 3000; i += 4) {
+    bins.erase_point(i, pts[i]);
+    bins.erase_item(i, boxes[i]);
+  }
+  for (int q = 0; q < 300; ++q) {
+    const double e = std::pow(10.0, 1.0 - 7.0 * unit(rng));
+    const Point c = q % 2 == 0 ? Point{u(rng), u(rng), u(rng)} : point_at(1);
+    const Box box{{c[0] - e, c[1] - e, c[2] - e}, {c[0] + e, c[1] + e, c[2] + e}};
+    std::vector<Index> points, items;
+    bins.points_near(box, points);
+    bins.items_near(box, items);
+    std::sort(points.begin(), points.end());
+    std::sort(items.begin(), items.end());
+    EXPECT_EQ(std::adjacent_find(points.begin(), points.end()), points.end());
+    EXPECT_EQ(std::adjacent_find(items.begin(), items.end()), items.end());
+    std::vector<Index> want_points, want_items;
+    for (Index i = 0; i < 3000; ++i) {
+      if (i % 4 == 0) continue;
+      bool inside = true;
+      for (int a = 0; a < 3; ++a) inside &= pts[i][a] >= box.lo[a] && pts[i][a] <= box.hi[a];
+      if (inside) want_points.push_back(i);
+      if (boxes_overlap(box, boxes[i])) want_items.push_back(i);
+    }
+    EXPECT_EQ(points, want_points) << "query " << q;
+    EXPECT_EQ(items, want_items) << "query " << q;
+  }
+}
+
+// A front whose bins turn adaptive midway keeps its points and items: the same sets before and
+// after, and adds and removes after the switch are seen.
+TEST(AdvancingFront, UseAdaptiveBinsKeepsWhatIsOnTheFront) {
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Point> pts(400);
+  for (Point& p : pts) p = {u(rng), u(rng), u(rng)};
+  AdvancingFront<2> front(pts, Box{{0, 0, 0}, {1, 1, 1}}, 0.1);
+  std::vector<Index> ids;
+  for (Index i = 0; i + 1 < 300; i += 2) ids.push_back(front.add({i, i + 1}, 1.0));
+  for (std::size_t k = 0; k < ids.size(); k += 3) front.remove(ids[k]);
+  const Box all{{-1, -1, -1}, {2, 2, 2}}, part{{0.2, 0.2, 0.2}, {0.6, 0.7, 0.8}};
+  const auto listed = [&](const Box& box) {
+    std::vector<Index> points, items;
+    front.bins().points_near(box, points);
+    front.bins().items_near(box, items);
+    std::sort(points.begin(), points.end());
+    std::sort(items.begin(), items.end());
+    return std::make_pair(points, items);
+  };
+  const auto grid_all = listed(all);
+  const auto grid_part = listed(part);
+  EXPECT_FALSE(front.adaptive_bins());
+  front.use_adaptive_bins();
+  EXPECT_TRUE(front.adaptive_bins());
+  EXPECT_EQ(listed(all), grid_all);
+  // The grid lists every point of the cells the box meets and the items whose boxes miss it by
+  // less than 1/255 of a cell; the tree lists exactly the points inside and the items that
+  // overlap: a subset with every point inside.
+  const auto tree_part = listed(part);
+  for (const Index p : grid_part.first) {
+    bool inside = true;
+    for (int a = 0; a < 3; ++a) inside &= pts[p][a] >= part.lo[a] && pts[p][a] <= part.hi[a];
+    EXPECT_EQ(std::binary_search(tree_part.first.begin(), tree_part.first.end(), p), inside);
+  }
+  for (const Index f : tree_part.second)
+    EXPECT_TRUE(std::binary_search(grid_part.second.begin(), grid_part.second.end(), f));
+  const Index added = front.add({300, 301}, 1.0);
+  front.remove(ids[1]);
+  const auto after = listed(all);
+  EXPECT_TRUE(std::binary_search(after.second.begin(), after.second.end(), added));
+  EXPECT_FALSE(std::binary_search(after.second.begin(), after.second.end(), ids[1]));
+  EXPECT_TRUE(std::binary_search(after.first.begin(), after.first.end(), Index{300}));
+  EXPECT_FALSE(std::binary_search(after.first.begin(), after.first.end(), Index{2}));
+}
+
 TEST(AdvancingFront, PointsLeaveTheBinsWithTheirLastItem) {
   std::vector<Point> pts = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   AdvancingFront<3> front(pts, Box{{0, 0, 0}, {1, 1, 1}}, 0.5);
