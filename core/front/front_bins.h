@@ -11,7 +11,10 @@
 // an item query filters by box overlap while it walks the cell's memory in order and returns
 // few items that miss the box. A query lists an item only in the lowest cell (per axis) shared
 // by the item's and the query's cell ranges, where their boxes' overlap begins, so it lists each
-// item once without marking what it listed.
+// item once without marking what it listed. Made adaptive (FrontBins::Adaptive), the bins are an
+// octree instead (front_tree.h), for fronts whose element sizes span orders of magnitude: the
+// same answers but that points are listed only when inside the box and items only when their
+// boxes overlap it.
 #pragma once
 
 #include <algorithm>
