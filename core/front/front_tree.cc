@@ -88,7 +88,7 @@ void FrontTree::erase_point(Index p, const Point& x) {
   }
 }
 
-Index FrontTree::item_node(const Box& box, bool create, std::vector<Index>* path) {
+Index FrontTree::item_node(const Box& box, bool insert) {
   double extent = 0.0;
   Point centre;
   for (int a = 0; a < 3; ++a) {
@@ -98,11 +98,11 @@ Index FrontTree::item_node(const Box& box, bool create, std::vector<Index>* path
   centre = clamped(centre);
   Index n = 0;
   for (;;) {
-    if (path != nullptr) path->push_back(n);
+    if (insert) enclose(nodes_[n].items_bound, box);
     // Children of half this size hold the item when it is no wider than they are.
     if (nodes_[n].depth >= kMaxDepth || 0.5 * nodes_[n].size < extent) return n;
     if (nodes_[n].first_child == kInvalidIndex) {
-      if (!create) return kInvalidIndex;
+      if (!insert) return kInvalidIndex;
       split(n);
     }
     n = child_at(n, centre);
@@ -112,14 +112,11 @@ Index FrontTree::item_node(const Box& box, bool create, std::vector<Index>* path
 void FrontTree::insert_item(Index f, const Box& box) {
   if (f >= static_cast<Index>(item_box_.size())) item_box_.resize(f + 1);
   item_box_[f] = box;
-  std::vector<Index> path;
-  const Index n = item_node(box, /*create=*/true, &path);
-  nodes_[n].items.push_back(f);
-  for (const Index m : path) enclose(nodes_[m].items_bound, box);
+  nodes_[item_node(box, /*insert=*/true)].items.push_back(f);
 }
 
 void FrontTree::erase_item(Index f, const Box& box) {
-  const Index n = item_node(box, /*create=*/false, nullptr);
+  const Index n = item_node(box, /*insert=*/false);
   if (n == kInvalidIndex) return;
   std::vector<Index>& here = nodes_[n].items;
   const auto it = std::find(here.begin(), here.end(), f);

@@ -7,7 +7,7 @@
 // 0.00086 in a patch of cells 1.3 wide) puts thousands of points in a cell, and each of its front's
 // queries walks them all (head.stl's front ran for over five minutes). Here a point sits in a leaf
 // of at most kLeafPoints points, split into eight as it fills, and an item (a side of the surface
-// front) in the deepest node at least twice its extent, so a query visits O(log N) nodes plus
+// front) in the deepest node at least as wide as the item (at most twice), so a query visits O(log N) nodes plus
 // those that hold what it asks for, whatever the sizes. Each node keeps the number of points below
 // it and a box enclosing every item ever stored below it (not shrunk when items leave: a bound,
 // never too small), so empty or distant subtrees are skipped.
@@ -66,9 +66,10 @@ class FrontTree {
   // Gives node n its eight children and moves its points into them.
   void split(Index n);
   // The node an item of box `box` is stored at: the deepest whose cube holds the box's (clamped)
-  // centre and whose children would be smaller than twice the box's extent. Creates nodes when
-  // `create`; else kInvalidIndex when the path does not exist.
-  Index item_node(const Box& box, bool create, std::vector<Index>* path);
+  // centre and whose children would be narrower than the box's largest extent. When `insert`,
+  // creates the nodes on the way and grows their items_bound by the box; else kInvalidIndex when
+  // the path does not exist.
+  Index item_node(const Box& box, bool insert);
 
   std::vector<Node> nodes_;
   std::vector<Point> point_at_;  // the position each point was inserted with
