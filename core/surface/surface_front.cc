@@ -116,6 +116,13 @@ bool held_at_the_patch_edge(const DiscreteSurface& surface, const SurfaceFeature
   return false;
 }
 
+// How far past the patch's edge, in elements, a best point may stand and still be made on it:
+// only rounding. A line's sides are chords of its input edges, and where the input's rim bulges
+// past a chord (a bore's polygon, sampled by fewer sides), a point moved onto the rim lies on the
+// far side of the chord, over the next patch; a quarter of an element let such points be made
+// (occt-misc's propeller.stl: a face closed flat over the bore's bottom, 8 crossing pairs).
+constexpr double kHeldReach = 1e-6;
+
 bool uses_any(const Triangle& t, std::span<const Index> points) {
   for (const Index q : t)
     if (std::find(points.begin(), points.end(), q) != points.end()) return true;
@@ -924,7 +931,7 @@ bool PatchFront::delete_side(Index f) {
   for (const Candidate& c : candidates_) {
     Index p = c.point;
     if (p == kInvalidIndex) {
-      if (held_at_the_patch_edge(s_.surface, s_.features, patch_, above, on, 0.25 * d) ||
+      if (held_at_the_patch_edge(s_.surface, s_.features, patch_, above, on, kHeldReach * d) ||
           !new_point_is_clear(best, d, rules, f))
         continue;
       p = s_.add_point(best, new_point_size(s_.field_size(best), s_.growth, s_.point_size, v),

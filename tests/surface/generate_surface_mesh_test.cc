@@ -952,6 +952,27 @@ TEST(Regression, Issue11AWedgeClosedOnTheFarSideOfItsLinesFallsBack) {
   EXPECT_LE(r->report.max_vertex_distance, 1e-9 * r->report.model_size);
 }
 
+// occt-misc's propeller.stl (a clean CAD tessellation) within 20 of the bottom of its hub's bore,
+// a 32-gon of radius 6.75 that the bore's line follows with chords over fewer points. A best
+// point made for a side of the bore's patch stood less than a quarter of the element past the
+// rim; moved onto the patch it landed on the rim's input edge, on the far side of the chord, and
+// the face the front closed with it lay flat in the bottom's plane, over the bottom's triangle
+// (5 crossing pairs; the whole file, 8). A best point held at the patch's edge by any distance is
+// now not made.
+TEST(Regression, Issue11NoNewPointOnTheRimPastTheChordOfItsLine) {
+  const absl::StatusOr<Mesh> input = read_mesh(
+      (std::filesystem::path(AFMESH_SOURCE_DIR) / "tests" / "data" / "occt_propeller_hub.stl")
+          .string());
+  ASSERT_TRUE(input.ok()) << input.status();
+  SurfaceParams params;
+  params.size = 11.5126;  // the whole file's mean edge
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(*input, params);
+  ASSERT_TRUE(r.ok()) << r.status();
+  // Open (a piece cut out of a closed part): only "closed" fails.
+  EXPECT_EQ(failed_checks(validate_surface(r->mesh)), std::vector<std::string>{"closed"});
+  EXPECT_LE(r->report.max_vertex_distance, 1e-9 * r->report.model_size);
+}
+
 // The triangles under 15° on input triangles or at corners at least as thin (issue 11's bar
 // exempts those at input corners sharper than them): a square halved (45°) beside a sliver
 // (2.3°). A thin triangle in the square is the mesher's; the sliver kept as it is, the input's;
