@@ -11,6 +11,7 @@
 #include "core/geometry/vec.h"
 #include "core/sizing/spec_size_field.h"
 #include "core/spatial/box.h"
+#include "core/surface/features.h"
 #include "server/run_guarded.h"
 #include "server/volume_output.h"
 
@@ -42,6 +43,13 @@ void add_repair_notes(const SurfaceReport& report, std::vector<std::string>& not
   note(report.unused_points_dropped, "points of the input on no triangle were dropped");
   note(report.triangles_reoriented,
        "triangles of the input were turned to agree with their component's orientation");
+  if (report.folded_slivers_collapsed > 0)
+    notes.push_back(absl::StrFormat(
+        "%d sliver triangles of the input folded back over their neighbours (each turned by more "
+        "than %g degrees against all three) lost their shortest edge, its ends merged: input "
+        "points moved by at most %g",
+        report.folded_slivers_collapsed, kFoldedFaceTurnDeg,
+        report.longest_folded_edge_collapsed));
   note(report.short_ridges_dropped,
        "ridges of the input that end freely and are shorter than twice the size were not kept as "
        "lines");
@@ -194,6 +202,8 @@ void fill_surface_summary(const SurfaceOutcome& outcome, v1::SurfaceSummary& sum
   repair.set_triangles_reoriented(count(report.triangles_reoriented));
   repair.set_components(count(report.components));
   repair.set_closed_components(count(report.closed_components));
+  repair.set_folded_slivers_collapsed(count(report.folded_slivers_collapsed));
+  repair.set_longest_folded_edge_collapsed(report.longest_folded_edge_collapsed);
 
   v1::SurfaceFeatures& features = *summary.mutable_features();
   features.set_patches(count(report.patches));

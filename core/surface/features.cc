@@ -45,6 +45,25 @@ double turn_cosine(const DiscreteSurface& s, Index t, int k) {
   return sign * dot(s.normal(FaceId{t}), s.normal(FaceId{g}));
 }
 
+}  // namespace
+
+std::vector<FaceId> folded_faces(const DiscreteSurface& surface) {
+  const double cos_folded = cos_degrees(kFoldedFaceTurnDeg);
+  std::vector<FaceId> out;
+  for (Index t = 0; t < surface.face_count(); ++t) {
+    bool folded = squared_norm(surface.normal(FaceId{t})) > 0.0;
+    for (int k = 0; k < 3 && folded; ++k) {
+      const Index g = surface.neighbours().across[t][k];
+      folded = g != kInvalidIndex && squared_norm(surface.normal(FaceId{g})) > 0.0 &&
+               turn_cosine(surface, t, k) < cos_folded;
+    }
+    if (folded) out.push_back(FaceId{t});
+  }
+  return out;
+}
+
+namespace {
+
 // Step 1 for an edge with exactly two faces: edge k of face t (its neighbour across it is known).
 // Symmetric in the two faces, so either side gives the same answer.
 std::uint8_t two_face_edge_kinds(const DiscreteSurface& s, double cos_ridge, Index t, int k) {

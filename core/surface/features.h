@@ -131,4 +131,13 @@ absl::StatusOr<SurfaceFeatures> find_surface_features(const DiscreteSurface& sur
                                                       const FeatureParams& params = {},
                                                       Progress& progress = no_progress());
 
+// Not in the paper: the faces of `surface` turned by more than kFoldedFaceTurnDeg against each of
+// their three neighbours, ascending. Such a face lies folded back over its neighbours: an
+// inverted sliver of a CAD tessellation, wound against all three neighbours (occt-misc's
+// propeller.stl has one at each blade's root, 1/400 of its neighbours' area); turned to agree
+// with them (repair_front), it folds over them, and a surface that follows it crosses itself.
+// O(M).
+inline constexpr double kFoldedFaceTurnDeg = 120.0;
+std::vector<FaceId> folded_faces(const DiscreteSurface& surface);
+
 }  // namespace afmesh

@@ -124,6 +124,117 @@ absl::StatusOr<Mesh> clean_surface_input(const Mesh& input, SurfaceReport& repor
   return out;
 }
 
+// Step 1 again, after S2 (not in the paper): each folded face of `clean` (folded_faces in
+// features.h) whose shortest edge is under kFoldedSliverEdgeRatio of its longest loses that
+// edge: the two faces on it are dropped and one end takes the other's place in its other faces,
+// the end that turns none of them by 90° or more (neither end: the face stays, and a surface that
+// follows it may cross itself there, explain_stuck then names it). Only where the two ends have
+// no neighbour in common but the edge's two opposite corners, so that the surface stays
+// manifold. The points left on no face are dropped. Returns how many faces lost an edge and
+// the longest edge they lost; `clean`'s points and triangles (with their tags) change together.
+constexpr double kFoldedSliverEdgeRatio = 0.1;
+
+struct FoldedCollapses {
+  std::int64_t count = 0;
+  double longest_edge = 0.0;
+};
+
+FoldedCollapses collapse_folded_slivers(Mesh& clean, std::span<const FaceId> folded) {
+  std::vector<Triangle>& tris = clean.triangles;
+  const std::vector<Point>& p = clean.points;
+  std::vector<std::vector<Index>> faces_at(p.size());
+  for (Index t = 0; t < static_cast<Index>(tris.size()); ++t)
+    for (const Index v : tris[t]) faces_at[v].push_back(t);
+  std::vector<bool> alive(tris.size(), true);
+  const auto live_faces_at = [&](Index v) {
+    std::vector<Index> out;
+    for (const Index t : faces_at[v])
+      if (alive[t] && has_corner(tris[t], v)) out.push_back(t);
+    return out;
+  };
+  const auto neighbours_of = [&](Index v) {
+    absl::flat_hash_set<Index> out;
+    for (const Index t : live_faces_at(v))
+      for (const Index w : tris[t])
+        if (w != v) out.insert(w);
+    return out;
+  };
+  FoldedCollapses done;
+  for (const FaceId face : folded) {
+    const Index f = index_of(face);
+    if (!alive[f]) continue;
+    const Triangle t = tris[f];
+    int k = 0;
+    double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
+    for (int e = 0; e < 3; ++e) {
+      const double l = norm(sub(p[t[(e + 1) % 3]], p[t[e]]));
+      if (l < shortest) shortest = l, k = e;
+      longest = std::max(longest, l);
+    }
+    if (!(shortest < kFoldedSliverEdgeRatio * longest)) continue;
+    const Index a = t[k], b = t[(k + 1) % 3];
+    std::vector<Index> on_edge;
+    for (const Index g : live_faces_at(a))
+      if (has_corner(tris[g], b)) on_edge.push_back(g);
+    if (on_edge.size() != 2) continue;
+    // The link condition: a and b share no neighbour but the corners opposite the edge.
+    absl::flat_hash_set<Index> opposite;
+    for (const Index g : on_edge)
+      for (const Index w : tris[g])
+        if (w != a && w != b) opposite.insert(w);
+    const absl::flat_hash_set<Index> around_b = neighbours_of(b);
+    bool linked = true;
+    for (const Index w : neighbours_of(a))
+      if (w != b && around_b.contains(w) && !opposite.contains(w)) linked = false;
+    if (!linked) continue;
+    // The faces of `gone` but the two on the edge, with `gone` replaced by `keep`: none may turn
+    // by 90° or more, or lose its area.
+    const auto turns_none = [&](Index gone, Index keep) {
+      for (const Index g : live_faces_at(gone)) {
+        if (g == on_edge[0] || g == on_edge[1]) continue;
+        Triangle moved = tris[g];
+        for (Index& w : moved)
+          if (w == gone) w = keep;
+        const Triangle& was = tris[g];
+        const Point before = cross(sub(p[was[1]], p[was[0]]), sub(p[was[2]], p[was[0]]));
+        const Point after = cross(sub(p[moved[1]], p[moved[0]]), sub(p[moved[2]], p[moved[0]]));
+        if (!(dot(before, after) > 0.0)) return false;
+      }
+      return true;
+    };
+    Index gone = b, keep = a;
+    if (!turns_none(gone, keep)) std::swap(gone, keep);
+    if (!turns_none(gone, keep)) continue;
+    for (const Index g : live_faces_at(gone)) {
+      if (g == on_edge[0] || g == on_edge[1]) continue;
+      for (Index& w : tris[g])
+        if (w == gone) w = keep;
+      faces_at[keep].push_back(g);
+    }
+    for (const Index g : on_edge) alive[g] = false;
+    ++done.count;
+    done.longest_edge = std::max(done.longest_edge, shortest);
+  }
+  if (done.count == 0) return done;
+  Mesh out;
+  std::vector<Index> new_index(p.size(), kInvalidIndex);
+  for (std::size_t t = 0; t < tris.size(); ++t) {
+    if (!alive[t]) continue;
+    Triangle w;
+    for (int c = 0; c < 3; ++c) {
+      const Index v = tris[t][c];
+      if (new_index[v] == kInvalidIndex) {
+        new_index[v] = static_cast<Index>(out.points.size());
+        out.points.push_back(p[v]);
+      }
+      w[c] = new_index[v];
+    }
+    out.triangles.push_back(w);
+    out.triangle_tags.push_back(clean.triangle_tags[t]);
+  }
+  clean = std::move(out);
+  return done;
+}
 
 // The input faces at edge (a, b): `forward` those traversing it a→b (the edge has them on its
 // left), `backward` those traversing it b→a.
@@ -667,10 +778,21 @@ std::int64_t thin_triangles_at_thinner_input(const Mesh& output, std::span<const
   return count;
 }
 
-absl::Status explain_stuck(absl::Status stuck, const Mesh& clean, Progress& progress) {
+absl::Status explain_stuck(absl::Status stuck, const Mesh& clean, Progress& progress,
+                           const DiscreteSurface* surface) {
   if (stuck.code() != absl::StatusCode::kFailedPrecondition) return stuck;
   const absl::StatusOr<SurfaceCrossings> crossings = surface_crossings(clean, {}, progress);
   if (!crossings.ok()) return crossings.status();
+  if (crossings->pairs == 0 && surface != nullptr) {
+    const std::vector<FaceId> folded = folded_faces(*surface);
+    if (folded.empty()) return stuck;
+    const Point c = surface->to_global(surface->centroid(folded[0]));
+    return absl::FailedPreconditionError(absl::StrFormat(
+        "%s. The input surface folds back on itself: %d of its triangles turn by more than %g "
+        "degrees against each of their three neighbours (slivers wound against them), the first "
+        "near (%g, %g, %g); remove them (or re-export the surface) and send it again",
+        stuck.message(), folded.size(), kFoldedFaceTurnDeg, c[0], c[1], c[2]));
+  }
   if (crossings->pairs == 0) return stuck;
   const Point& c = crossings->first;
   return absl::FailedPreconditionError(absl::StrFormat(
@@ -770,6 +892,15 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   // S2, S3
   absl::StatusOr<DiscreteSurface> surface = DiscreteSurface::build(*clean, {}, progress);
   if (!surface.ok()) return surface.status();
+  if (const std::vector<FaceId> folded = folded_faces(*surface); !folded.empty()) {
+    const FoldedCollapses collapsed = collapse_folded_slivers(*clean, folded);
+    result.report.folded_slivers_collapsed = collapsed.count;
+    result.report.longest_folded_edge_collapsed = collapsed.longest_edge;
+    if (collapsed.count > 0) {
+      surface = DiscreteSurface::build(*clean, {}, progress);
+      if (!surface.ok()) return surface.status();
+    }
+  }
   if (absl::Status st = count_components(*surface, result.report, progress); !st.ok()) return st;
   clock.lap("surface");
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
@@ -889,7 +1020,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
         return explain_stuck(absl::FailedPreconditionError(absl::StrCat(
                                  st.ok() ? "" : st.message(), st.ok() ? "" : "; ",
                                  fallback.message())),
-                             *clean, progress);
+                             *clean, progress, &*surface);
       }
       ++result.report.patches_from_input;
     }
@@ -899,7 +1030,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
           s.triangles.size(), p + 1, features->patches.size(), params.max_triangles));
   }
   if (absl::Status st = check_patches_meet_on_lines(s); !st.ok())
-    return explain_stuck(std::move(st), *clean, progress);
+    return explain_stuck(std::move(st), *clean, progress, &*surface);
   clock.lap("front");
   // The clean-ups: flips, collapses, flips again, smoothing; each stage timed when `lap`.
   const auto clean_up = [&](bool lap, const CollapseParams& collapse = {}) -> absl::Status {
@@ -990,7 +1121,8 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   if (absl::Status st = check_result_does_not_cross_itself(
           result.mesh, component_environments(output->neighbours()), progress);
       !st.ok())
-    return explain_stuck(std::move(st), *clean, progress);  // the input's own crossings, if any
+    // The input's own crossings or folds, if any.
+    return explain_stuck(std::move(st), *clean, progress, &*surface);
   clock.lap("self-check");
   return result;
 }

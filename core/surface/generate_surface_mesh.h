@@ -6,6 +6,8 @@
 //     points are dropped, closed components are oriented consistently and outward; each change
 //     is counted in the report.
 //  2. The discrete surface (discrete_surface.h): host faces, normals, projection (S2, S3, S8).
+//     Sliver faces folded back over all three neighbours (folded_faces in features.h) lose their
+//     shortest edge first, and the surface is built again (counted in the report).
 //  3. Features (features.h): ridges, boundary, non-manifold and tag edges as discrete lines,
 //     corners, patches; the size bounded by the input's curvature (curvature_sizes.h, eq. 20–22).
 //  4. Sides along every line (split_lines.h, F3), shared by the patches on both sides.
@@ -102,6 +104,10 @@ struct SurfaceReport {
   std::int64_t degenerate_triangles_dropped = 0;  // a repeated point or zero area
   std::int64_t unused_points_dropped = 0;          // on no triangle
   std::int64_t triangles_reoriented = 0;           // turned to agree with their component
+  // Folded slivers (folded_faces in features.h) that lost their shortest edge, its two ends
+  // merged, and the longest edge so lost (the farthest a point of the input moved).
+  std::int64_t folded_slivers_collapsed = 0;
+  double longest_folded_edge_collapsed = 0.0;
   std::int64_t components = 0;                     // edge-connected components
   std::int64_t closed_components = 0;
   std::int64_t patches = 0;
@@ -156,10 +162,13 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
 // Not in the paper: `stuck` (a FAILED_PRECONDITION where a patch's front stopped) with, when
 // `clean` (the input as step 1 left it) intersects itself, how many pairs of its triangles cross
 // and where the first is: an input that crosses itself has no surface the front can follow
-// there, and the message should name that, not only the side. Any other status is returned as
-// it is; CANCELLED when progress is. O(M log M), run only after a failure.
+// there, and the message should name that, not only the side. When it does not and `surface`
+// (clean's discrete surface) is given, its folded faces (folded_faces in features.h), if any, are
+// named instead. Any other status is returned as it is; CANCELLED when progress is. O(M log M),
+// run only after a failure.
 absl::Status explain_stuck(absl::Status stuck, const Mesh& clean,
-                           Progress& progress = no_progress());
+                           Progress& progress = no_progress(),
+                           const DiscreteSurface* surface = nullptr);
 
 // The pairs of triangles of `mesh` that cross (validate_surface's no_self_intersections) and
 // the centroid of the first pair's first triangle, in `mesh`'s frame; 0 pairs when none cross.

@@ -40,6 +40,29 @@ TEST(DirtyInput, AStopOnACleanInputAndOtherErrorsAreLeftAsTheyAre) {
   EXPECT_EQ(explain_stuck(cancelled, testing::corpus_mesh("cgal_bones.stl")), cancelled);
 }
 
+// A face turned against its three neighbours that is no sliver (its shortest edge 0.66 of 1.56,
+// not collapsed before meshing), out of their planes so that it crosses none of them: a stop on
+// it names the fold, with the surface given.
+TEST(DirtyInput, AStopOnAFoldedInputNamesTheFold) {
+  Mesh folded;
+  folded.points = {{0, 0, 0}, {1, 0, 0}, {1.5, 0.3, 0.3}, {0.5, 1, 0}, {0.5, -1, 0}};
+  folded.triangles = {{0, 1, 3}, {1, 2, 3}, {1, 0, 2}, {2, 0, 4}};
+  const absl::StatusOr<DiscreteSurface> surface = DiscreteSurface::build(folded);
+  ASSERT_TRUE(surface.ok()) << surface.status();
+  EXPECT_EQ(explain_stuck(kStuck, folded), kStuck);  // without the surface: no crossing to name
+  const absl::Status explained = explain_stuck(kStuck, folded, no_progress(), &*surface);
+  EXPECT_EQ(explained.code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_THAT(explained.message(),
+              HasSubstr("got stuck at side. The input surface folds back on itself: 1 of its "
+                        "triangles turn by more than 120 degrees against each of their three "
+                        "neighbours (slivers wound against them), the first near (0.833333, "
+                        "0.1, 0.1)"));
+  const Mesh sphere = sphere_surface({0, 0, 0}, 1.0, 0.2);
+  const absl::StatusOr<DiscreteSurface> round = DiscreteSurface::build(sphere);
+  ASSERT_TRUE(round.ok()) << round.status();
+  EXPECT_EQ(explain_stuck(kStuck, sphere, no_progress(), &*round), kStuck);
+}
+
 // Where a front stops on a clean input, the message says what the input looks like there, as the
 // volume front's does: libcgal-demo's triceratops at its mean edge stops among faces that turn
 // by 58° (over the ridge angle: a crease no line follows) where the curvature bound asks for

@@ -75,6 +75,37 @@ void expect_consistent(const Model& m) {
   }
 }
 
+// Four faces in the plane z = 0 round a sliver wound against its three neighbours: b and c are
+// 0.05 apart, c just past b on the ray from a, and the sliver (b, a, c) faces -z where its
+// neighbours face +z (as at each blade's root of occt-misc's propeller.stl).
+Mesh four_faces_round_a_folded_sliver() {
+  Mesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {1.05, 0.01, 0}, {0.5, 1, 0}, {0.5, -1, 0}};
+  const Index a = 0, b = 1, c = 2, x = 3, y = 4;
+  m.triangles = {{a, b, x}, {b, c, x}, {b, a, c}, {c, a, y}};
+  return m;
+}
+
+TEST(FoldedFaces, FindsASliverTurnedAgainstAllThreeNeighbours) {
+  const Mesh m = four_faces_round_a_folded_sliver();
+  const absl::StatusOr<DiscreteSurface> s = DiscreteSurface::build(m);
+  ASSERT_TRUE(s.ok()) << s.status();
+  EXPECT_EQ(folded_faces(*s), std::vector<FaceId>{FaceId{2}});
+  // Wound the other way it faces +z, but against its neighbours' winding: still folded.
+  Mesh wound = m;
+  wound.triangles[2] = {0, 1, 2};
+  const absl::StatusOr<DiscreteSurface> w = DiscreteSurface::build(wound);
+  ASSERT_TRUE(w.ok()) << w.status();
+  EXPECT_EQ(folded_faces(*w), std::vector<FaceId>{FaceId{2}});
+  // Nothing folds on a closed sphere or on a cube, whose ridges turn by 90 degrees.
+  for (const Mesh& clean :
+       {testing::uv_sphere({0, 0, 0}, 1.0, 24, 12), box_surface({0, 0, 0}, {1, 1, 1}, 0.25)}) {
+    const absl::StatusOr<DiscreteSurface> t = DiscreteSurface::build(clean);
+    ASSERT_TRUE(t.ok()) << t.status();
+    EXPECT_TRUE(folded_faces(*t).empty());
+  }
+}
+
 TEST(SurfaceFeatures, CubeHasTwelveLinesEightCornersSixPatches) {
   const Model m = surface_model(box_surface({0, 0, 0}, {1, 1, 1}, 0.25));
   expect_consistent(m);

@@ -973,6 +973,28 @@ TEST(Regression, Issue11NoNewPointOnTheRimPastTheChordOfItsLine) {
   EXPECT_LE(r->report.max_vertex_distance, 1e-9 * r->report.model_size);
 }
 
+// A sliver folded back over its three neighbours (as at each blade's root of occt-misc's
+// propeller.stl, whose re-triangulated surface crossed itself there) loses its shortest edge
+// before the surface is meshed: the result lies flat, facing +z as the input's other faces, and
+// the report says so.
+TEST(Regression, Issue11AFoldedSliverOfTheInputLosesItsShortestEdge) {
+  Mesh input;
+  input.points = {{0, 0, 0}, {1, 0, 0}, {1.05, 0.01, 0}, {0.5, 1, 0}, {0.5, -1, 0}};
+  input.triangles = {{0, 1, 3}, {1, 2, 3}, {1, 0, 2}, {2, 0, 4}};
+  SurfaceParams params;
+  params.size = 0.2;
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  ASSERT_TRUE(r.ok()) << r.status();
+  EXPECT_EQ(r->report.folded_slivers_collapsed, 1);
+  EXPECT_NEAR(r->report.longest_folded_edge_collapsed, std::hypot(0.05, 0.01), 1e-12);
+  EXPECT_EQ(failed_checks(validate_surface(r->mesh)), std::vector<std::string>{"closed"});
+  for (const Triangle& t : r->mesh.triangles) {
+    const Point n = cross(sub(r->mesh.points[t[1]], r->mesh.points[t[0]]),
+                          sub(r->mesh.points[t[2]], r->mesh.points[t[0]]));
+    EXPECT_GT(n[2], 0.0);
+  }
+}
+
 // The triangles under 15° on input triangles or at corners at least as thin (issue 11's bar
 // exempts those at input corners sharper than them): a square halved (45°) beside a sliver
 // (2.3°). A thin triangle in the square is the mesher's; the sliver kept as it is, the input's;
