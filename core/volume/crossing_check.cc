@@ -171,6 +171,7 @@ bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed) 
   bool contains_point = false;
   s.front.bins().for_each_point_near(box, [&](Index q) {
     ++s.face_tests;
+    ++s.point_visits;
     if (contains_point || has_corner(tet, q) || !point_visible(s, env, q)) return;
     // In the closed positive element: on no face plane's outer side (the barycentric signs of
     // point_in_tet are the face planes' sides, negated).
@@ -178,6 +179,16 @@ bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed) 
                               : point_in_tet(x[q], x[v[0]], x[v[1]], x[v[2]], x[p]) >= 0;
   });
   return contains_point;
+}
+
+void adapt_bins_when_crowded(MesherState& s) {
+  const std::int64_t searches = s.searches - s.window_searches;
+  if (searches < kBinsWindow) return;
+  if (s.point_visits - s.window_point_visits > kCrowdedPointsPerSearch * searches &&
+      !s.front.adaptive_bins())
+    s.front.use_adaptive_bins();
+  s.window_searches = s.searches;
+  s.window_point_visits = s.point_visits;
 }
 
 }  // namespace afmesh::volume

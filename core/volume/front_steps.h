@@ -99,6 +99,23 @@ bool new_point_is_clear(MesherState& s, const Point& x, double spacing_size,
 // it crosses for another reason (a front point inside it, a meshed face).
 bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed = nullptr);
 
+// Not in the paper: the front's bins become adaptive (an octree, FrontBins::Adaptive) when
+// element_crosses_front (F7.3) has looked at more than kCrowdedPointsPerSearch front points per
+// face deletion (MesherState::searches) over the last kBinsWindow deletions. The bins' cells are
+// about one boundary edge; where the sizes span far more than that, large elements meet
+// thousands of cells and the points in them: occt-misc's propeller.stl re-triangulated (sizes
+// from 0.3 to 11.5) looked at 1,210 points per deletion and its front stopped over its budget.
+// The bench's shapes and occt-misc's sh1, sh2, shape and TR12J_OCC look at 4-29; the corpus's
+// re-triangulated cgal_dino and cgal_hand at up to 305 and 172, where the octree is slower
+// (their fronts 10.5 -> 13.6 s and 3.6 -> 4.3 s): hence 512. Points, not faces: a sliver
+// front's long faces meet every box, in the octree too (sh2.stl: 1,250 faces and points per
+// deletion, 16 of them points). The answers are the same, exact either way; only the faces
+// visited change, and with them which crossing face is met first. Call once per face deletion,
+// after counting it. The surface front does likewise (its S6 check).
+inline constexpr std::int64_t kBinsWindow = 4096;
+inline constexpr std::int64_t kCrowdedPointsPerSearch = 512;
+void adapt_bins_when_crowded(MesherState& s);
+
 // F8–F10: adds tet (v, p), deletes the face and every front face the tet closes, and puts the
 // tet's other faces on the front with their element sizes.
 void add_element(MesherState& s, Index face, Index p);

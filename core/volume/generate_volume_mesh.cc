@@ -109,6 +109,7 @@ absl::Status check_face_environments(const Mesh& front, const std::vector<std::i
 // (F8–F10). Returns false when none fits.
 bool delete_face(MesherState& s, Index face, int attempts) {
   ++s.searches;
+  volume::adapt_bins_when_crowded(s);
   const Triangle v = s.front.item(face).v;
   const volume::Strictness rules = volume::strictness_for(attempts);
   const double target = volume::target_size_for_face(s, v);           // F5/F9, eq. 15

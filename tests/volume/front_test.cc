@@ -159,5 +159,47 @@ TEST(CrossingCheck, RememberedCrossingFaceChangesNoAnswer) {
   EXPECT_GT(crossing, 100);
 }
 
+// The bins turn adaptive after a window of kBinsWindow face deletions in which the crossing check
+// looked at more than kCrowdedPointsPerSearch points per deletion, not before the window ends
+// and not at fewer; the crossing check answers the same before and after.
+TEST(VolumeFront, BinsTurnAdaptiveWhenTheCrossingCheckLooksAtManyPointsPerDeletion) {
+  const Mesh input = box_surface({0, 0, 0}, {1, 1, 1}, 0.25);
+  const UniformSize size(0.25);
+  volume::MesherState s(input, 1.0, size, Box{{-1, -1, -1}, {2, 2, 2}}, 0.25);
+  s.point_size.assign(input.points.size(), 0.25);
+  for (const Triangle& t : input.triangles) s.front.add({t[0], t[2], t[1]}, 1.0);
+  // Elements on every face towards a few interior points and every front point.
+  for (const Point& x : {Point{0.5, 0.5, 0.5}, Point{0.1, 0.2, 0.3}, Point{0.9, 0.1, 0.5}})
+    s.points.push_back(x);
+  const auto answers = [&] {
+    std::vector<bool> out;
+    for (Index f = 0; f < static_cast<Index>(input.triangles.size()); ++f)
+      for (Index p = 0; p < static_cast<Index>(s.points.size()); p += 7)
+        if (!has_corner(s.front.item(f).v, p))
+          out.push_back(volume::element_crosses_front(s, f, p));
+    return out;
+  };
+  const std::vector<bool> uniform = answers();
+  ASSERT_GT(s.point_visits, 0);
+
+  s.point_visits = s.window_point_visits = 0;
+  s.searches = s.window_searches = 0;
+  // A window of deletions at exactly the bound: uniform bins stay.
+  s.searches = volume::kBinsWindow;
+  s.point_visits = volume::kCrowdedPointsPerSearch * volume::kBinsWindow;
+  volume::adapt_bins_when_crowded(s);
+  EXPECT_FALSE(s.front.adaptive_bins());
+  EXPECT_EQ(s.window_searches, s.searches);
+  // Over it, but the window not full yet.
+  s.searches += volume::kBinsWindow - 1;
+  s.point_visits += volume::kCrowdedPointsPerSearch * volume::kBinsWindow * 10;
+  volume::adapt_bins_when_crowded(s);
+  EXPECT_FALSE(s.front.adaptive_bins());
+  ++s.searches;
+  volume::adapt_bins_when_crowded(s);
+  EXPECT_TRUE(s.front.adaptive_bins());
+  EXPECT_EQ(answers(), uniform);
+}
+
 }  // namespace
 }  // namespace afmesh
