@@ -930,14 +930,19 @@ TEST(PatchFromInput, ARidgeEndingInsideThePatchIsKept) {
 // crease, and the job failed when the patches were checked together ("the surface fronts of
 // the patches overlap ... form 2 fans"). The patch's own fans are checked as soon as it is
 // meshed (check_patch_fans): it is re-triangulated from its input, and the job succeeds.
-TEST(Regression, Issue11AWedgeClosedOnTheFarSideOfItsLinesFallsBack) {
-  const absl::StatusOr<Mesh> input = read_mesh(
-      (std::filesystem::path(AFMESH_SOURCE_DIR) / "tests" / "data" / "tr12j_corner_wedge.stl")
-          .string());
-  ASSERT_TRUE(input.ok()) << input.status();
+// tests/data/`name` (a piece of an occt-misc file) re-triangulated at `size`.
+absl::StatusOr<SurfaceResult> mesh_test_data(const std::string& name, double size) {
+  const absl::StatusOr<Mesh> input =
+      read_mesh((std::filesystem::path(AFMESH_SOURCE_DIR) / "tests" / "data" / name).string());
+  if (!input.ok()) return input.status();
   SurfaceParams params;
-  params.size = 11.5819;  // the whole file's mean edge
-  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(*input, params);
+  params.size = size;
+  return generate_surface_mesh(*input, params);
+}
+
+TEST(Regression, Issue11AWedgeClosedOnTheFarSideOfItsLinesFallsBack) {
+  // At the whole file's mean edge.
+  const absl::StatusOr<SurfaceResult> r = mesh_test_data("tr12j_corner_wedge.stl", 11.5819);
   ASSERT_TRUE(r.ok()) << r.status();
   for (const std::string& stop : r->report.front_stops)
     std::printf("front stop: %s\n", stop.c_str());
@@ -960,13 +965,8 @@ TEST(Regression, Issue11AWedgeClosedOnTheFarSideOfItsLinesFallsBack) {
 // (5 crossing pairs; the whole file, 8). A best point held at the patch's edge by any distance is
 // now not made.
 TEST(Regression, Issue11NoNewPointOnTheRimPastTheChordOfItsLine) {
-  const absl::StatusOr<Mesh> input = read_mesh(
-      (std::filesystem::path(AFMESH_SOURCE_DIR) / "tests" / "data" / "occt_propeller_hub.stl")
-          .string());
-  ASSERT_TRUE(input.ok()) << input.status();
-  SurfaceParams params;
-  params.size = 11.5126;  // the whole file's mean edge
-  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(*input, params);
+  // At the whole file's mean edge.
+  const absl::StatusOr<SurfaceResult> r = mesh_test_data("occt_propeller_hub.stl", 11.5126);
   ASSERT_TRUE(r.ok()) << r.status();
   // Open (a piece cut out of a closed part): only "closed" fails.
   EXPECT_EQ(failed_checks(validate_surface(r->mesh)), std::vector<std::string>{"closed"});
