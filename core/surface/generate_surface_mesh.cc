@@ -142,22 +142,23 @@ struct FoldedCollapses {
 FoldedCollapses collapse_folded_slivers(Mesh& clean, std::span<const FaceId> folded) {
   std::vector<Triangle>& tris = clean.triangles;
   const std::vector<Point>& p = clean.points;
-  std::vector<std::vector<Index>> faces_at(p.size());
-  for (Index t = 0; t < static_cast<Index>(tris.size()); ++t)
-    for (const Index v : tris[t]) faces_at[v].push_back(t);
+  SimplexIncidence<3> incidence = SimplexIncidence<3>::of(tris);
   std::vector<bool> alive(tris.size(), true);
-  const auto live_faces_at = [&](Index v) {
-    std::vector<Index> out;
-    for (const Index t : faces_at[v])
-      if (alive[t] && has_corner(tris[t], v)) out.push_back(t);
-    return out;
-  };
-  const auto neighbours_of = [&](Index v) {
-    absl::flat_hash_set<Index> out;
-    for (const Index t : live_faces_at(v))
-      for (const Index w : tris[t])
-        if (w != v) out.insert(w);
-    return out;
+  std::vector<Index> fan_a, fan_b, around_a, around_b, on_edge;
+  // Whether every face of `fan` but those on the edge keeps its area and turns by less than
+  // 90° when `gone` becomes `keep`.
+  const auto turns_none = [&](const std::vector<Index>& fan, Index gone, Index keep) {
+    for (const Index g : fan) {
+      if (g == on_edge[0] || g == on_edge[1]) continue;
+      Triangle moved = tris[g];
+      for (Index& w : moved)
+        if (w == gone) w = keep;
+      const Triangle& was = tris[g];
+      const Point before = cross(sub(p[was[1]], p[was[0]]), sub(p[was[2]], p[was[0]]));
+      const Point after = cross(sub(p[moved[1]], p[moved[0]]), sub(p[moved[2]], p[moved[0]]));
+      if (!(dot(before, after) > 0.0)) return false;
+    }
+    return true;
   };
   FoldedCollapses done;
   for (const FaceId face : folded) {
@@ -173,45 +174,39 @@ FoldedCollapses collapse_folded_slivers(Mesh& clean, std::span<const FaceId> fol
     }
     if (!(shortest < kFoldedSliverEdgeRatio * longest)) continue;
     const Index a = t[k], b = t[(k + 1) % 3];
-    std::vector<Index> on_edge;
-    for (const Index g : live_faces_at(a))
+    fan_a.clear();
+    fan_b.clear();
+    incidence.elements_of(tris, a, fan_a);
+    incidence.elements_of(tris, b, fan_b);
+    on_edge.clear();
+    for (const Index g : fan_a)
       if (has_corner(tris[g], b)) on_edge.push_back(g);
     if (on_edge.size() != 2) continue;
-    // The link condition: a and b share no neighbour but the corners opposite the edge.
-    absl::flat_hash_set<Index> opposite;
-    for (const Index g : on_edge)
-      for (const Index w : tris[g])
-        if (w != a && w != b) opposite.insert(w);
-    const absl::flat_hash_set<Index> around_b = neighbours_of(b);
-    bool linked = true;
-    for (const Index w : neighbours_of(a))
-      if (w != b && around_b.contains(w) && !opposite.contains(w)) linked = false;
-    if (!linked) continue;
-    // The faces of `gone` but the two on the edge, with `gone` replaced by `keep`: none may turn
-    // by 90° or more, or lose its area.
-    const auto turns_none = [&](Index gone, Index keep) {
-      for (const Index g : live_faces_at(gone)) {
-        if (g == on_edge[0] || g == on_edge[1]) continue;
-        Triangle moved = tris[g];
-        for (Index& w : moved)
-          if (w == gone) w = keep;
-        const Triangle& was = tris[g];
-        const Point before = cross(sub(p[was[1]], p[was[0]]), sub(p[was[2]], p[was[0]]));
-        const Point after = cross(sub(p[moved[1]], p[moved[0]]), sub(p[moved[2]], p[moved[0]]));
-        if (!(dot(before, after) > 0.0)) return false;
-      }
-      return true;
-    };
+    // The link condition: a and b have as common neighbours only the two opposite corners.
+    corners_of_fan(tris, fan_a, a, around_a);
+    corners_of_fan(tris, fan_b, b, around_b);
+    int common = 0;
+    for (const Index q : around_a)
+      common += q != b && std::binary_search(around_b.begin(), around_b.end(), q);
+    if (common != 2) continue;
     Index gone = b, keep = a;
-    if (!turns_none(gone, keep)) std::swap(gone, keep);
-    if (!turns_none(gone, keep)) continue;
-    for (const Index g : live_faces_at(gone)) {
-      if (g == on_edge[0] || g == on_edge[1]) continue;
+    const std::vector<Index>* moved = &fan_b;
+    if (!turns_none(fan_b, b, a)) {
+      std::swap(gone, keep);
+      moved = &fan_a;
+      if (!turns_none(fan_a, a, b)) continue;
+    }
+    for (const Index g : on_edge) {
+      incidence.remove(tris, g);
+      alive[g] = false;
+    }
+    for (const Index g : *moved) {
+      if (!alive[g]) continue;
+      incidence.remove(tris, g);
       for (Index& w : tris[g])
         if (w == gone) w = keep;
-      faces_at[keep].push_back(g);
+      incidence.add(tris, g);
     }
-    for (const Index g : on_edge) alive[g] = false;
     ++done.count;
     done.longest_edge = std::max(done.longest_edge, shortest);
   }
@@ -783,8 +778,8 @@ absl::Status explain_stuck(absl::Status stuck, const Mesh& clean, Progress& prog
   if (stuck.code() != absl::StatusCode::kFailedPrecondition) return stuck;
   const absl::StatusOr<SurfaceCrossings> crossings = surface_crossings(clean, {}, progress);
   if (!crossings.ok()) return crossings.status();
-  if (crossings->pairs == 0 && surface != nullptr) {
-    const std::vector<FaceId> folded = folded_faces(*surface);
+  if (crossings->pairs == 0) {
+    const std::vector<FaceId> folded = surface ? folded_faces(*surface) : std::vector<FaceId>{};
     if (folded.empty()) return stuck;
     const Point c = surface->to_global(surface->centroid(folded[0]));
     return absl::FailedPreconditionError(absl::StrFormat(
@@ -793,7 +788,6 @@ absl::Status explain_stuck(absl::Status stuck, const Mesh& clean, Progress& prog
         "near (%g, %g, %g); remove them (or re-export the surface) and send it again",
         stuck.message(), folded.size(), kFoldedFaceTurnDeg, c[0], c[1], c[2]));
   }
-  if (crossings->pairs == 0) return stuck;
   const Point& c = crossings->first;
   return absl::FailedPreconditionError(absl::StrFormat(
       "%s. The input surface intersects itself: %d pairs of its triangles cross, the first near "

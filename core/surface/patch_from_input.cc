@@ -437,10 +437,6 @@ absl::Status InputPatch::remove_input_line_vertices() {
 // An edge whose split would turn a triangle by more than kMaxNormalTurnDeg stays.
 absl::Status InputPatch::split_long_edges() {
   absl::flat_hash_set<std::pair<Index, Index>> kept;
-  // Edges found no longer than kSplitOver times their size stay so: their ends do not move and
-  // size_at depends on nothing else. Measured once, not in every pass (the size field's query,
-  // a nearest-face search, was most of a 100k-triangle patch's time).
-  absl::flat_hash_set<std::pair<Index, Index>> short_enough;
   std::vector<std::pair<Index, Index>> edges;
   std::vector<std::tuple<double, Index, Index>> long_edges;
   // flip_edges takes the live triangles only, all of this patch.
@@ -462,8 +458,7 @@ absl::Status InputPatch::split_long_edges() {
       for (int k = 0; k < 3; ++k) {
         const Index a = tris_[t][k], b = tris_[t][(k + 1) % 3];
         const std::pair<Index, Index> e{std::min(a, b), std::max(a, b)};
-        if (!s_.line_sides.contains(e) && !kept.contains(e) && !short_enough.contains(e))
-          edges.push_back(e);
+        if (!s_.line_sides.contains(e) && !kept.contains(e)) edges.push_back(e);
       }
     }
     std::sort(edges.begin(), edges.end());
@@ -472,11 +467,7 @@ absl::Status InputPatch::split_long_edges() {
     for (const auto& [a, b] : edges) {
       if (cancel_.due()) return absl::CancelledError("surface meshing cancelled");
       const double ratio = norm(sub(s_.points[b], s_.points[a])) / edge_size(a, b);
-      if (ratio > kSplitOver) {
-        long_edges.emplace_back(-ratio, a, b);
-      } else {
-        short_enough.insert({a, b});
-      }
+      if (ratio > kSplitOver) long_edges.emplace_back(-ratio, a, b);
     }
     if (long_edges.empty()) return absl::OkStatus();
     std::sort(long_edges.begin(), long_edges.end());
