@@ -147,6 +147,24 @@ class FrontBins {
   std::unique_ptr<FrontTree> tree_;  // set: adaptive bins, the grid unused
 };
 
+// Not in the paper: whether a front's bins should become adaptive (FrontBins::Adaptive, through
+// AdvancingFront::use_adaptive_bins). The front counts its queries (its own unit of work: a
+// crossing check, a face deletion) and the points they looked at; a window of at least `window`
+// queries that looked at more than `bound` points per query says the sizes span far more than
+// the cells. The surface front (S6) and the volume front (F7.3) each keep one.
+struct BinsWatch {
+  std::int64_t queries = 0;
+  std::int64_t points = 0;
+  // False until `window` queries are counted; then whether they were crowded, and a new window
+  // starts.
+  bool crowded(std::int64_t window, std::int64_t bound) {
+    if (queries < window) return false;
+    const bool over = points > bound * queries;
+    queries = points = 0;
+    return over;
+  }
+};
+
 // An item's entry passes in cell (i, j, k) of the query's range when, on each axis, the query's
 // part of the cell (q) and the item's (e) overlap: q.hi - e.lo >= 0 and e.hi - q.lo >= 0, read
 // from the lanes' top bits; and the cell is the lowest of both ranges: no axis along which both

@@ -265,9 +265,7 @@ class PatchFront {
   // its lines (on the corpus and OCCT's files at their mean edges the average stays under 18;
   // OCCT's head.stl, a scan whose folds ask for 1/3,600 of the size, reached 2,900).
   void adapt_bins_when_crowded() {
-    if (window_queries_ < kBinsWindow) return;
-    if (window_visits_ > kCrowdedBins * window_queries_) front_.use_adaptive_bins();
-    window_queries_ = window_visits_ = 0;
+    if (bins_watch_.crowded(kBinsWindow, kCrowdedBins)) front_.use_adaptive_bins();
   }
 
   // S2–S10 for side f; false when no face could be built on it now.
@@ -449,7 +447,7 @@ class PatchFront {
   PatchId patch_;
   static constexpr std::int64_t kBinsWindow = 4096;
   static constexpr std::int64_t kCrowdedBins = 64;
-  mutable std::int64_t window_queries_ = 0, window_visits_ = 0;
+  mutable BinsWatch bins_watch_;  // S6's point queries and the points they visit
   AdvancingFront<2> front_;
   std::vector<double> target_;  // the target size (eq. 15) of each front item, by item index
   // The triangles this front built (indices into s_.triangles), by point: the back-off finds
@@ -656,9 +654,9 @@ bool PatchFront::face_crosses_front(Index f, const Side& v, Index p,
   for (int k = 0; k < 3; ++k) box.lo[k] -= clearance, box.hi[k] += clearance;
   const double clearance2 = clearance * clearance;
   bool covered = false;
-  ++window_queries_;
+  ++bins_watch_.queries;
   front_.bins().for_each_point_near(box, [&](Index q) {
-    ++window_visits_;
+    ++bins_watch_.points;
     if (covered || q == v[0] || q == v[1] || q == p) return;
     const Point& xq = s_.points[q];
     if (squared_norm(sub(closest_point_on_segment(xq, s_.points[v[0]], s_.points[p]), xq)) <

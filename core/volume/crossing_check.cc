@@ -171,7 +171,7 @@ bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed) 
   bool contains_point = false;
   s.front.bins().for_each_point_near(box, [&](Index q) {
     ++s.face_tests;
-    ++s.point_visits;
+    ++s.bins_watch.points;
     if (contains_point || has_corner(tet, q) || !point_visible(s, env, q)) return;
     // In the closed positive element: on no face plane's outer side (the barycentric signs of
     // point_in_tet are the face planes' sides, negated).
@@ -182,13 +182,8 @@ bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed) 
 }
 
 void adapt_bins_when_crowded(MesherState& s) {
-  const std::int64_t searches = s.searches - s.window_searches;
-  if (searches < kBinsWindow) return;
-  if (s.point_visits - s.window_point_visits > kCrowdedPointsPerSearch * searches &&
-      !s.front.adaptive_bins())
-    s.front.use_adaptive_bins();
-  s.window_searches = s.searches;
-  s.window_point_visits = s.point_visits;
+  ++s.bins_watch.queries;
+  if (s.bins_watch.crowded(kBinsWindow, kCrowdedPointsPerSearch)) s.front.use_adaptive_bins();
 }
 
 }  // namespace afmesh::volume

@@ -101,7 +101,7 @@ bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed =
 
 // Not in the paper: the front's bins become adaptive (an octree, FrontBins::Adaptive) when
 // element_crosses_front (F7.3) has looked at more than kCrowdedPointsPerSearch front points per
-// face deletion (MesherState::searches) over the last kBinsWindow deletions. The bins' cells are
+// face deletion over the last kBinsWindow deletions (MesherState::bins_watch, BinsWatch). The bins' cells are
 // about one boundary edge; where the sizes span far more than that, large elements meet
 // thousands of cells and the points in them: occt-misc's propeller.stl re-triangulated (sizes
 // from 0.3 to 11.5) looked at 1,210 points per deletion and its front stopped over its budget.
@@ -110,8 +110,8 @@ bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed =
 // (their fronts 10.5 -> 13.6 s and 3.6 -> 4.3 s): hence 512. Points, not faces: a sliver
 // front's long faces meet every box, in the octree too (sh2.stl: 1,250 faces and points per
 // deletion, 16 of them points). The answers are the same, exact either way; only the faces
-// visited change, and with them which crossing face is met first. Call once per face deletion,
-// after counting it. The surface front does likewise (its S6 check).
+// visited change, and with them which crossing face is met first. Call once per face deletion
+// (it counts the deletion). The surface front does likewise (its S6 check).
 inline constexpr std::int64_t kBinsWindow = 4096;
 inline constexpr std::int64_t kCrowdedPointsPerSearch = 512;
 void adapt_bins_when_crowded(MesherState& s);

@@ -66,11 +66,9 @@ struct MesherState {
   // time, counted against its budget (VolumeBudget).
   std::int64_t face_tests = 0;
   std::int64_t searches = 0;  // face deletions tried (F7), also counted against the budget
-  // Of face_tests, the front points element_crosses_front has looked at; it and searches when
-  // the current window of adapt_bins_when_crowded began.
-  std::int64_t point_visits = 0;
-  std::int64_t window_point_visits = 0;
-  std::int64_t window_searches = 0;
+  // Face deletions and, of face_tests, the front points element_crosses_front has looked at, in
+  // the current window of adapt_bins_when_crowded.
+  BinsWatch bins_watch;
 };
 
 }  // namespace afmesh::volume

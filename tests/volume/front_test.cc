@@ -180,22 +180,20 @@ TEST(VolumeFront, BinsTurnAdaptiveWhenTheCrossingCheckLooksAtManyPointsPerDeleti
     return out;
   };
   const std::vector<bool> uniform = answers();
-  ASSERT_GT(s.point_visits, 0);
+  ASSERT_GT(s.bins_watch.points, 0);
 
-  s.point_visits = s.window_point_visits = 0;
-  s.searches = s.window_searches = 0;
-  // A window of deletions at exactly the bound: uniform bins stay.
-  s.searches = volume::kBinsWindow;
-  s.point_visits = volume::kCrowdedPointsPerSearch * volume::kBinsWindow;
+  s.bins_watch = {};
+  // A window of deletions at exactly the bound: uniform bins stay, and a new window starts.
+  s.bins_watch.queries = volume::kBinsWindow - 1;  // the call counts the last one
+  s.bins_watch.points = volume::kCrowdedPointsPerSearch * volume::kBinsWindow;
   volume::adapt_bins_when_crowded(s);
   EXPECT_FALSE(s.front.adaptive_bins());
-  EXPECT_EQ(s.window_searches, s.searches);
+  EXPECT_EQ(s.bins_watch.queries, 0);
   // Over it, but the window not full yet.
-  s.searches += volume::kBinsWindow - 1;
-  s.point_visits += volume::kCrowdedPointsPerSearch * volume::kBinsWindow * 10;
+  s.bins_watch.queries = volume::kBinsWindow - 2;
+  s.bins_watch.points = volume::kCrowdedPointsPerSearch * volume::kBinsWindow * 10;
   volume::adapt_bins_when_crowded(s);
   EXPECT_FALSE(s.front.adaptive_bins());
-  ++s.searches;
   volume::adapt_bins_when_crowded(s);
   EXPECT_TRUE(s.front.adaptive_bins());
   EXPECT_EQ(answers(), uniform);
