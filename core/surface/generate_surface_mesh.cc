@@ -33,6 +33,7 @@
 #include "core/surface/patch_from_input.h"
 #include "core/surface/gap_sizes.h"
 #include "core/surface/wall_sizes.h"
+#include "core/surface/sliver_repairs.h"
 #include "core/surface/smooth_points.h"
 #include "core/surface/split_lines.h"
 #include "core/surface/surface_front.h"
@@ -122,113 +123,6 @@ absl::StatusOr<Mesh> clean_surface_input(const Mesh& input, SurfaceReport& repor
   const FrontRepairReport repair = repair_front(out);
   report.triangles_reoriented = repair.triangles_reoriented;
   return out;
-}
-
-// Step 1 again, after S2 (not in the paper): each folded face of `clean` (folded_faces in
-// features.h) whose shortest edge is under kFoldedSliverEdgeRatio of its longest loses that
-// edge: the two faces on it are dropped and one end takes the other's place in its other faces,
-// the end that turns none of them by 90° or more (neither end: the face stays, and a surface that
-// follows it may cross itself there, explain_stuck then names it). Only where the two ends have
-// no neighbour in common but the edge's two opposite corners, so that the surface stays
-// manifold. The points left on no face are dropped. Returns how many faces lost an edge and
-// the longest edge they lost; `clean`'s points and triangles (with their tags) change together.
-constexpr double kFoldedSliverEdgeRatio = 0.1;
-
-struct FoldedCollapses {
-  std::int64_t count = 0;
-  double longest_edge = 0.0;
-};
-
-FoldedCollapses collapse_folded_slivers(Mesh& clean, std::span<const FaceId> folded) {
-  std::vector<Triangle>& tris = clean.triangles;
-  const std::vector<Point>& p = clean.points;
-  SimplexIncidence<3> incidence = SimplexIncidence<3>::of(tris);
-  std::vector<bool> alive(tris.size(), true);
-  std::vector<Index> fan_a, fan_b, around_a, around_b, on_edge;
-  // Whether every face of `fan` but those on the edge keeps its area and turns by less than
-  // 90° when `gone` becomes `keep`.
-  const auto turns_none = [&](const std::vector<Index>& fan, Index gone, Index keep) {
-    for (const Index g : fan) {
-      if (g == on_edge[0] || g == on_edge[1]) continue;
-      Triangle moved = tris[g];
-      for (Index& w : moved)
-        if (w == gone) w = keep;
-      const Triangle& was = tris[g];
-      const Point before = cross(sub(p[was[1]], p[was[0]]), sub(p[was[2]], p[was[0]]));
-      const Point after = cross(sub(p[moved[1]], p[moved[0]]), sub(p[moved[2]], p[moved[0]]));
-      if (!(dot(before, after) > 0.0)) return false;
-    }
-    return true;
-  };
-  FoldedCollapses done;
-  for (const FaceId face : folded) {
-    const Index f = index_of(face);
-    if (!alive[f]) continue;
-    const Triangle t = tris[f];
-    int k = 0;
-    double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
-    for (int e = 0; e < 3; ++e) {
-      const double l = norm(sub(p[t[(e + 1) % 3]], p[t[e]]));
-      if (l < shortest) shortest = l, k = e;
-      longest = std::max(longest, l);
-    }
-    if (!(shortest < kFoldedSliverEdgeRatio * longest)) continue;
-    const Index a = t[k], b = t[(k + 1) % 3];
-    fan_a.clear();
-    fan_b.clear();
-    incidence.elements_of(tris, a, fan_a);
-    incidence.elements_of(tris, b, fan_b);
-    on_edge.clear();
-    for (const Index g : fan_a)
-      if (has_corner(tris[g], b)) on_edge.push_back(g);
-    if (on_edge.size() != 2) continue;
-    // The link condition: a and b have as common neighbours only the two opposite corners.
-    corners_of_fan(tris, fan_a, a, around_a);
-    corners_of_fan(tris, fan_b, b, around_b);
-    int common = 0;
-    for (const Index q : around_a)
-      common += q != b && std::binary_search(around_b.begin(), around_b.end(), q);
-    if (common != 2) continue;
-    Index gone = b, keep = a;
-    const std::vector<Index>* moved = &fan_b;
-    if (!turns_none(fan_b, b, a)) {
-      std::swap(gone, keep);
-      moved = &fan_a;
-      if (!turns_none(fan_a, a, b)) continue;
-    }
-    for (const Index g : on_edge) {
-      incidence.remove(tris, g);
-      alive[g] = false;
-    }
-    for (const Index g : *moved) {
-      if (!alive[g]) continue;
-      incidence.remove(tris, g);
-      for (Index& w : tris[g])
-        if (w == gone) w = keep;
-      incidence.add(tris, g);
-    }
-    ++done.count;
-    done.longest_edge = std::max(done.longest_edge, shortest);
-  }
-  if (done.count == 0) return done;
-  Mesh out;
-  std::vector<Index> new_index(p.size(), kInvalidIndex);
-  for (std::size_t t = 0; t < tris.size(); ++t) {
-    if (!alive[t]) continue;
-    Triangle w;
-    for (int c = 0; c < 3; ++c) {
-      const Index v = tris[t][c];
-      if (new_index[v] == kInvalidIndex) {
-        new_index[v] = static_cast<Index>(out.points.size());
-        out.points.push_back(p[v]);
-      }
-      w[c] = new_index[v];
-    }
-    out.triangles.push_back(w);
-    out.triangle_tags.push_back(clean.triangle_tags[t]);
-  }
-  clean = std::move(out);
-  return done;
 }
 
 // The input faces at edge (a, b): `forward` those traversing it a→b (the edge has them on its
