@@ -100,6 +100,8 @@ int run(const std::string& input, SurfaceParams params, const std::string& out, 
         .add("patches", r.patches).add("lines", r.lines).add("corners", r.corners)
         .add("short_ridges_dropped", r.short_ridges_dropped)
         .add("folded_slivers_collapsed", r.folded_slivers_collapsed)
+        .add("sliver_steps_removed", r.sliver_steps_removed)
+        .add("highest_sliver_step", r.highest_sliver_step)
         .add("patches_from_input", r.patches_from_input)
         .add("valid", valid).add("failed_checks", failed)
         .add_raw("stage_seconds", "{" + stages_json + "}");
@@ -110,7 +112,7 @@ int run(const std::string& input, SurfaceParams params, const std::string& out, 
         "%.2f, >= 30: %.2f%%, < 15: %lld (%lld at input triangles or corners as thin); mean "
         "edge / h %.3f; Hausdorff %.2e of the diagonal; %lld patches (%lld from their input), "
         "%lld lines, %lld corners (%lld short free ridges dropped); dropped %lld degenerate, %lld "
-        "duplicate, reoriented %lld, %lld folded slivers collapsed; %s\n  stages (s): %s\n",
+        "duplicate, reoriented %lld, %lld folded slivers collapsed, %lld sliver step faces removed; %s\n  stages (s): %s\n",
         input.c_str(), params.size, n, seconds, n / seconds,
         static_cast<double>(memory.growth_bytes()) / n, min_angle, 100.0 * at_least_30 / n,
         static_cast<long long>(under_15),
@@ -123,6 +125,7 @@ int run(const std::string& input, SurfaceParams params, const std::string& out, 
         static_cast<long long>(r.duplicate_triangles_dropped),
         static_cast<long long>(r.triangles_reoriented),
         static_cast<long long>(r.folded_slivers_collapsed),
+        static_cast<long long>(r.sliver_steps_removed),
         valid ? (failed.empty() ? "valid" : "valid, open") : ("INVALID: " + failed).c_str(),
         stages_text.c_str());
   }

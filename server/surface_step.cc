@@ -12,6 +12,7 @@
 #include "core/sizing/spec_size_field.h"
 #include "core/spatial/box.h"
 #include "core/surface/features.h"
+#include "core/surface/sliver_repairs.h"
 #include "server/run_guarded.h"
 #include "server/volume_output.h"
 
@@ -50,6 +51,12 @@ void add_repair_notes(const SurfaceReport& report, std::vector<std::string>& not
         "points moved by at most %g",
         report.folded_slivers_collapsed, kFoldedFaceTurnDeg,
         report.longest_folded_edge_collapsed));
+  if (report.sliver_steps_removed > 0)
+    notes.push_back(absl::StrFormat(
+        "%d sliver triangles of the input standing as a step on a seam (lower than %g of the size "
+        "asked, the surfaces on its two sides continuing each other) were flipped or collapsed "
+        "away: the surface moved by at most %g",
+        report.sliver_steps_removed, kStepHeightOfSize, report.highest_sliver_step));
   note(report.short_ridges_dropped,
        "ridges of the input that end freely and are shorter than twice the size were not kept as "
        "lines");
@@ -204,6 +211,8 @@ void fill_surface_summary(const SurfaceOutcome& outcome, v1::SurfaceSummary& sum
   repair.set_closed_components(count(report.closed_components));
   repair.set_folded_slivers_collapsed(count(report.folded_slivers_collapsed));
   repair.set_longest_folded_edge_collapsed(report.longest_folded_edge_collapsed);
+  repair.set_sliver_steps_removed(count(report.sliver_steps_removed));
+  repair.set_highest_sliver_step(report.highest_sliver_step);
 
   v1::SurfaceFeatures& features = *summary.mutable_features();
   features.set_patches(count(report.patches));

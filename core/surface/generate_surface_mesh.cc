@@ -775,6 +775,9 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   absl::StatusOr<std::unique_ptr<SizeField>> field =
       make_size_field(params.spec, params.size, clean->points);
   if (!field.ok()) return field.status();
+  const StepRepairs steps = repair_sliver_steps(*clean, **field, params.ridge_angle_deg);
+  result.report.sliver_steps_removed = steps.count;
+  result.report.highest_sliver_step = steps.highest;
   clock.lap("input");
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
   // S2, S3

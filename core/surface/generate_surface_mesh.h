@@ -4,7 +4,8 @@
 // Steps:
 //  1. Input as it comes (clean_surface_input): duplicate and zero-area triangles and unused
 //     points are dropped, closed components are oriented consistently and outward; each change
-//     is counted in the report.
+//     is counted in the report. Sliver steps a CAD writer closes a seam with
+//     (repair_sliver_steps in sliver_repairs.h) are flipped and collapsed away.
 //  2. The discrete surface (discrete_surface.h): host faces, normals, projection (S2, S3, S8).
 //     Sliver faces folded back over all three neighbours (folded_faces in features.h) lose their
 //     shortest edge first, and the surface is built again (counted in the report).
@@ -108,6 +109,10 @@ struct SurfaceReport {
   // merged, and the longest edge so lost (the farthest a point of the input moved).
   std::int64_t folded_slivers_collapsed = 0;
   double longest_folded_edge_collapsed = 0.0;
+  // Faces of sliver steps (repair_sliver_steps in sliver_repairs.h) flipped or collapsed away,
+  // and the highest step (the farthest the surface moved).
+  std::int64_t sliver_steps_removed = 0;
+  double highest_sliver_step = 0.0;
   std::int64_t components = 0;                     // edge-connected components
   std::int64_t closed_components = 0;
   std::int64_t patches = 0;

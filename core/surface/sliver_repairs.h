@@ -7,6 +7,7 @@
 #include <span>
 
 #include "core/mesh/mesh.h"
+#include "core/sizing/size_field.h"
 #include "core/surface/discrete_surface.h"
 
 namespace afmesh {
@@ -27,5 +28,53 @@ struct FoldedCollapses {
 };
 
 FoldedCollapses collapse_folded_slivers(Mesh& clean, std::span<const FaceId> folded);
+
+// Sliver steps. A CAD tessellation writes each face of the model on its own. Where a smooth
+// surface is split into two faces (a cylinder cut by a plane), each half's rim is a polygon with
+// its own points, and the writer closes the seam between the two polygons with a strip of
+// slivers standing on it at right angles: a step as high as the polygons are apart, the
+// difference of their chords' sagittas (gmsh_lever.stl of the corpus: a strip 0.001-0.33 high
+// and 60 long on a cylinder of radius 11, at size 11.76). Both of the strip's long edges are
+// ridges, so the strip became a patch of its own between two lines far closer than the gap sizes
+// go (kMinGapSizes in gap_sizes.h), and its re-triangulation was all slivers (about 500 of the
+// lever's 590 triangles under 30 degrees).
+//
+// A face is a step when
+//  - it turns by more than the ridge angle against the face across its longest edge ab (the
+//    same tag, the edge shared by the two only, traversed opposite ways),
+//  - it is lower over ab than kStepHeightOfEdge of its length (a sliver), and
+//  - the surface beyond it continues the one across ab: a face at its third corner v turns by
+//    less than the ridge angle against the face across ab (a seam; the faces beside a chamfer
+//    or a rib meet at a ridge instead, and those stay).
+// A strip of steps (joined through their corners) goes whole when its highest step is lower
+// than kStepHeightOfSize of the smallest size `sizes` asks along it, a step the elements cannot
+// see (a face spanning it tilts by under 3 degrees), or not at all: a seam's strip is a chain of
+// lunes meeting at points, and its wide lunes kept alone were patches with corners of 10 degrees.
+// Each face of a strip that goes is
+//  - a cap (its shortest edge is no sliver's): (a, b, v) and (b, a, w) across ab are flipped to
+//    (v, a, w) and (v, w, b), which lie in w's face's plane to within the height, when both
+//    turn by less than the ridge angle against it (no fold, no new ridge) and vw is no edge yet
+//    (manifold). No point moves;
+//  - a needle (its shortest edge under kStepHeightOfEdge of ab too: where the two polygons have
+//    points at nearly the same place, the cap's flip would make a needle again): the shortest
+//    edge is collapsed, as a folded sliver's (the link condition kept, no face turned over).
+// Each face a repair changed is looked at again, and the strips are found again while that
+// repairs any; the points left on no face are dropped. Returns how many faces were repaired
+// and the highest step (cap height or needle edge): the farthest the surface moved. O(M) per
+// round for M faces; the rounds end when one repairs nothing.
+// `sizes` is the size asked (the user's field): the sizes attached to the geometry are found
+// on the repaired surface. The lever's strip is 0.0503 of its longest edge at its widest face,
+// which then stays alone; at 0.1 the graded noisy sphere's noise (triangles of 8 degrees,
+// ridge angle 60) made steps. At 0.05 of the size, the lever's whole strip goes at its mean
+// edge (11.76) and stays at 5.44 (a strip of slivers, meshed as before).
+inline constexpr double kStepHeightOfEdge = 0.05;
+inline constexpr double kStepHeightOfSize = 0.05;
+
+struct StepRepairs {
+  std::int64_t count = 0;
+  double highest = 0.0;
+};
+
+StepRepairs repair_sliver_steps(Mesh& clean, const SizeField& sizes, double ridge_angle_deg);
 
 }  // namespace afmesh

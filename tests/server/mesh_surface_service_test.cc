@@ -64,6 +64,8 @@ SurfaceResult result_with(Mesh mesh) {
                    .triangles_reoriented = 4,
                    .folded_slivers_collapsed = 2,
                    .longest_folded_edge_collapsed = 0.25,
+                   .sliver_steps_removed = 6,
+                   .highest_sliver_step = 0.125,
                    .components = 1,
                    .closed_components = 1,
                    .patches = 4,
@@ -288,13 +290,15 @@ TEST_F(MeshSurfaceServiceTest, WarningsComeBeforeTheSlicesAndTheSummaryLast) {
     }
   }
   // The four repair counts of result_with, the short ridges, the front that stopped.
-  ASSERT_EQ(warnings.size(), 7u);
+  ASSERT_EQ(warnings.size(), 8u);
   EXPECT_THAT(warnings[0], HasSubstr("1 duplicate triangles"));
   EXPECT_THAT(warnings[3], HasSubstr("4 triangles of the input were turned"));
   EXPECT_THAT(warnings[4], HasSubstr("2 sliver triangles of the input folded back"));
   EXPECT_THAT(warnings[4], HasSubstr("moved by at most 0.25"));
-  EXPECT_THAT(warnings[5], HasSubstr("5 ridges of the input that end freely"));
-  EXPECT_THAT(warnings[6], HasSubstr("the surface front of patch 2 (input tag 0) got stuck; the "
+  EXPECT_THAT(warnings[5], HasSubstr("6 sliver triangles of the input standing as a step"));
+  EXPECT_THAT(warnings[5], HasSubstr("moved by at most 0.125"));
+  EXPECT_THAT(warnings[6], HasSubstr("5 ridges of the input that end freely"));
+  EXPECT_THAT(warnings[7], HasSubstr("the surface front of patch 2 (input tag 0) got stuck; the "
                                      "patch was re-triangulated from its own input triangles"));
 }
 
@@ -320,6 +324,8 @@ TEST_F(MeshSurfaceServiceTest, SummaryCarriesCountsQualityRepairFeaturesDistance
   EXPECT_EQ(summary.repair().closed_components(), 1u);
   EXPECT_EQ(summary.repair().folded_slivers_collapsed(), 2u);
   EXPECT_EQ(summary.repair().longest_folded_edge_collapsed(), 0.25);
+  EXPECT_EQ(summary.repair().sliver_steps_removed(), 6u);
+  EXPECT_EQ(summary.repair().highest_sliver_step(), 0.125);
   EXPECT_EQ(summary.features().patches(), 4u);
   EXPECT_EQ(summary.features().lines(), 6u);
   EXPECT_EQ(summary.features().corners(), 4u);
