@@ -205,7 +205,9 @@ StepRepairs repair_sliver_steps(Mesh& clean, const SizeField& sizes, double ridg
   SurfaceEdits edits(clean);
   const std::vector<Point>& p = clean.points;
   const std::vector<Triangle>& tris = clean.triangles;
-  const auto tag = [&](Index f) { return clean.triangle_tags.empty() ? 0 : clean.triangle_tags[f]; };
+  const auto tag = [&](Index f) {
+    return clean.triangle_tags.empty() ? 0 : clean.triangle_tags[f];
+  };
   const double cos_ridge = std::cos(ridge_angle_deg * std::numbers::pi / 180.0);
   // Face f as a step: its longest edge (a, b), the face g across it, and how far the surface
   // moves when it goes; nullopt when f is no step.
