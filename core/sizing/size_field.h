@@ -6,6 +6,7 @@
 // interface in spec_size_field.h.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <span>
 
@@ -26,6 +27,20 @@ class SizeField {
   virtual void sizes_at(std::span<const Point> xs, std::span<double> out) const {
     for (std::size_t i = 0; i < xs.size(); ++i) out[i] = size_at(xs[i]);
   }
+};
+
+// The smaller of two fields' sizes at every point (eq. 14's minimum, of two fields). Both must
+// outlive it.
+class SmallerOfSizes final : public SizeField {
+ public:
+  SmallerOfSizes(const SizeField& a, const SizeField& b) : a_(a), b_(b) {}
+  double size_at(const Point& x) const override {
+    return std::min(a_.size_at(x), b_.size_at(x));
+  }
+
+ private:
+  const SizeField& a_;
+  const SizeField& b_;
 };
 
 // The same size everywhere.

@@ -163,21 +163,20 @@ std::vector<bool> lines_sharing_their_corners(const SurfaceFeatures& features) {
 }
 
 // Step 4 (F3): the sides along every line, shared by the patches on both sides; fills
-// patch_sides with each patch's initial front, oriented with the patch on the left,
-// side_origins with where each of those sides comes from, and side_count with each line's number
-// of sides. A line gets at least more_sides[l] sides (0: no more than its size asks).
+// patch_sides with each patch's initial front, oriented with the patch on the left, and
+// side_origins with where each of those sides comes from. The lines are split along
+// `split_sizes` (the size field, or less near sides that crossed: lay_initial_fronts).
 struct SideOrigin {
   Index line = kInvalidIndex;
   bool on_one_segment = false;  // no vertex of the line's polyline lies between its ends
 };
 
-absl::Status sides_along_lines(SurfaceMeshState& s, std::span<const Index> more_sides,
+absl::Status sides_along_lines(SurfaceMeshState& s, const SizeField& split_sizes,
                                std::vector<std::vector<Side>>& patch_sides,
-                               std::vector<std::vector<SideOrigin>>& side_origins,
-                               std::vector<Index>& side_count) {
+                               std::vector<std::vector<SideOrigin>>& side_origins) {
   const DiscreteSurface& surface = s.surface;
   const SurfaceFeatures& features = s.features;
-  const std::vector<LineEndSizes> ends = line_end_sizes(surface, features, more_sides);
+  const std::vector<LineEndSizes> ends = line_end_sizes(surface, features);
   const std::vector<bool> sharing = lines_sharing_their_corners(features);
   absl::flat_hash_map<Index, Index> corner_point;  // input vertex -> output point
   auto corner = [&](Index vertex) {
@@ -201,8 +200,7 @@ absl::Status sides_along_lines(SurfaceMeshState& s, std::span<const Index> more_
     split_params.growth = s.growth;
     if (line.closed) split_params.min_sides = 3;
     if (sharing[l]) split_params.min_sides = 2;
-    split_params.min_sides = std::max(split_params.min_sides, more_sides[l]);
-    absl::StatusOr<LineSplit> split = split_line(polyline, s.field, split_params);
+    absl::StatusOr<LineSplit> split = split_line(polyline, split_sizes, split_params);
     if (!split.ok()) return split.status();
     std::vector<Index> ids(split->points.size());
     const std::size_t last = ids.size() - 1;
@@ -215,7 +213,6 @@ absl::Status sides_along_lines(SurfaceMeshState& s, std::span<const Index> more_
       const Index host = !forward.empty() ? forward[0] : backward[0];
       ids[i] = s.add_point(split->points[i], s.field_size(split->points[i]), FaceId{host}, a);
     }
-    side_count[l] = static_cast<Index>(last);
     s.points_along_lines.push_back({ids, split->segment});
     // Attached sizes (eq. 15's delta_A): a line point carries the length of its sides.
     for (std::size_t i = 0; i < last; ++i) {
@@ -249,44 +246,84 @@ absl::Status sides_along_lines(SurfaceMeshState& s, std::span<const Index> more_
 }
 
 // Step 4 (F3) until no patch's initial front crosses itself (crossing_sides in
-// surface_front.h; not in the paper): a line with a side that crosses another side of a patch
-// gets twice its sides, and the lines are laid again, at most kMaxSideDoublings times. Shorter
-// chords follow their polylines closer (the chords of a ledge narrower than their sagitta,
-// gmsh_lever). A side that lies on one segment of its polyline already follows it: where two
-// such sides cross, the input's lines themselves touch (TR12J_OCC), no split parts them, and
-// neither line is doubled for it (there, 6 doublings took a line of 84 sides to 5,376 and its
-// patch ran away). A front that still crosses is left to the patch front, which stops where it
-// cannot close.
+// surface_front.h; not in the paper): where a side of a line crosses another side of its patch,
+// the lines are split again with the size there halved (a point source at the side's middle,
+// delta0 half its length, growing back at the growth c_i of eq. 15: sides_near_crossings),
+// at most kMaxSideDoublings times. Shorter chords follow their polylines closer (the chords of a
+// ledge narrower than their sagitta, gmsh_lever). The halving is local: doubling the whole
+// line's sides instead put 640 sides of 0.03 along gmsh_lever's 25-long rim of its side face
+// (size 1.76 there) to follow a tongue of it 1.4 degrees wide at one end, and the patch beside
+// filled with triangles of that size (28,530 triangles in all became 36,716 once the seam's
+// sliver steps were gone). A side that lies on one segment of its polyline already follows it:
+// where two such sides cross, the input's lines themselves touch (TR12J_OCC), no split parts
+// them, and no size is halved for it (there, 6 doublings took a line of 84 sides to 5,376 and
+// its patch ran away). A front that still crosses is left to the patch front, which stops where
+// it cannot close. Every line is split along the halved sizes, so a line beside one that
+// crossed at a shared corner grades down with it (cgal_hand's fin, two ridges 10 degrees apart,
+// once put sides of 0.011 beside sides of 0.0012 at one corner, and the front stopped there).
 constexpr int kMaxSideDoublings = 6;
+
+// The size field of lay_initial_fronts' halvings: `sources` (a point source at the middle of
+// each side that crossed) over the surface's box, the model's extent elsewhere.
+absl::StatusOr<std::unique_ptr<SpecSizeField>> sides_near_crossings(
+    const std::vector<SizeSource>& sources, const DiscreteSurface& surface) {
+  Box box = empty_box();
+  for (const Point& x : surface.local_points()) enclose(box, surface.to_global(x));
+  double extent = 0.0;
+  for (int a = 0; a < 3; ++a) extent = std::max(extent, box.hi[a] - box.lo[a]);
+  SizeSpec spec;
+  spec.max_size = std::max(extent, 1.0);
+  spec.sources = sources;
+  absl::StatusOr<SpecSizeField> field = SpecSizeField::create(spec, box);
+  if (!field.ok()) return field.status();
+  return std::make_unique<SpecSizeField>(*std::move(field));
+}
 
 absl::Status lay_initial_fronts(std::optional<SurfaceMeshState>& state,
                                 const DiscreteSurface& surface, const SurfaceFeatures& features,
                                 const SizeField& sizes, double growth,
                                 std::vector<std::vector<Side>>& patch_sides) {
-  std::vector<Index> more_sides(features.lines.size(), 0);
+  std::vector<SizeSource> halved;  // where sides crossed, in the global frame
+  std::unique_ptr<SpecSizeField> near_crossings;
+  std::optional<SmallerOfSizes> split_sizes;
   for (int round = 0;; ++round) {
     state.emplace(surface, features, sizes, growth);
     patch_sides.assign(features.patches.size(), {});
     std::vector<std::vector<SideOrigin>> side_origins(features.patches.size());
-    std::vector<Index> side_count(features.lines.size(), 0);
-    if (absl::Status st =
-            sides_along_lines(*state, more_sides, patch_sides, side_origins, side_count);
+    if (absl::Status st = sides_along_lines(*state, split_sizes ? *split_sizes : sizes,
+                                            patch_sides, side_origins);
         !st.ok())
       return st;
     if (round == kMaxSideDoublings) return absl::OkStatus();
-    bool again = false;
+    const std::size_t before = halved.size();
     for (std::size_t p = 0; p < features.patches.size(); ++p) {
       const PatchId patch{static_cast<Index>(p)};
-      for (const auto& [i, j] : crossing_sides(*state, patch, patch_sides[p])) {
-        for (const SideOrigin& o : {side_origins[p][i], side_origins[p][j]}) {
-          const Index l = o.line;
-          if (o.on_one_segment || more_sides[l] >= 2 * side_count[l]) continue;
-          more_sides[l] = 2 * side_count[l];
-          again = true;
-        }
+      const auto pairs = crossing_sides(*state, patch, patch_sides[p]);
+      std::vector<std::size_t> crossed;
+      for (const auto& [i, j] : pairs) crossed.insert(crossed.end(), {i, j});
+      std::sort(crossed.begin(), crossed.end());
+      crossed.erase(std::unique(crossed.begin(), crossed.end()), crossed.end());
+      for (const std::size_t i : crossed) {
+        if (side_origins[p][i].on_one_segment) continue;
+        const Side& side = patch_sides[p][i];
+        const Point& a = state->points[side[0]];
+        const Point& b = state->points[side[1]];
+        const double length = distance(a, b);
+        if (!(length > 0.0)) continue;
+        const double delta0 = 0.5 * length;
+        halved.push_back({.points = {surface.to_global(lerp(a, b, 0.5))},
+                          .delta0 = delta0,
+                          .r0 = 0.0,
+                          .r1 = delta0 / std::max(growth - 1.0, 1e-3),
+                          .law = PowerLaw{.gamma = 1.0}});
       }
     }
-    if (!again) return absl::OkStatus();
+    if (halved.size() == before) return absl::OkStatus();
+    split_sizes.reset();
+    absl::StatusOr<std::unique_ptr<SpecSizeField>> field = sides_near_crossings(halved, surface);
+    if (!field.ok()) return field.status();
+    near_crossings = *std::move(field);
+    split_sizes.emplace(sizes, *near_crossings);
   }
 }
 

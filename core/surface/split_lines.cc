@@ -169,8 +169,7 @@ absl::StatusOr<LineSplit> split_line(std::span<const Point> polyline, const Size
 }
 
 std::vector<LineEndSizes> line_end_sizes(const DiscreteSurface& surface,
-                                         const SurfaceFeatures& features,
-                                         std::span<const Index> min_sides) {
+                                         const SurfaceFeatures& features) {
   std::vector<double> length(features.lines.size(), 0.0);
   for (std::size_t l = 0; l < features.lines.size(); ++l) {
     CompensatedSum sum;
@@ -180,30 +179,19 @@ std::vector<LineEndSizes> line_end_sizes(const DiscreteSurface& surface,
     }
     length[l] = sum.value();
   }
-  // The length of the sides a line must have at least (its whole length when not forced).
-  const auto forced_side = [&](std::size_t l) {
-    return l < min_sides.size() && min_sides[l] > 1
-               ? length[l] / static_cast<double>(min_sides[l])
-               : length[l];
-  };
-  // The shortest line at each corner, and the shortest forced side of the lines other than
-  // `self` there (a line's own count is already its own; grading from it too would shorten its
-  // sides at every round); corners are ascending by vertex.
-  const auto shortest_at = [&](Index vertex, std::size_t self) {
+  // The shortest line at each corner; corners are ascending by vertex.
+  const auto shortest_at = [&](Index vertex) {
     const auto corner = std::lower_bound(features.corners.begin(), features.corners.end(), vertex,
                                          [](const Corner& c, Index v) { return c.vertex < v; });
     double shortest = std::numeric_limits<double>::infinity();
-    for (LineId l : corner->lines) {
-      const std::size_t k = index_of(l);
-      shortest = std::min(shortest, k == self ? length[k] : forced_side(k));
-    }
+    for (LineId l : corner->lines) shortest = std::min(shortest, length[index_of(l)]);
     return shortest;
   };
   std::vector<LineEndSizes> sizes;
   sizes.reserve(features.lines.size());
   for (std::size_t l = 0; l < features.lines.size(); ++l) {
     const DiscreteLine& line = features.lines[l];
-    sizes.push_back({shortest_at(line.vertices.front(), l), shortest_at(line.vertices.back(), l)});
+    sizes.push_back({shortest_at(line.vertices.front()), shortest_at(line.vertices.back())});
   }
   return sizes;
 }

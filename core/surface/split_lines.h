@@ -77,16 +77,8 @@ struct LineEndSizes {
 // For every line of `features` (over `surface`), the length of the shortest line ending at each of
 // its corners (a closed loop counts its whole length), in the units of the points: the
 // start_size and end_size to split it with. features.lines.size() values.
-//
-// `min_sides` (empty, or one count per line; not in the paper): a line that must be laid with at
-// least n sides (lay_initial_fronts doubles the sides of a line whose chords cross another
-// side) counts as its length / n, the length of those sides. Its neighbours at its corners then
-// grade out from its short sides as from a short line. Without it, the single-segment line
-// beside a doubled one kept its long sides: cgal_hand's fin, two ridges 10° apart, put sides of
-// 0.011 beside sides of 0.0012 at one corner, and the front stopped at that corner.
 std::vector<LineEndSizes> line_end_sizes(const DiscreteSurface& surface,
-                                         const SurfaceFeatures& features,
-                                         std::span<const Index> min_sides = {});
+                                         const SurfaceFeatures& features);
 
 // Splits `polyline` (P×3, P >= 2; consecutive points may coincide, a closed loop repeats its
 // first point at the end) into sides following `sizes`, as above. INVALID_ARGUMENT for fewer

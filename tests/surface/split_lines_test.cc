@@ -207,39 +207,6 @@ TEST(SplitLine, LineEndSizesAreTheShortestLineAtEachCorner) {
   }
 }
 
-// A line that must be laid with n sides (lay_initial_fronts doubles a line whose chords cross)
-// gives its corners the length of those sides for the lines that meet it there, so they grade
-// out from its short sides; its own ends keep the shortest line's length (grading from its own
-// count would shorten its sides at every doubling).
-TEST(SplitLine, ALineForcedToManySidesGivesItsCornersTheirLength) {
-  const testing::SurfaceModel cube =
-      testing::surface_model(box_surface({0, 0, 0}, {1, 1, 1}, 0.25));
-  const std::vector<DiscreteLine>& lines = cube.features.lines;
-  ASSERT_EQ(lines.size(), 12u);
-  std::vector<Index> min_sides(lines.size(), 0);
-  min_sides[0] = 10;
-  const std::vector<LineEndSizes> ends = line_end_sizes(cube.surface, cube.features, min_sides);
-  const Index a = lines[0].vertices.front(), b = lines[0].vertices.back();
-  EXPECT_NEAR(ends[0].start, 1.0, 1e-15);
-  EXPECT_NEAR(ends[0].end, 1.0, 1e-15);
-  int touched = 0;
-  for (std::size_t l = 1; l < lines.size(); ++l) {
-    for (const bool at_start : {true, false}) {
-      const Index corner = at_start ? lines[l].vertices.front() : lines[l].vertices.back();
-      const double size = at_start ? ends[l].start : ends[l].end;
-      const bool shares = corner == a || corner == b;
-      touched += shares;
-      EXPECT_NEAR(size, shares ? 0.1 : 1.0, 1e-15) << "line " << l;
-    }
-  }
-  EXPECT_EQ(touched, 4);  // two more lines at each end of line 0
-  // No forced count: the shortest line, as before.
-  for (const LineEndSizes& e : line_end_sizes(cube.surface, cube.features, {})) {
-    EXPECT_NEAR(e.start, 1.0, 1e-15);
-    EXPECT_NEAR(e.end, 1.0, 1e-15);
-  }
-}
-
 // The lines of a cube's features, in the surface's local frame, split for h = 0.3: three sides
 // each, ends at the corners.
 TEST(SplitLine, CubeLinesFromFeatures) {
