@@ -63,11 +63,13 @@ FoldedCollapses collapse_folded_slivers(Mesh& clean, std::span<const FaceId> fol
 // and the highest step (cap height or needle edge): the farthest the surface moved. O(M) per
 // round for M faces; the rounds end when one repairs nothing.
 // `sizes` is the size asked (the user's field): the sizes attached to the geometry are found
-// on the repaired surface. The lever's strip is 0.0503 of its longest edge at its widest face,
-// which then stays alone; at 0.1 the graded noisy sphere's noise (triangles of 8 degrees,
-// ridge angle 60) made steps. At 0.05 of the size, the lever's whole strip goes at its mean
-// edge (11.76) and stays at 5.44 (a strip of slivers, meshed as before).
-inline constexpr double kStepHeightOfEdge = 0.05;
+// on the repaired surface. The lever's strip is 0.0503 of its longest edge high at its widest
+// face: at 0.05 that face stayed alone, a patch with a triangle of 2.9 degrees; with no edge
+// bound the graded noisy sphere's noise (triangles of 8 degrees, ridge angle 60) made steps, and
+// at 0.1 a step of cgal_triceratops moved where its front stops. At 0.05 of the size, the
+// lever's whole strip goes at its mean edge (11.76) and stays at 5.44 (a strip of slivers,
+// meshed as before).
+inline constexpr double kStepHeightOfEdge = 0.075;
 inline constexpr double kStepHeightOfSize = 0.05;
 
 struct StepRepairs {
