@@ -264,11 +264,9 @@ absl::Status sides_along_lines(SurfaceMeshState& s, const SizeField& split_sizes
 constexpr int kMaxSideDoublings = 6;
 
 // The size field of lay_initial_fronts' halvings: `sources` (a point source at the middle of
-// each side that crossed) over the surface's box, the model's extent elsewhere.
+// each side that crossed) over `box` (the surface's, global frame), its extent elsewhere.
 absl::StatusOr<std::unique_ptr<SpecSizeField>> sides_near_crossings(
-    const std::vector<SizeSource>& sources, const DiscreteSurface& surface) {
-  Box box = empty_box();
-  for (const Point& x : surface.local_points()) enclose(box, surface.to_global(x));
+    const std::vector<SizeSource>& sources, const Box& box) {
   double extent = 0.0;
   for (int a = 0; a < 3; ++a) extent = std::max(extent, box.hi[a] - box.lo[a]);
   SizeSpec spec;
@@ -284,6 +282,7 @@ absl::Status lay_initial_fronts(std::optional<SurfaceMeshState>& state,
                                 const SizeField& sizes, double growth,
                                 std::vector<std::vector<Side>>& patch_sides) {
   std::vector<SizeSource> halved;  // where sides crossed, in the global frame
+  Box box = empty_box();           // the surface's, global frame, when a side first crosses
   std::unique_ptr<SpecSizeField> near_crossings;
   std::optional<SmallerOfSizes> split_sizes;
   for (int round = 0;; ++round) {
@@ -320,7 +319,9 @@ absl::Status lay_initial_fronts(std::optional<SurfaceMeshState>& state,
     }
     if (halved.size() == before) return absl::OkStatus();
     split_sizes.reset();
-    absl::StatusOr<std::unique_ptr<SpecSizeField>> field = sides_near_crossings(halved, surface);
+    if (is_empty(box))
+      for (const Point& x : surface.local_points()) enclose(box, surface.to_global(x));
+    absl::StatusOr<std::unique_ptr<SpecSizeField>> field = sides_near_crossings(halved, box);
     if (!field.ok()) return field.status();
     near_crossings = *std::move(field);
     split_sizes.emplace(sizes, *near_crossings);

@@ -14,6 +14,11 @@
 namespace afmesh {
 namespace {
 
+// (b - a) x (c - a) of face t = (a, b, c): its normal times twice its area.
+Point face_normal(const std::vector<Point>& p, const Triangle& t) {
+  return cross(sub(p[t[1]], p[t[0]]), sub(p[t[2]], p[t[0]]));
+}
+
 // Edits of a surface's faces in place, with their point incidence kept up to date: edge
 // collapses that keep the surface manifold and turn no face over; finish() drops the faces
 // collapsed and the points left on no face.
@@ -131,9 +136,7 @@ class SurfaceEdits {
       Triangle moved = was;
       for (Index& w : moved)
         if (w == gone) w = keep;
-      const Point before = cross(sub(p[was[1]], p[was[0]]), sub(p[was[2]], p[was[0]]));
-      const Point after = cross(sub(p[moved[1]], p[moved[0]]), sub(p[moved[2]], p[moved[0]]));
-      if (!(dot(before, after) > 0.0)) return false;
+      if (!(dot(face_normal(p, was), face_normal(p, moved)) > 0.0)) return false;
     }
     return true;
   }
@@ -187,10 +190,6 @@ FoldedCollapses collapse_folded_slivers(Mesh& clean, std::span<const FaceId> fol
 }
 
 namespace {
-
-Point face_normal(const std::vector<Point>& p, const Triangle& t) {
-  return cross(sub(p[t[1]], p[t[0]]), sub(p[t[2]], p[t[0]]));
-}
 
 // Whether two faces' unit normals (from unnormalised ones) make an angle whose cosine is above
 // `cos_angle`; false when either has no area.
