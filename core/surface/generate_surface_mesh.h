@@ -15,8 +15,8 @@
 //  5. Each patch meshed in turn from its sides by the surface front, S1–S11.
 //  6. The result assembled (corners and line points shared) and checked.
 //  7. Edge flips inside the patches (flip_edges.h), then the points inside them smoothed on the
-//     input (smooth_points.h): neither is in the paper, both keep every point on the input and
-//     every line as meshed.
+//     input and the line points slid along their lines (smooth_points.h): neither is in the
+//     paper, both keep every point on the input and every line as meshed.
 //  8. Its distance to the input measured (two-sided Hausdorff, sampled at vertices, edge
 //     midpoints and centroids).
 #pragma once
