@@ -119,25 +119,6 @@ TEST(SliverSteps, AStepTheElementsCanSeeStays) {
   EXPECT_GT(repair_sliver_steps(m, UniformSize(1.0), 30.0).count, 0);
 }
 
-// The triangles of `mesh` whose smallest angle is at least 30 degrees, and under 15.
-struct AngleCounts {
-  std::int64_t at_least_30 = 0, under_15 = 0;
-};
-AngleCounts angle_counts(const Mesh& mesh) {
-  AngleCounts counts;
-  for (const Triangle& t : mesh.triangles) {
-    double smallest = 180.0;
-    for (int k = 0; k < 3; ++k) {
-      const Point& a = mesh.points[t[k]];
-      const Point u = sub(mesh.points[t[(k + 1) % 3]], a), v = sub(mesh.points[t[(k + 2) % 3]], a);
-      smallest = std::min(smallest, std::acos(std::clamp(dot(u, v) / (norm(u) * norm(v)), -1.0,
-                                                         1.0)) * 180.0 / std::numbers::pi);
-    }
-    counts.at_least_30 += smallest >= 30.0;
-    counts.under_15 += smallest < 15.0;
-  }
-  return counts;
-}
 
 // gmsh_lever at its mean edge (11.76): two halves of a cylinder of radius 11, tessellated each
 // on its own, are joined by a strip 0.001-0.33 high and 60 long in the plane y = -19.2356; its
@@ -147,7 +128,7 @@ TEST(Regression, Issue11TheLeversSeamStripIsRemovedAndItsSliversWithIt) {
   ASSERT_TRUE(r.ok()) << r.status();
   EXPECT_GT(r->report.sliver_steps_removed, 100);
   EXPECT_LT(r->report.highest_sliver_step, kStepHeightOfSize * 11.76);
-  const AngleCounts counts = angle_counts(r->mesh);
+  const testing::AngleCounts counts = testing::angle_counts(r->mesh);
   EXPECT_GE(static_cast<double>(counts.at_least_30), 0.99 * r->mesh.triangles.size());
   // Every triangle under 15 degrees is on an input triangle or at a corner as thin: the strip's
   // widest face (0.0503 of its longest edge high) goes too (at a bound of 0.05 it stayed, alone,
@@ -168,7 +149,7 @@ TEST(Regression, Issue11TheLeversSeamStripGoesAtTheBenchsSizeToo) {
       "gmsh_lever.stl", [](SurfaceParams& params) { params.size = 5.440209579467774; });
   ASSERT_TRUE(r.ok()) << r.status();
   EXPECT_GT(r->report.sliver_steps_removed, 100);
-  const AngleCounts counts = angle_counts(r->mesh);
+  const testing::AngleCounts counts = testing::angle_counts(r->mesh);
   EXPECT_GE(static_cast<double>(counts.at_least_30), 0.99 * r->mesh.triangles.size());
   EXPECT_EQ(counts.under_15, r->report.thin_triangles_at_thinner_input);
 }

@@ -327,4 +327,15 @@ double smallest_angle(const SurfaceMeshState& s) {
   return smallest;
 }
 
+AngleCounts angle_counts(const Mesh& mesh) {
+  AngleCounts counts;
+  for (const Triangle& t : mesh.triangles) {
+    const double smallest =
+        triangle_min_angle_deg(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+    counts.at_least_30 += smallest >= 30.0;
+    counts.under_15 += smallest < 15.0;
+  }
+  return counts;
+}
+
 }  // namespace afmesh::testing

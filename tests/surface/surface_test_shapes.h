@@ -98,4 +98,11 @@ void add_on_the_input(const Mesh& mesh, SurfaceMeshState& s);
 // The smallest angle of s's triangles, degrees.
 double smallest_angle(const SurfaceMeshState& s);
 
+// The triangles of `mesh` whose smallest angle is at least 30 degrees, and under 15 (issue 11's
+// bars).
+struct AngleCounts {
+  std::int64_t at_least_30 = 0, under_15 = 0;
+};
+AngleCounts angle_counts(const Mesh& mesh);
+
 }  // namespace afmesh::testing
