@@ -643,7 +643,9 @@ TEST(Regression, Issue11ASideAcrossANarrowStripClosesToTheLinesAtItsEnds) {
     print("lever at diag / 40 and / 80", *r);
     expect_closed_valid(r->mesh);
     EXPECT_LT(r->report.hausdorff, 0.01 * r->report.model_size);
-    if (size < 3.0) EXPECT_EQ(r->report.sliver_steps_removed, 0);  // the strip is kept
+    if (size < 3.0) {
+      EXPECT_EQ(r->report.sliver_steps_removed, 0);  // the strip is kept
+    }
   }
 }
 
@@ -704,7 +706,9 @@ TEST(Regression, Issue11ALedgeNarrowerThanItsChordsSagittaMeshes) {
         "gmsh_lever.stl", [times](SurfaceParams& params) { params.size *= times; });
     ASSERT_TRUE(r.ok()) << times << " x mean edge: " << r.status();
     expect_closed_valid(r->mesh);
-    if (times < 1.0) EXPECT_EQ(r->report.sliver_steps_removed, 0);
+    if (times < 1.0) {
+      EXPECT_EQ(r->report.sliver_steps_removed, 0);
+    }
   }
 }
 
