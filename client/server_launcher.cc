@@ -28,6 +28,9 @@ using Clock = std::chrono::steady_clock;
 constexpr auto kStartTimeout = std::chrono::seconds(10);
 constexpr auto kStopTimeout = std::chrono::seconds(10);
 constexpr auto kPollInterval = std::chrono::milliseconds(5);
+constexpr auto kSocketPollInterval = std::chrono::milliseconds(1);
+// The server's socket in its folder.
+constexpr char kSocketName[] = "mesher.sock";
 // Longest unix socket path (sockaddr_un::sun_path holds 108 bytes with the terminating NUL).
 constexpr std::size_t kMaxSocketPath = 107;
 // The private server takes any input the machine can hold: indices are int32.
@@ -97,7 +100,7 @@ absl::StatusOr<std::unique_ptr<PrivateServer>> PrivateServer::start() {
   absl::StatusOr<std::string> dir = make_private_dir();
   if (!dir.ok()) return dir.status();
   server->dir_ = *dir;
-  server->address_ = absl::StrCat("unix:", server->dir_, "/mesher.sock");
+  server->address_ = absl::StrCat("unix:", server->dir_, "/", kSocketName);
   server->log_path_ = server->dir_ + "/server.log";
   if (absl::Status status = server->spawn(*binary); !status.ok()) return status;
   if (absl::Status status = server->wait_until_serving(); !status.ok()) return status;
@@ -108,10 +111,14 @@ PrivateServer::~PrivateServer() { stop(); }
 
 // fork + exec, so that the child can ask to die with its parent before it runs the server.
 absl::Status PrivateServer::spawn(const std::string& binary) {
+  // No grace period: the server is stopped only once the command's one call has ended and its
+  // result has been read (or the call was cancelled), so nothing is left to drain or to read,
+  // and the drain's grace would only delay the command's exit (by 200 ms).
   std::vector<std::string> args = {binary,   "--listen",        address_, "--workers",
                                    "1",      "--max-queue",     "0",      "--max-points",
                                    kNoLimit, "--max-triangles", kNoLimit,    "--max-grid-points",
-                                   kNoLimit, "--max-grid-tets", kNoLimit};
+                                   kNoLimit, "--max-grid-tets", kNoLimit,    "--grace-period",
+                                   "0"};
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());
   argv.push_back(nullptr);
@@ -143,13 +150,26 @@ absl::Status PrivateServer::wait_until_serving() {
   const std::unique_ptr<grpc::health::v1::Health::Stub> health =
       grpc::health::v1::Health::NewStub(channel);
   const Clock::time_point give_up = Clock::now() + kStartTimeout;
-  while (Clock::now() < give_up) {
+  const auto ended = [this](absl::Status& why) {
     int wait_status = 0;
-    if (waitpid(pid_, &wait_status, WNOHANG) == pid_) {
-      pid_ = -1;
-      return unavailable(
-          absl::StrCat("it ended (", describe_exit(wait_status), ") before serving", log_tail()));
-    }
+    if (waitpid(pid_, &wait_status, WNOHANG) != pid_) return false;
+    pid_ = -1;
+    why = unavailable(
+        absl::StrCat("it ended (", describe_exit(wait_status), ") before serving", log_tail()));
+    return true;
+  };
+  absl::Status why;
+  // The socket appears when the server listens: waiting for it first makes the health check's
+  // first connection succeed, where a refused one would wait out the channel's reconnect
+  // backoff (10 to 100 ms) before the next try.
+  const std::string socket = absl::StrCat(dir_, "/", kSocketName);
+  std::error_code no_socket;
+  while (Clock::now() < give_up && !std::filesystem::exists(socket, no_socket)) {
+    if (ended(why)) return why;
+    std::this_thread::sleep_for(kSocketPollInterval);
+  }
+  while (Clock::now() < give_up) {
+    if (ended(why)) return why;
     grpc::ClientContext context;
     context.set_wait_for_ready(true);
     context.set_deadline(std::chrono::system_clock::now() + std::chrono::milliseconds(250));

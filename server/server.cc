@@ -1,5 +1,7 @@
 #include "server/server.h"
 
+#include <algorithm>
+
 #include <chrono>
 #include <thread>
 #include <utility>
@@ -16,7 +18,9 @@
 namespace afmesh::server {
 namespace {
 
-// Time left to clients to read the end of their calls before the connections close.
+// Time left to clients to read the end of their calls before the connections close; never more
+// than the grace period itself: a server asked for none (the CLI's private server, stopped only
+// once its one client has read its whole result) stops at once.
 constexpr auto kFinishGrace = std::chrono::milliseconds(200);
 // After the grace period, how long stopped calls get to end by themselves before gRPC cancels
 // whatever is left (a client that stopped reading, say).
@@ -99,7 +103,8 @@ void MesherServer::shutdown() {
     }
     // A call's last bytes are written when it ends, but the client may not have read them:
     // closing the connections at once can fail the call on its side ("Broken pipe").
-    std::this_thread::sleep_until(gate_.last_leave() + kFinishGrace);
+    std::this_thread::sleep_until(gate_.last_leave() + std::min<std::chrono::milliseconds>(
+                                                          kFinishGrace, grace_period_));
     // Calls still open now (only after an abort) are cancelled by gRPC at once.
     server_->Shutdown(std::chrono::system_clock::now());
     server_->Wait();

@@ -68,8 +68,9 @@ class MesherServer {
   // Drains, then stops: health turns NOT_SERVING and new calls get UNAVAILABLE; every call in
   // flight finishes (its job and its whole result included) within options.grace_period; calls
   // still in flight then are stopped (jobs cancelled, the calls end UNAVAILABLE so that clients
-  // retry elsewhere); after a short grace for clients to read their last messages the gRPC
-  // server, then the metrics endpoint (scraped through the drain), then the workers stop.
+  // retry elsewhere); after a short grace for clients to read their last messages (200 ms, at
+  // most options.grace_period) the gRPC server, then the metrics endpoint (scraped through the
+  // drain), then the workers stop.
   // Blocks until done; idempotent.
   void shutdown();
 
