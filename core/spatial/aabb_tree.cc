@@ -18,11 +18,10 @@ Point box_centre(const Box& box) {
   return c;
 }
 
-// The axis (0, 1, 2) along which the centres of ids [begin, end) spread the most.
-int widest_axis(const std::vector<Index>& ids, Index begin, Index end,
-                const std::vector<Point>& centres) {
+// The axis (0, 1, 2) along which the centres of items [begin, end) spread the most.
+int widest_axis(const std::vector<AabbTree::BuildItem>& items, Index begin, Index end) {
   Box extent = empty_box();
-  for (Index i = begin; i < end; ++i) enclose(extent, centres[ids[i]]);
+  for (Index i = begin; i < end; ++i) enclose(extent, items[i].centre);
   int axis = 0;
   for (int k = 1; k < 3; ++k) {
     if (extent.hi[k] - extent.lo[k] > extent.hi[axis] - extent.lo[axis]) axis = k;
@@ -49,19 +48,23 @@ double squared_distance_to_box(const Point& x, const Box& box) {
 
 AabbTree::AabbTree(std::vector<Box> boxes, int leaf_size, CancelCheck* cancel)
     : boxes_(std::move(boxes)) {
-  std::vector<Point> centres(boxes_.size());
+  // The ids with their centres side by side: the splits below read a centre for every id at
+  // every level, and through an index into a separate array each read was a cache miss (the
+  // tree of a 1M-face scan took 0.6 s). Same comparisons, same moves: the same tree.
+  std::vector<BuildItem> items;
   for (Index i = 0; i < size(); ++i) {
     if (is_empty(boxes_[i])) continue;
-    centres[i] = box_centre(boxes_[i]);
-    order_.push_back(i);
+    items.push_back({box_centre(boxes_[i]), i});
   }
-  if (order_.empty()) return;
-  nodes_.reserve(2 * order_.size() / std::max(leaf_size, 1) + 1);
-  build(0, static_cast<Index>(order_.size()), centres, std::max(leaf_size, 1), cancel);
+  if (items.empty()) return;
+  nodes_.reserve(2 * items.size() / std::max(leaf_size, 1) + 1);
+  build(0, static_cast<Index>(items.size()), items, std::max(leaf_size, 1), cancel);
+  order_.resize(items.size());
+  for (std::size_t i = 0; i < items.size(); ++i) order_[i] = items[i].id;
 }
 
-// Appends the subtree over order_[begin, end) in pre-order and returns its root's index.
-Index AabbTree::build(Index begin, Index end, const std::vector<Point>& centres, int leaf_size,
+// Appends the subtree over items[begin, end) in pre-order and returns its root's index.
+Index AabbTree::build(Index begin, Index end, std::vector<BuildItem>& items, int leaf_size,
                       CancelCheck* cancel) {
   const Index node = static_cast<Index>(nodes_.size());
   nodes_.push_back(Node{});
@@ -70,23 +73,22 @@ Index AabbTree::build(Index begin, Index end, const std::vector<Point>& centres,
     return node;
   }
   if (end - begin <= leaf_size) {
-    std::sort(order_.begin() + begin, order_.begin() + end);
+    std::sort(items.begin() + begin, items.begin() + end,
+              [](const BuildItem& a, const BuildItem& b) { return a.id < b.id; });
     Box box = empty_box();
-    for (Index i = begin; i < end; ++i) enclose(box, boxes_[order_[i]]);
+    for (Index i = begin; i < end; ++i) enclose(box, boxes_[items[i].id]);
     nodes_[node] = Node{box, begin, end - begin, kInvalidIndex};
     return node;
   }
-  const int axis = widest_axis(order_, begin, end, centres);
+  const int axis = widest_axis(items, begin, end);
   const Index mid = begin + (end - begin) / 2;
-  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                   [&](Index a, Index b) {
-                     if (centres[a][axis] != centres[b][axis]) {
-                       return centres[a][axis] < centres[b][axis];
-                     }
-                     return a < b;
+  std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
+                   [axis](const BuildItem& a, const BuildItem& b) {
+                     if (a.centre[axis] != b.centre[axis]) return a.centre[axis] < b.centre[axis];
+                     return a.id < b.id;
                    });
-  build(begin, mid, centres, leaf_size, cancel);
-  const Index right = build(mid, end, centres, leaf_size, cancel);
+  build(begin, mid, items, leaf_size, cancel);
+  const Index right = build(mid, end, items, leaf_size, cancel);
   nodes_[node].right = right;
   nodes_[node].box = nodes_[node + 1].box;  // inner boxes from the children, bottom-up
   enclose(nodes_[node].box, nodes_[right].box);

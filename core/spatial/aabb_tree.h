@@ -81,6 +81,13 @@ class AabbTree {
   // bound, nearer child first), so a query near the objects costs about O(log n) calls.
   Nearest nearest(const Point& x, absl::FunctionRef<double(Index)> squared_distance) const;
 
+ public:
+  // A box's centre and id, as the construction moves them.
+  struct BuildItem {
+    Point centre;
+    Index id;
+  };
+
  private:
   // A leaf has count > 0 and holds ids order_[first, first + count); an inner node has
   // count == 0, its left child at (own index + 1) and its right child at `right`.
@@ -91,7 +98,7 @@ class AabbTree {
     Index right = kInvalidIndex;
   };
 
-  Index build(Index begin, Index end, const std::vector<Point>& centres, int leaf_size,
+  Index build(Index begin, Index end, std::vector<BuildItem>& items, int leaf_size,
               CancelCheck* cancel);
   void query(Index node, const Box& q, absl::FunctionRef<void(Index)> visit) const;
   void pairs_within(Index node, absl::FunctionRef<void(Index, Index)> visit,
