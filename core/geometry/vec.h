@@ -38,6 +38,11 @@ inline Point unit_normal(const Point& a, const Point& b, const Point& c) {
   return length > 0.0 && std::isfinite(length) ? scale(n, 1.0 / length) : Point{0.0, 0.0, 0.0};
 }
 
+// The area of triangle (a, b, c): half the length of (b - a) x (c - a).
+inline double triangle_area(const Point& a, const Point& b, const Point& c) {
+  return 0.5 * norm(cross(sub(b, a), sub(c, a)));
+}
+
 // a + t (b - a): a at t = 0, b at t = 1.
 inline Point lerp(const Point& a, const Point& b, double t) { return add(a, scale(sub(b, a), t)); }
 

@@ -363,6 +363,18 @@ constexpr double kTrianglesPerInitialSide = 24.0;
 // input keeps kMaxTrianglesOverExpected: it starts from the input's triangles, which a fine input
 // has many more of than its size asks.
 constexpr double kMaxFrontTrianglesOverExpected = 3.0;
+// And a front whose triangles cover more than this many times its patch's input area has run
+// over its own triangles (PatchFrontParams::max_area; not in the paper): its triangles' corners
+// lie on the input, so a cover of the patch has about the patch's area. cgal_hand's main patch
+// crossed a ridge that ends inside it at ~11,700 triangles, its whole area, and then went on
+// over its own triangles until the triangle bound stopped it at 57,585, 4.3 times its area.
+constexpr double kMaxFrontAreaOverPatch = 1.25;
+// What a patch should get: its input faces' area, and its triangles: their areas over the area
+// of an equilateral triangle of the size wanted at their centroids.
+struct PatchEstimate {
+  double area = 0.0;
+  double triangles = 0.0;
+};
 // Not in the paper: the back-offs allowed in a patch (PatchFrontParams::max_back_offs), a few
 // plus one per this many of the triangles it should get.
 constexpr std::int64_t kMinBackOffs = 50;
@@ -478,16 +490,19 @@ absl::Status check_patches_meet_on_lines(const SurfaceMeshState& s) {
   return absl::OkStatus();
 }
 
-std::vector<double> expected_patch_triangles(const SurfaceMeshState& s) {
-  std::vector<double> expected(s.features.patches.size(), 0.0);
+// Each patch's input area, and the triangles it should get (PatchEstimate above).
+std::vector<PatchEstimate> patch_estimates(const SurfaceMeshState& s) {
+  std::vector<PatchEstimate> estimates(s.features.patches.size());
   const std::vector<Point>& p = s.surface.local_points();
   for (Index f = 0; f < s.surface.face_count(); ++f) {
     const Triangle& t = s.surface.triangles()[f];
     const double h = s.field_size(s.surface.centroid(FaceId{f}));
-    const double area = 0.5 * norm(cross(sub(p[t[1]], p[t[0]]), sub(p[t[2]], p[t[0]])));
-    expected[index_of(s.features.face_patch[f])] += area / (0.25 * std::sqrt(3.0) * h * h);
+    const double area = triangle_area(p[t[0]], p[t[1]], p[t[2]]);
+    PatchEstimate& e = estimates[index_of(s.features.face_patch[f])];
+    e.area += area;
+    e.triangles += area / (0.25 * std::sqrt(3.0) * h * h);
   }
-  return expected;
+  return estimates;
 }
 
 // Step 6: the largest distance from samples of `from` (vertices, edge midpoints, centroids) to
@@ -899,7 +914,9 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
 
   const std::vector<Box> boxes = patch_boxes(*surface, *features);
-  const std::vector<double> expected = expected_patch_triangles(s);
+  const std::vector<PatchEstimate> estimates = patch_estimates(s);
+  std::vector<double> expected(estimates.size());
+  for (std::size_t p = 0; p < estimates.size(); ++p) expected[p] = estimates[p].triangles;
   // The sizes attached to the geometry (curvature, gaps) can ask for far more triangles than
   // the server's estimate from the size field alone: refused here, before the front runs, as
   // the server refuses its own estimate.
@@ -924,6 +941,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
         static_cast<std::int64_t>(kMaxFrontTrianglesOverExpected * expected[p] + per_sides);
     front_params.max_back_offs =
         kMinBackOffs + static_cast<std::int64_t>(expected[p] / kExpectedTrianglesPerBackOff);
+    front_params.max_area = kMaxFrontAreaOverPatch * estimates[p].area;
     const std::size_t triangles_before = s.triangles.size();
     const Index points_before = static_cast<Index>(s.points.size());
     absl::Status st = params.every_patch_from_input

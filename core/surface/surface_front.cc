@@ -259,6 +259,8 @@ class PatchFront {
   void add_seed(const Triangle& t) { add_triangle(t); }
   void defer(Index f) { front_.defer(f, queue_key(front_.item(f).v, target_[f])); }
   AdvancingFront<2>& front() { return front_; }
+  // The area the patch's triangles cover now (those a back-off removed taken off).
+  double built_area() const { return built_area_; }
   // Not in the paper: the bins become adaptive (an octree, FrontBins::Adaptive) when the points
   // the crossing check (S6) visits per query average over kCrowdedBins in a window of
   // kBinsWindow queries: the patch's sizes span far more than its cells, which were chosen from
@@ -449,6 +451,7 @@ class PatchFront {
   static constexpr std::int64_t kCrowdedBins = 64;
   mutable BinsWatch bins_watch_;  // S6's point queries and the points they visit
   AdvancingFront<2> front_;
+  double built_area_ = 0.0;
   std::vector<double> target_;  // the target size (eq. 15) of each front item, by item index
   // The triangles this front built (indices into s_.triangles), by point: the back-off finds
   // the triangles near a side through them.
@@ -696,6 +699,7 @@ bool PatchFront::face_crosses_front(Index f, const Side& v, Index p,
 }
 
 void PatchFront::add_triangle(const Triangle& t) {
+  built_area_ += triangle_area(s_.points[t[0]], s_.points[t[1]], s_.points[t[2]]);
   s_.add_triangle(t, patch_);
   incidence_.add(s_.triangles, static_cast<Index>(s_.triangles.size() - 1));
 }
@@ -1037,6 +1041,7 @@ void PatchFront::open_cavity(const std::vector<Index>& cavity) {
   edges_.clear();
   for (const Index t : cavity) {
     const Triangle k = s_.triangles[t];
+    built_area_ -= triangle_area(s_.points[k[0]], s_.points[k[1]], s_.points[k[2]]);
     incidence_.remove(s_.triangles, t);
     s_.triangles[t][0] = kInvalidIndex;
     for (int e = 0; e < 3; ++e) {
@@ -1258,6 +1263,9 @@ absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Si
       return pf.stuck(*f, "too many steps", triangles_before, back_offs);
     if (built > params.max_triangles)
       return pf.stuck(*f, "far more triangles than the size asks", triangles_before, back_offs);
+    if (pf.built_area() > params.max_area)
+      return pf.stuck(*f, "its triangles cover more than the patch: the front has run over its own triangles",
+                      triangles_before, back_offs);
     if (steps % 256 == 0 && progress.cancelled())
       return absl::CancelledError("surface meshing cancelled");
     if (steps % 1024 == 0) pf.adapt_bins_when_crowded();

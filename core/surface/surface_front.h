@@ -158,6 +158,10 @@ struct PatchFrontParams {
   // its size field asks (about its area over the area of a triangle of the local size) is
   // going wrong, wherever it is, and would otherwise never stop.
   std::int64_t max_triangles = std::numeric_limits<std::int64_t>::max();
+  // ... or once its triangles cover more than this area: a cover of the patch has about its
+  // input faces' area, and a front that runs over its own triangles (across a ridge that ends
+  // inside the patch, where the patch lies on both sides) piles layer on layer.
+  double max_area = std::numeric_limits<double>::infinity();
   // A side that cannot be closed makes the front back off (re-open the triangles around it) at
   // most this many times in the patch, and at most 6 times in the same region
   // (kMaxBackOffsAtPlace in surface_front.cc; not in the paper).

@@ -64,16 +64,16 @@ TEST(DirtyInput, AStopOnAFoldedInputNamesTheFold) {
 }
 
 // Where a front stops on a clean input, the message says what the input looks like there, as the
-// volume front's does: libcgal-demo's triceratops at its mean edge stops among faces that turn
-// by 58° (over the ridge angle: a crease no line follows) where the curvature bound asks for
-// about a ninth of the size. The patch is then re-triangulated from its input
-// (patch_from_input.h) and the message is the report's (a warning of the server's).
+// volume front's does: libcgal-demo's dino at its mean edge stops among faces that turn by 107°
+// (over the ridge angle: a crease no line follows) where the curvature bound asks for 1/59 of
+// the size. The patch is then re-triangulated from its input (patch_from_input.h) and the
+// message is the report's (a warning of the server's). (The triceratops, which this test took
+// before, now stops where its front has run over its own triangles, wherever the front is then.)
 TEST(DirtyInput, AStopSaysWhatTheInputLooksLikeThere) {
-  const absl::StatusOr<SurfaceResult> result =
-      testing::mesh_corpus_at_mean_edge("cgal_triceratops.stl");
+  const absl::StatusOr<SurfaceResult> result = testing::mesh_corpus_at_mean_edge("cgal_dino.stl");
   ASSERT_TRUE(result.ok()) << result.status();
   ASSERT_FALSE(result->report.front_stops.empty())
-      << "the triceratops's fronts all close now: describe another stop here";
+      << "the dino's fronts all close now: describe another stop here";
   const std::string& message = result->report.front_stops[0];
   EXPECT_THAT(message, HasSubstr("got stuck"));
   EXPECT_THAT(message, HasSubstr("; the input's "));
