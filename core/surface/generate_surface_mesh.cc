@@ -915,13 +915,11 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
 
   const std::vector<Box> boxes = patch_boxes(*surface, *features);
   const std::vector<PatchEstimate> estimates = patch_estimates(s);
-  std::vector<double> expected(estimates.size());
-  for (std::size_t p = 0; p < estimates.size(); ++p) expected[p] = estimates[p].triangles;
   // The sizes attached to the geometry (curvature, gaps) can ask for far more triangles than
   // the server's estimate from the size field alone: refused here, before the front runs, as
   // the server refuses its own estimate.
   double expected_total = 0.0;
-  for (const double e : expected) expected_total += e;
+  for (const PatchEstimate& e : estimates) expected_total += e.triangles;
   if (expected_total > static_cast<double>(params.max_triangles))
     return absl::ResourceExhaustedError(absl::StrFormat(
         "the sizes attached to the surface (its curvature and the gaps between its lines, with "
@@ -934,14 +932,15 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
     const PatchId patch{static_cast<Index>(p)};
     const double per_sides =
         kTrianglesPerInitialSide * static_cast<double>(patch_sides[p].size()) + 1000.0;
+    const PatchEstimate& expected = estimates[p];
     const auto max_from_input =
-        static_cast<std::int64_t>(kMaxTrianglesOverExpected * expected[p] + per_sides);
+        static_cast<std::int64_t>(kMaxTrianglesOverExpected * expected.triangles + per_sides);
     PatchFrontParams front_params;
     front_params.max_triangles =
-        static_cast<std::int64_t>(kMaxFrontTrianglesOverExpected * expected[p] + per_sides);
+        static_cast<std::int64_t>(kMaxFrontTrianglesOverExpected * expected.triangles + per_sides);
     front_params.max_back_offs =
-        kMinBackOffs + static_cast<std::int64_t>(expected[p] / kExpectedTrianglesPerBackOff);
-    front_params.max_area = kMaxFrontAreaOverPatch * estimates[p].area;
+        kMinBackOffs + static_cast<std::int64_t>(expected.triangles / kExpectedTrianglesPerBackOff);
+    front_params.max_area = kMaxFrontAreaOverPatch * expected.area;
     const std::size_t triangles_before = s.triangles.size();
     const Index points_before = static_cast<Index>(s.points.size());
     absl::Status st = params.every_patch_from_input
