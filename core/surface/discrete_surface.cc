@@ -161,6 +161,19 @@ std::span<const Index> DiscreteSurface::faces_at(Index vertex) const {
       .subspan(face_offsets_[vertex], face_offsets_[vertex + 1] - face_offsets_[vertex]);
 }
 
+void DiscreteSurface::faces_at_edge(Index a, Index b, std::vector<Index>& forward,
+                                    std::vector<Index>& backward) const {
+  forward.clear();
+  backward.clear();
+  for (const Index f : faces_at(a)) {
+    const Triangle& t = triangles_[f];
+    for (int k = 0; k < 3; ++k) {
+      if (t[k] == a && t[(k + 1) % 3] == b) forward.push_back(f);
+      if (t[k] == b && t[(k + 1) % 3] == a) backward.push_back(f);
+    }
+  }
+}
+
 double DiscreteSurface::squared_distance_to(const Point& x, FaceId f, Point& closest,
                                             Located& at) const {
   ++at.evaluations;

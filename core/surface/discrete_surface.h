@@ -111,6 +111,10 @@ class DiscreteSurface {
   const EdgeNeighbours& neighbours() const { return neighbours_; }
   // The faces using point `vertex` (0 <= vertex < N), ascending.
   std::span<const Index> faces_at(Index vertex) const;
+  // The faces at edge (a, b): `forward` those traversing it a→b (the edge has them on its
+  // left), `backward` those traversing it b→a; each ascending.
+  void faces_at_edge(Index a, Index b, std::vector<Index>& forward,
+                     std::vector<Index>& backward) const;
 
   // S3: the unit normal of face f, (b-a)x(c-a) normalised; zero for a degenerate face.
   const Point& normal(FaceId f) const { return normals_[index_of(f)]; }

@@ -125,21 +125,6 @@ absl::StatusOr<Mesh> clean_surface_input(const Mesh& input, SurfaceReport& repor
   return out;
 }
 
-// The input faces at edge (a, b): `forward` those traversing it a→b (the edge has them on its
-// left), `backward` those traversing it b→a.
-void faces_at_edge(const DiscreteSurface& surface, Index a, Index b,
-                   std::vector<Index>& forward, std::vector<Index>& backward) {
-  forward.clear();
-  backward.clear();
-  for (const Index f : surface.faces_at(a)) {
-    const Triangle& t = surface.triangles()[f];
-    for (int k = 0; k < 3; ++k) {
-      if (t[k] == a && t[(k + 1) % 3] == b) forward.push_back(f);
-      if (t[k] == b && t[(k + 1) % 3] == a) backward.push_back(f);
-    }
-  }
-}
-
 // For every line, whether another open line runs between the same two corners and this one has
 // more than one segment. Split into one side each, two such lines would give the same chord: a
 // patch between them (a lens, or one input face with ridges on all three edges of which two
@@ -209,7 +194,7 @@ absl::Status sides_along_lines(SurfaceMeshState& s, const SizeField& split_sizes
     for (std::size_t i = 1; i < last; ++i) {
       const Index seg = split->segment[i];
       const Index a = line.vertices[seg], b = line.vertices[seg + 1];
-      faces_at_edge(surface, a, b, forward, backward);
+      surface.faces_at_edge(a, b, forward, backward);
       const Index host = !forward.empty() ? forward[0] : backward[0];
       ids[i] = s.add_point(split->points[i], s.field_size(split->points[i]), FaceId{host}, a);
     }
@@ -223,7 +208,7 @@ absl::Status sides_along_lines(SurfaceMeshState& s, const SizeField& split_sizes
     }
     // Each patch along the line gets its sides with the patch on their left: forward where a
     // face of the patch traverses the line's first segment the line's way.
-    faces_at_edge(surface, line.vertices[0], line.vertices[1], forward, backward);
+    surface.faces_at_edge(line.vertices[0], line.vertices[1], forward, backward);
     for (const PatchId patch : line.patches) {
       const auto in = [&](const std::vector<Index>& faces) {
         return std::any_of(faces.begin(), faces.end(),

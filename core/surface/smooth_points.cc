@@ -139,6 +139,7 @@ absl::StatusOr<std::int64_t> smooth_points(SurfaceMeshState& s, const SmoothPara
   const std::vector<LineSlot> slots =
       params.slide_line_points ? line_slots(s) : std::vector<LineSlot>(s.points.size());
   const LineArcs arcs(s);
+  std::vector<Index> forward, backward;  // a slid point's segment's faces
   // A point is looked at in a pass when it or a neighbour moved in the one before.
   std::vector<char> due(s.points.size(), 1), next(s.points.size(), 0);
   std::int64_t moves = 0;
@@ -147,7 +148,7 @@ absl::StatusOr<std::int64_t> smooth_points(SurfaceMeshState& s, const SmoothPara
     for (Index q = 0; q < static_cast<Index>(s.points.size()); ++q) {
       if (cancel.due()) return absl::CancelledError("surface meshing cancelled");
       if (!due[q]) continue;
-      const LineSlot slot = q < static_cast<Index>(slots.size()) ? slots[q] : LineSlot{};
+      const LineSlot slot = slots[q];
       const bool on_line = s.anchor[q] != kInvalidIndex;
       if (on_line && slot.line == kInvalidIndex) continue;  // a corner
       fan.clear();
@@ -199,10 +200,12 @@ absl::StatusOr<std::int64_t> smooth_points(SurfaceMeshState& s, const SmoothPara
           best = x;
         }
         if (best_segment == kInvalidIndex) continue;
+        // Host and anchor as the line's split gives them (sides_along_lines): a face at the
+        // segment the point lies on, and the segment's first vertex.
         const std::vector<Index>& vertices = s.features.lines[slot.line].vertices;
         const Index a = vertices[best_segment], b = vertices[best_segment + 1];
-        for (const Index f : s.surface.faces_at(a))
-          if (has_corner(s.surface.triangle(FaceId{f}), b)) s.host[q] = FaceId{f};
+        s.surface.faces_at_edge(a, b, forward, backward);
+        s.host[q] = FaceId{!forward.empty() ? forward[0] : backward[0]};
         s.anchor[q] = a;
         along.segment[slot.i] = best_segment;
         s.points[q] = best;
