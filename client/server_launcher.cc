@@ -150,26 +150,25 @@ absl::Status PrivateServer::wait_until_serving() {
   const std::unique_ptr<grpc::health::v1::Health::Stub> health =
       grpc::health::v1::Health::NewStub(channel);
   const Clock::time_point give_up = Clock::now() + kStartTimeout;
-  const auto ended = [this](absl::Status& why) {
+  // UNAVAILABLE once the server has exited, OK while it runs.
+  const auto still_running = [this]() -> absl::Status {
     int wait_status = 0;
-    if (waitpid(pid_, &wait_status, WNOHANG) != pid_) return false;
+    if (waitpid(pid_, &wait_status, WNOHANG) != pid_) return absl::OkStatus();
     pid_ = -1;
-    why = unavailable(
+    return unavailable(
         absl::StrCat("it ended (", describe_exit(wait_status), ") before serving", log_tail()));
-    return true;
   };
-  absl::Status why;
   // The socket appears when the server listens: waiting for it first makes the health check's
   // first connection succeed, where a refused one would wait out the channel's reconnect
   // backoff (10 to 100 ms) before the next try.
   const std::string socket = absl::StrCat(dir_, "/", kSocketName);
   std::error_code no_socket;
   while (Clock::now() < give_up && !std::filesystem::exists(socket, no_socket)) {
-    if (ended(why)) return why;
+    if (absl::Status running = still_running(); !running.ok()) return running;
     std::this_thread::sleep_for(kSocketPollInterval);
   }
   while (Clock::now() < give_up) {
-    if (ended(why)) return why;
+    if (absl::Status running = still_running(); !running.ok()) return running;
     grpc::ClientContext context;
     context.set_wait_for_ready(true);
     context.set_deadline(std::chrono::system_clock::now() + std::chrono::milliseconds(250));
