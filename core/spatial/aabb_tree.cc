@@ -18,17 +18,6 @@ Point box_centre(const Box& box) {
   return c;
 }
 
-// The axis (0, 1, 2) along which the centres of items [begin, end) spread the most.
-int widest_axis(const std::vector<AabbTree::BuildItem>& items, Index begin, Index end) {
-  Box extent = empty_box();
-  for (Index i = begin; i < end; ++i) enclose(extent, items[i].centre);
-  int axis = 0;
-  for (int k = 1; k < 3; ++k) {
-    if (extent.hi[k] - extent.lo[k] > extent.hi[axis] - extent.lo[axis]) axis = k;
-  }
-  return axis;
-}
-
 // Largest extent of a box over its three axes: the larger node is descended first.
 double box_size(const Box& box) {
   return std::max({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], box.hi[2] - box.lo[2]});
@@ -61,6 +50,16 @@ AabbTree::AabbTree(std::vector<Box> boxes, int leaf_size, CancelCheck* cancel)
   build(0, static_cast<Index>(items.size()), items, std::max(leaf_size, 1), cancel);
   order_.resize(items.size());
   for (std::size_t i = 0; i < items.size(); ++i) order_[i] = items[i].id;
+}
+
+int AabbTree::widest_axis(const std::vector<BuildItem>& items, Index begin, Index end) {
+  Box extent = empty_box();
+  for (Index i = begin; i < end; ++i) enclose(extent, items[i].centre);
+  int axis = 0;
+  for (int k = 1; k < 3; ++k) {
+    if (extent.hi[k] - extent.lo[k] > extent.hi[axis] - extent.lo[axis]) axis = k;
+  }
+  return axis;
 }
 
 // Appends the subtree over items[begin, end) in pre-order and returns its root's index.

@@ -81,14 +81,15 @@ class AabbTree {
   // bound, nearer child first), so a query near the objects costs about O(log n) calls.
   Nearest nearest(const Point& x, absl::FunctionRef<double(Index)> squared_distance) const;
 
- public:
+ private:
   // A box's centre and id, as the construction moves them.
   struct BuildItem {
     Point centre;
     Index id;
   };
+  // The axis (0, 1, 2) along which the centres of items [begin, end) spread the most.
+  static int widest_axis(const std::vector<BuildItem>& items, Index begin, Index end);
 
- private:
   // A leaf has count > 0 and holds ids order_[first, first + count); an inner node has
   // count == 0, its left child at (own index + 1) and its right child at `right`.
   struct Node {
