@@ -119,7 +119,6 @@ TEST(SliverSteps, AStepTheElementsCanSeeStays) {
   EXPECT_GT(repair_sliver_steps(m, UniformSize(1.0), 30.0).count, 0);
 }
 
-
 // gmsh_lever at its mean edge (11.76): two halves of a cylinder of radius 11, tessellated each
 // on its own, are joined by a strip 0.001-0.33 high and 60 long in the plane y = -19.2356; its
 // re-triangulation was about 500 of the 590 triangles under 30 degrees (97.9% at 30 and more).
