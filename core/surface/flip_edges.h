@@ -1,9 +1,10 @@
 // Edge flips inside the patches of a re-triangulated surface (not in the paper, whose front
 // places every point where it stays; the classic clean-up after a surface front, as netgen's
 // and gmsh's surface meshers do): the diagonal of two triangles of one patch is swapped where
-// that raises their smaller minimum angle, the quadrilateral is convex in its mean plane and
-// both new triangles stay within 30° of it. Points never move, and no edge on a discrete line
-// is flipped, so every vertex stays on the input and every ridge and corner stays as meshed.
+// that raises their smaller minimum angle, the quadrilateral is convex in its mean plane,
+// both new triangles stay within 30° of it and neither meets another triangle of the surface
+// beyond the corners they share (exact predicates). Points never move, and no edge on a discrete
+// line is flipped, so every vertex stays on the input and every ridge and corner stays as meshed.
 #pragma once
 
 #include <cstdint>
@@ -26,7 +27,8 @@ struct FlipParams {
 // Flips edges of `triangles` (M×3 over `points`, oriented consistently) between triangles of the
 // same `patch` (M values) that are not in `fixed` (edges as (min, max) point pairs). Returns the
 // number of flips, or CANCELLED soon after progress.cancelled() turns true (`triangles` then
-// hold the flips made so far: still a valid triangulation). O(passes · M log M).
+// hold the flips made so far: still a valid triangulation). O(passes · M log M), with bins of
+// the triangles' boxes for the crossing test.
 absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
                                         std::vector<Triangle>& triangles,
                                         const std::vector<Index>& patch,
