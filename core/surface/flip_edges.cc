@@ -111,8 +111,9 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
   for (const Point& x : points) enclose(domain, x);
   double total_edge = 0.0;
   for (const Triangle& t : triangles) total_edge += norm(sub(points[t[1]], points[t[0]]));
-  const double cell =
-      triangles.empty() ? 1.0 : std::max(total_edge / static_cast<double>(triangles.size()), 1e-300);
+  const double mean_edge =
+      total_edge / static_cast<double>(std::max<std::size_t>(triangles.size(), 1));
+  const double cell = mean_edge > 0.0 ? mean_edge : 1.0;
   FrontBins boxes(domain, cell, 2 * static_cast<std::int64_t>(triangles.size()) + 4096);
   for (Index t = 0; t < static_cast<Index>(triangles.size()); ++t) {
     if (cancel.due()) return absl::CancelledError("edge flips: cancelled");
