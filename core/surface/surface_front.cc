@@ -718,11 +718,12 @@ void PatchFront::add_face(Index f, const Side& v, Index p) {
 
 // Not in the paper (as the volume front's pocket fill, F11): where the last sides of a region
 // cannot take a new point, the hole they bound is cut into ears: the best-shaped ear (largest
-// smallest angle) first, each checked in the hole's mean plane with exact tests. Up to 64 sides
-// (O(n^3) tests at most): a ledge narrower than the size, its lines split finer until their
-// sides no longer cross (crossing_sides), leaves a strip of ~60 sides that no new point fits
-// (gmsh_lever at its mean edge; 32 left it stuck).
-constexpr std::size_t kMaxHoleSides = 64;
+// smallest angle) first, each checked in the hole's mean plane with exact tests. Up to 256 sides
+// (O(n^3) tests at most, ~0.2 s): a ledge narrower than the size, its lines split finer until
+// their sides no longer cross (crossing_sides), leaves a strip of ~60 sides that no new point fits
+// (gmsh_lever at its mean edge; 32 left it stuck); at a quarter of its mean edge, its lines split
+// at the ledge's own size (the smaller of their two sides', curvature_sizes.h), over 64.
+constexpr std::size_t kMaxHoleSides = 256;
 // A corner of the hole this near an ear's diagonal, as a fraction of the diagonal's length, lies
 // on it (a rounding's width; not in the paper).
 constexpr double kOnDiagonal = 1e-9;
