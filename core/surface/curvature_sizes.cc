@@ -460,6 +460,9 @@ namespace {
 constexpr double kFacesPerCell = 2.0;
 constexpr std::int64_t kMaxFaceCells = 64;
 constexpr std::int64_t kMaxReachCells = 64;
+// A closest point whose barycentric coordinate opposite a corner is at most this lies on the
+// edge opposite it (a line's points are computed on the input's edges, to rounding).
+constexpr double kOnEdgeBarycentric = 1e-9;
 
 std::int64_t cell_count(const std::array<std::array<std::int64_t, 2>, 3>& r) {
   return (r[0][1] - r[0][0] + 1) * (r[1][1] - r[1][0] + 1) * (r[2][1] - r[2][0] + 1);
@@ -589,7 +592,46 @@ double CurvatureLimitedSize::size_at(const Point& x) const {
       base <= smallest_near(local, surface_.squared_distance_to_face(local, g)))
     return base;
   const Located nearest = surface_.nearest_face(local);
-  return std::min(base, interpolated(nearest.face, nearest.closest));
+  return std::min(base, at_closest(nearest));
+}
+
+double CurvatureLimitedSize::at_closest(const Located& nearest) const {
+  const double own = interpolated(nearest.face, nearest.closest);
+  const Triangle& t = surface_.triangle(nearest.face);
+  const std::vector<Point>& p = surface_.local_points();
+  const Point n = cross(sub(p[t[1]], p[t[0]]), sub(p[t[2]], p[t[0]]));
+  const double n2 = squared_norm(n);
+  if (!(n2 > 0.0)) return own;
+  // The corners whose barycentric coordinate at the closest point is (about) zero: the point
+  // lies on the edge opposite one, or at the corner opposite two.
+  int on = 0, off_corner = -1, on_corner = -1;
+  for (int k = 0; k < 3; ++k) {
+    const double lambda =
+        dot(cross(sub(p[t[(k + 2) % 3]], p[t[(k + 1) % 3]]),
+                  sub(nearest.closest, p[t[(k + 1) % 3]])),
+            n) /
+        n2;
+    if (lambda <= kOnEdgeBarycentric) {
+      ++on, on_corner = k;
+    } else {
+      off_corner = k;
+    }
+  }
+  if (on == 0 || on == 3) return own;
+  double smallest = own;
+  if (on == 2) {  // at corner t[off_corner]: every face there
+    for (const Index f : surface_.faces_at(t[off_corner]))
+      smallest = std::min(smallest, interpolated(FaceId{f}, nearest.closest));
+    return smallest;
+  }
+  // On edge (a, b), opposite corner t[on_corner]: the faces at a that have b too.
+  const Index a = t[(on_corner + 1) % 3], b = t[(on_corner + 2) % 3];
+  for (const Index f : surface_.faces_at(a)) {
+    const Triangle& g = surface_.triangle(FaceId{f});
+    if (g[0] == b || g[1] == b || g[2] == b)
+      smallest = std::min(smallest, interpolated(FaceId{f}, nearest.closest));
+  }
+  return smallest;
 }
 
 }  // namespace afmesh

@@ -248,9 +248,39 @@ double interpolated_at(const DiscreteSurface& surface, const std::vector<double>
   return std::max(smallest, (1.0 - u - v) * d0 + u * d1 + v * d2);
 }
 
+// interpolated_at over every face at the edge or corner of at.face that at.closest lies on (all
+// as near), the smallest; at.face's alone when it lies inside the face.
+double smallest_at_closest(const DiscreteSurface& surface, const std::vector<double>& sizes,
+                           const Located& at) {
+  const Triangle& t = surface.triangle(at.face);
+  const std::vector<Point>& p = surface.local_points();
+  const Point e1 = sub(p[t[1]], p[t[0]]), e2 = sub(p[t[2]], p[t[0]]), r = sub(at.closest, p[t[0]]);
+  const double a = dot(e1, e1), b = dot(e1, e2), c = dot(e2, e2);
+  const double det = a * c - b * b;
+  double own = interpolated_at(surface, sizes, at);
+  if (!(det > 0.0)) return own;
+  const double u = (c * dot(r, e1) - b * dot(r, e2)) / det;
+  const double v = (a * dot(r, e2) - b * dot(r, e1)) / det;
+  const double lambda[3] = {1.0 - u - v, u, v};
+  std::vector<Index> on;  // the corners the point lies at or between
+  for (int k = 0; k < 3; ++k)
+    if (lambda[k] > 1e-9) on.push_back(t[k]);
+  if (on.size() == 3) return own;
+  for (const Index f : surface.faces_at(on[0])) {
+    const Triangle& g = surface.triangle(FaceId{f});
+    const bool has_all = std::all_of(on.begin(), on.end(), [&](Index q) {
+      return g[0] == q || g[1] == q || g[2] == q;
+    });
+    if (has_all)
+      own = std::min(own, interpolated_at(surface, sizes, {FaceId{f}, at.closest, 0.0}));
+  }
+  return own;
+}
+
 // CurvatureLimitedSize skips the nearest-face search where its grid shows that no face that can be
 // nearest asks for less than the base size; every answer must still be min(base, the corner sizes
-// of the nearest face interpolated at its closest point) (to rounding). Random sizes at the points of a noisy
+// of the nearest face interpolated at its closest point, the smallest of the faces there where
+// that point lies on an edge or corner) (to rounding). Random sizes at the points of a noisy
 // sphere (faces of even shape) and of a cylinder of slivers (whose balls the grid keeps apart),
 // on one side of each, asked at points on, near, inside and far outside the surface.
 TEST(CurvatureSizes, TheLimitedSizeIsTheNearestFacesEverywhere) {
@@ -283,7 +313,7 @@ TEST(CurvatureSizes, TheLimitedSizeIsTheNearestFacesEverywhere) {
       }
       const Point global = surface.to_global(x);
       const Located nearest = surface.nearest_face(surface.to_local(global));
-      const double corners = interpolated_at(surface, point_sizes, nearest);
+      const double corners = smallest_at_closest(surface, point_sizes, nearest);
       const double expected = std::min(1.0, corners);
       ASSERT_NEAR(limited.size_at(global), expected, 1e-12 * expected) << "point " << i;
       ++asked;
@@ -322,6 +352,56 @@ TEST(CurvatureSizes, ASizeGrowsAwayFromItsPointInsideALongFace) {
     const Point middle{up[0], up[1], 1.0};
     EXPECT_EQ(limited.size_at(middle), 0.1) << "strip " << j;
   }
+}
+
+// A point on an input edge (as a line's points are) is as near to both faces there, and takes
+// the smaller of their sizes; so does a point at a corner. Two faces in the plane z = 0 share
+// the edge (0, 0, 0)-(1, 0, 0): (A, B, C) with C = (0.5, 1, 0) held at 0.1 (a gap: the face
+// holds its smallest corner) and (B, A, D) with D = (0.5, -1, 0), whose corners all have 1 and
+// which interpolates them. On the edge and at A and B the size is 0.1, from either face
+// order (the tree's tie between the faces picks one of them, the held face or not); inside
+// (B, A, D) it is 1. netgen_part1's line beside a strip was split at the strip's face's size,
+// 9 times its other side's (the regression test of issue 11 below).
+TEST(CurvatureSizes, APointOnAnEdgeTakesTheSmallerSizeOfTheFacesThere) {
+  for (const bool held_first : {false, true}) {
+    Mesh mesh;
+    mesh.points = {{0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.5, 1.0, 0.0}, {0.5, -1.0, 0.0}};
+    mesh.triangles = held_first ? std::vector<Triangle>{{0, 1, 2}, {1, 0, 3}}
+                                : std::vector<Triangle>{{1, 0, 3}, {0, 1, 2}};
+    const testing::SurfaceModel model = testing::surface_model(mesh);
+    const DiscreteSurface& surface = model.surface;
+    ASSERT_EQ(surface.point_count(), 4);
+    std::vector<double> point_sizes(4, 1.0);
+    std::vector<bool> held(4, false);
+    for (Index v = 0; v < 4; ++v)
+      if (surface.to_global(surface.local_points()[v])[1] > 0.5) {
+        point_sizes[v] = 0.1;
+        held[v] = true;
+      }
+    const UniformSize base(10.0);
+    const CurvatureLimitedSize limited(base, surface, point_sizes, held);
+    for (const double x : {0.0, 0.2, 0.5, 0.9, 1.0})
+      for (const double z : {0.0, 1e-3, -0.2})  // on the edge, or nearest to it off the plane
+        EXPECT_EQ(limited.size_at({x, 0.0, z}), 0.1) << x << " " << z << " " << held_first;
+    EXPECT_EQ(limited.size_at({0.5, 0.5, 0.0}), 0.1);  // the held face
+    EXPECT_NEAR(limited.size_at({0.5, -0.5, 0.0}), 1.0, 1e-12);
+  }
+}
+
+// netgen_part1 at its mean edge with the deviation bound at 0.001 of the model: its line y =
+// 2.528, z = 3.333 runs between a flat patch and a strip 1 wide. The strip's input face holds
+// its smallest corner (0.77) and so does the flat patch's, whose held corner lies 2 from the
+// line (0.085); the line was split at the strip's size, the flat patch meshed at its own, and the
+// line's sides ended as caps: 99.37% at 30° or more, 19 triangles under 15° away from thinner
+// input. The line's points now take the smaller size of the faces at their edge.
+TEST(Regression, Issue11ALineTakesTheSmallerSizeOfTheFacesOnItsTwoSides) {
+  const absl::StatusOr<SurfaceResult> r = testing::mesh_corpus_at_mean_edge(
+      "netgen_part1.stl", [](SurfaceParams& params) { params.curvature_deviation = 0.001; });
+  ASSERT_TRUE(r.ok()) << r.status();
+  const testing::AngleCounts counts = testing::angle_counts(r->mesh);
+  EXPECT_GE(static_cast<double>(counts.at_least_30), 0.99 * r->mesh.triangles.size());
+  EXPECT_EQ(counts.under_15, r->report.thin_triangles_at_thinner_input);
+  EXPECT_LE(r->report.hausdorff, 0.001 * r->report.model_size);
 }
 
 }  // namespace
