@@ -350,10 +350,13 @@ absl::StatusOr<std::vector<double>> curvature_point_sizes(const DiscreteSurface&
                                                           const SurfaceFeatures& features,
                                                           double alpha_p_deg, double deviation,
                                                           const SizeField& base,
-                                                          Progress& progress) {
+                                                          Progress& progress,
+                                                          std::vector<double>* face_sizes) {
   const std::vector<Point>& p = surface.local_points();
   const std::vector<Triangle>& t = surface.triangles();
   std::vector<double> size(p.size(), std::numeric_limits<double>::infinity());
+  if (face_sizes != nullptr)
+    face_sizes->assign(t.size(), std::numeric_limits<double>::infinity());
   absl::flat_hash_set<std::pair<Index, Index>> line_edges;
   for (const DiscreteLine& line : features.lines)
     for (std::size_t i = 0; i + 1 < line.vertices.size(); ++i)
@@ -392,6 +395,10 @@ absl::StatusOr<std::vector<double>> curvature_point_sizes(const DiscreteSurface&
           [&](double rho) { return disks.size_across(f, k, g, rho); });
       size[a] = std::min(size[a], l_p);  // eq. 22
       size[b] = std::min(size[b], l_p);
+      if (face_sizes != nullptr) {
+        (*face_sizes)[f] = std::min((*face_sizes)[f], l_p);
+        (*face_sizes)[g] = std::min((*face_sizes)[g], l_p);
+      }
     }
   }
   // The lines' own turns (LineTurns; not in the paper), at their vertices, on lines at least
@@ -472,11 +479,13 @@ std::int64_t cell_count(const std::array<std::array<std::int64_t, 2>, 3>& r) {
 
 CurvatureLimitedSize::CurvatureLimitedSize(const SizeField& base, const DiscreteSurface& surface,
                                            std::vector<double> point_sizes,
-                                           std::vector<bool> held)
+                                           std::vector<bool> held,
+                                           std::vector<double> face_caps)
     : base_(base),
       surface_(surface),
       point_sizes_(std::move(point_sizes)),
       held_(std::move(held)),
+      face_caps_(std::move(face_caps)),
       smallest_(std::accumulate(point_sizes_.begin(), point_sizes_.end(),
                                 std::numeric_limits<double>::infinity(),
                                 [](double a, double b) { return std::min(a, b); })) {
@@ -578,7 +587,10 @@ double CurvatureLimitedSize::interpolated(FaceId face, const Point& y) const {
     weighted += lambda * d[k];
     total += lambda;
   }
-  return total > 0.0 ? std::max(smallest, weighted / total) : smallest;
+  if (!(total > 0.0)) return smallest;
+  const double cap = face_caps_.empty() ? std::numeric_limits<double>::infinity()
+                                        : face_caps_[index_of(face)];
+  return std::max(smallest, std::min(cap, weighted / total));
 }
 
 double CurvatureLimitedSize::size_at(const Point& x) const {

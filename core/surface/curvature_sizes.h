@@ -73,12 +73,13 @@ namespace afmesh {
 // (epsilon, in the units of the points) > 0, or 0: no chord bound; `base` is the size in force
 // without the curvature (the largest scale at which a turn is read). CANCELLED soon after
 // progress.cancelled() turns true: it is looked at every few hundred faces and every line (a
-// 1M-face scan asked for a coarse size spends tens of seconds here).
-absl::StatusOr<std::vector<double>> curvature_point_sizes(const DiscreteSurface& surface,
-                                                          const SurfaceFeatures& features,
-                                                          double alpha_p_deg, double deviation,
-                                                          const SizeField& base,
-                                                          Progress& progress = no_progress());
+// 1M-face scan asked for a coarse size spends tens of seconds here). With `face_sizes`, it also
+// gets for every input face (M values) the smallest of the sizes eq. 21–22 and the bounds above
+// gave its edges (+infinity for none), not graded: CurvatureLimitedSize's face caps.
+absl::StatusOr<std::vector<double>> curvature_point_sizes(
+    const DiscreteSurface& surface, const SurfaceFeatures& features, double alpha_p_deg,
+    double deviation, const SizeField& base, Progress& progress = no_progress(),
+    std::vector<double>* face_sizes = nullptr);
 
 // Grades point sizes (N values, +infinity for none) in place: each becomes the smallest
 // delta_i + (c_i - 1) |x_j - x_i| over paths along the surface's edges (Dijkstra, O(N log N)).
@@ -103,6 +104,13 @@ absl::Status grade_point_sizes(const DiscreteSurface& surface, double growth,
 // from its sides: netgen_part1's line along a strip 1 wide was split at 0.77 from the strip's
 // held face while the flat patch beside it, whose face holds a corner 2 away, was meshed at
 // 0.085, and the long sides ended as caps (19 triangles under 15° at a deviation of 0.001).
+// With `face_caps` (M values, or empty: none), an interpolating face gives no more than its cap
+// (ours, not the paper's): generate_surface_mesh passes the sizes the deviation bound gave each
+// face's edges (curvature_point_sizes' face_sizes), so that the size a crease asks holds over
+// both faces of its edge and not only at the edge's two ends. Interpolated, it grew towards
+// the faces' third corners, and an element crossing the crease there cut it by more than the
+// bound: on cgal_homer at a deviation of 0.001 of its diagonal, an input vertex on a bump whose
+// faces turn by 35° lay 1.02e-3 of the diagonal under the triangle over it.
 // Where base(x) is at or below the smallest delta_i of all, the nearest face cannot lower it
 // and is not searched for: the search (an AABB tree query, ~4000 instructions) is the surface
 // front's costliest lookup, and at sizes well below the input's curvature radii it never binds.
@@ -114,11 +122,13 @@ class CurvatureLimitedSize final : public SizeField {
  public:
   // held: empty, or a flag per point (see above).
   CurvatureLimitedSize(const SizeField& base, const DiscreteSurface& surface,
-                       std::vector<double> point_sizes, std::vector<bool> held = {});
+                       std::vector<double> point_sizes, std::vector<bool> held = {},
+                       std::vector<double> face_caps = {});
   double size_at(const Point& x) const override;
 
  private:
-  // The corners' delta_i of `face` interpolated linearly at y, a point of the face (local frame).
+  // The corners' delta_i of `face` interpolated linearly at y, a point of the face (local
+  // frame), no more than the face's cap.
   double interpolated(FaceId face, const Point& y) const;
   // interpolated() at nearest.closest, the smallest over the faces at the edge or corner of
   // nearest.face it lies on, if any.
@@ -141,6 +151,7 @@ class CurvatureLimitedSize final : public SizeField {
   const DiscreteSurface& surface_;
   std::vector<double> point_sizes_;
   std::vector<bool> held_;
+  std::vector<double> face_caps_;  // per input face, or empty
   double smallest_;  // the smallest of point_sizes_ (+infinity when empty)
   // A dense grid over the surface's bounding box (local frame), about one cell per two faces:
   // per cell, the smallest delta_i of the corners of the faces whose ball_box meets it and of

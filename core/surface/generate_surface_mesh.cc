@@ -855,10 +855,14 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
   std::unique_ptr<CurvatureLimitedSize> limited;
   std::vector<double> point_sizes(surface->local_points().size(),
                                   std::numeric_limits<double>::infinity());
+  // With the deviation bound, the sizes it gives the input's edges hold over their faces
+  // (CurvatureLimitedSize's face caps).
+  std::vector<double> face_caps;
   if (params.curvature_angle_deg > 0 || params.curvature_deviation > 0) {
     absl::StatusOr<std::vector<double>> curved = curvature_point_sizes(
         *surface, *features, params.curvature_angle_deg,
-        params.curvature_deviation * surface->size() / kDeviationMargin, **field, progress);
+        params.curvature_deviation * surface->size() / kDeviationMargin, **field, progress,
+        params.curvature_deviation > 0 ? &face_caps : nullptr);
     if (!curved.ok()) return curved.status();
     point_sizes = *std::move(curved);
   }
@@ -883,7 +887,7 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
     if (absl::Status st = grade_point_sizes(*surface, growth, point_sizes, progress); !st.ok())
       return st;
     limited = std::make_unique<CurvatureLimitedSize>(**field, *surface, std::move(point_sizes),
-                                                     std::move(at_gap));
+                                                     std::move(at_gap), std::move(face_caps));
     sizes = limited.get();
   }
   clock.lap("curvature");

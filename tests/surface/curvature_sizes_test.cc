@@ -404,5 +404,55 @@ TEST(Regression, Issue11ALineTakesTheSmallerSizeOfTheFacesOnItsTwoSides) {
   EXPECT_LE(r->report.hausdorff, 0.001 * r->report.model_size);
 }
 
+// Face caps: the sizes the deviation bound gives an edge hold over both its faces. A fold of two
+// faces turning by 40° across their one edge (ridge angle 60: no line there), with the chord
+// bound: each face's size is the edge's, which its two ends take too; inside either face, far
+// from the edge towards a third corner with no size of its own, the limited size is still the
+// edge's, where interpolation grew it to the base's.
+TEST(CurvatureSizes, TheSizeOfAnEdgeHoldsOverItsFacesWithFaceCaps) {
+  const double turn = 40.0 * std::numbers::pi / 180.0;
+  Mesh fold;
+  fold.points = {{0.0, 0.0, 0.0},
+                 {1.0, 0.0, 0.0},
+                 {0.5, 1.0, 0.0},
+                 {0.5, -std::cos(turn), std::sin(turn)}};
+  fold.triangles = {{0, 1, 2}, {1, 0, 3}};
+  FeatureParams feature_params;
+  feature_params.ridge_angle_deg = 60.0;
+  const testing::SurfaceModel model = testing::surface_model(fold, feature_params);
+  const DiscreteSurface& surface = model.surface;
+  const UniformSize base(10.0);
+  std::vector<double> face_sizes;
+  absl::StatusOr<std::vector<double>> sizes =
+      curvature_point_sizes(surface, model.features, 0.0, 0.001, base, no_progress(), &face_sizes);
+  ASSERT_TRUE(sizes.ok()) << sizes.status();
+  ASSERT_EQ(face_sizes.size(), 2u);
+  const double edge = face_sizes[0];
+  EXPECT_TRUE(std::isfinite(edge));  // (+infinity were the fold a line)
+  EXPECT_EQ(face_sizes[1], edge);
+  std::vector<double> corners = *sizes;
+  for (double& d : corners)
+    if (!std::isfinite(d)) d = 10.0;  // the third corners: the base size
+  const CurvatureLimitedSize capped(base, surface, corners, {}, face_sizes);
+  const CurvatureLimitedSize uncapped(base, surface, corners);
+  const Point inside_first{0.5, 0.8, 0.0};
+  const Point inside_second{0.5, -0.8 * std::cos(turn), 0.8 * std::sin(turn)};
+  for (const Point& x : {inside_first, inside_second}) {
+    EXPECT_NEAR(capped.size_at(x), edge, 1e-12 * edge);
+    EXPECT_GT(uncapped.size_at(x), 5.0 * edge);
+  }
+}
+
+// cgal_homer at its mean edge with the deviation bound at 0.001 of the model: an input vertex on
+// a bump whose faces turn by 35° lay 1.02e-3 of the diagonal under the triangle over it, the
+// kink bound of the bump's edges being interpolated towards the faces' far corners. With the
+// face caps it is within the bound, as every other valid corpus file is.
+TEST(Regression, Issue11TheDeviationBoundHoldsOnHomersBumps) {
+  const absl::StatusOr<SurfaceResult> r = testing::mesh_corpus_at_mean_edge(
+      "cgal_homer.stl", [](SurfaceParams& params) { params.curvature_deviation = 0.001; });
+  ASSERT_TRUE(r.ok()) << r.status();
+  EXPECT_LE(r->report.hausdorff, 0.001 * r->report.model_size);
+}
+
 }  // namespace
 }  // namespace afmesh

@@ -64,18 +64,18 @@ TEST(DirtyInput, AStopOnAFoldedInputNamesTheFold) {
 }
 
 // Where a front stops on a clean input, the message says what the input looks like there, as the
-// volume front's does: libcgal-demo's dino at its mean edge with the deviation bound at 0.001 of
-// the model stops among faces that turn by 49° (over the ridge angle: a crease no line follows)
-// where the curvature bound asks for 1/5.4 of the size. The patch is then re-triangulated from
+// volume front's does: libcgal-demo's hand at its mean edge with the deviation bound at 0.002 of
+// the model stops among faces that turn by 92° (over the ridge angle: a crease no line follows)
+// where the curvature bound asks for 1/4.4 of the size. The patch is then re-triangulated from
 // its input (patch_from_input.h) and the message is the report's (a warning of the server's).
-// (The triceratops, which this test took before, and then the dino without the deviation bound
-// now stop where their fronts have run over their own triangles, wherever the front is then.)
+// (The triceratops, then the dino, which this test took before, now stop elsewhere or where
+// their fronts have run over their own triangles with no size clause: wherever the front is.)
 TEST(DirtyInput, AStopSaysWhatTheInputLooksLikeThere) {
   const absl::StatusOr<SurfaceResult> result = testing::mesh_corpus_at_mean_edge(
-      "cgal_dino.stl", [](SurfaceParams& params) { params.curvature_deviation = 0.001; });
+      "cgal_hand.stl", [](SurfaceParams& params) { params.curvature_deviation = 0.002; });
   ASSERT_TRUE(result.ok()) << result.status();
   ASSERT_FALSE(result->report.front_stops.empty())
-      << "the dino's fronts all close now: describe another stop here";
+      << "the hand's fronts all close now: describe another stop here";
   const std::string& message = result->report.front_stops[0];
   EXPECT_THAT(message, HasSubstr("got stuck"));
   EXPECT_THAT(message, HasSubstr("; the input's "));

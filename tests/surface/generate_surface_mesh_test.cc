@@ -430,9 +430,10 @@ TEST(Regression, Issue11TheBunnyLiesWithinAThousandthOfItsDiagonal) {
 // at about its mean edge (diag / 30 = 0.006) with 0.001 of the diagonal asked, the sagitta of eq. 20's circle
 // let chords cut those creases, and the result lay 0.34% of the diagonal from the input (0.25%
 // with kDeviationMargin alone). The kink bound (2 epsilon / sin(alpha / 2) across a crease)
-// keeps it within the deviation (0.068%, 64,000 triangles).
+// keeps it within the deviation (0.068%, 64,000 triangles); held over both faces of each crease
+// (the face caps, curvature_sizes.h), 0.080% with 70,656.
 TEST(Regression, Issue11FacetsTurningUnderTheRidgeAngleKeepTheDeviation) {
-  expect_within_the_deviation("simbody_UR10_Wrist2.stl", 30.0, 70500);
+  expect_within_the_deviation("simbody_UR10_Wrist2.stl", 30.0, 75000);
 }
 
 // Back-offs keep the job deterministic: twice the same surface, with or without a Progress
