@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "core/front/front_bins.h"
 #include "core/geometry/intersect.h"
@@ -103,26 +104,27 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
   // flip is not flat where the surface curves, and its new diagonal passes on the other side of
   // the old one: across a wall thinner than that the new triangles cross the far side
   // (gmsh_t13_data with no curvature bound, a plate 2 thick meshed at 9.8, once its lines were
-  // split at the smaller size of their two sides: a quadrilateral that turned by 44°). Each new
-  // triangle is tested (exactly) against the triangles whose boxes meet its own, found through
-  // bins of the triangles' boxes (cells of the mean edge), kept as the flips change them. The
-  // bins cost about as much as the flips did before them (inv_5ch: 0.07 s more of 2.2 s).
-  Box domain = empty_box();
-  for (const Point& x : points) enclose(domain, x);
-  double total_edge = 0.0;
-  for (const Triangle& t : triangles) total_edge += norm(sub(points[t[1]], points[t[0]]));
-  const double mean_edge =
-      total_edge / static_cast<double>(std::max<std::size_t>(triangles.size(), 1));
-  const double cell = mean_edge > 0.0 ? mean_edge : 1.0;
-  FrontBins boxes(domain, cell, 2 * static_cast<std::int64_t>(triangles.size()) + 4096);
-  for (Index t = 0; t < static_cast<Index>(triangles.size()); ++t) {
-    if (cancel.due()) return absl::CancelledError("edge flips: cancelled");
-    boxes.insert_item(t, triangle_box(points, triangles[t]));
-  }
+  // split at the smaller size of their two sides: a quadrilateral that turned by 44°). With
+  // params.keep_uncrossed, each new triangle is tested (exactly) against the triangles whose
+  // boxes meet its own, found through bins of the triangles' boxes (an octree: sizes span orders
+  // of magnitude), made at the first flip and kept as the flips change the triangles.
+  std::optional<FrontBins> boxes;
+  const auto make_boxes = [&] {
+    Box domain = empty_box();
+    for (const Point& x : points) enclose(domain, x);
+    double total_edge = 0.0;
+    for (const Triangle& t : triangles) total_edge += norm(sub(points[t[1]], points[t[0]]));
+    const double mean_edge =
+        total_edge / static_cast<double>(std::max<std::size_t>(triangles.size(), 1));
+    boxes.emplace(domain, mean_edge > 0.0 ? mean_edge : 1.0, FrontBins::Adaptive{});
+    for (Index t = 0; t < static_cast<Index>(triangles.size()); ++t)
+      boxes->insert_item(t, triangle_box(points, triangles[t]));
+  };
   // Whether triangle `t` (a flip's new triangle) meets a triangle other than t1 and t2 (the
   // flip's pair) beyond the corners they share.
   const auto crosses_others = [&](const Triangle& t, Index t1, Index t2) {
-    return boxes.find_item_near(triangle_box(points, t), [&](Index u) {
+    if (!boxes) make_boxes();
+    return boxes->find_item_near(triangle_box(points, t), [&](Index u) {
       return u != t1 && u != t2 && triangles_intersect_improperly(points, t, triangles[u]);
     });
   };
@@ -177,12 +179,18 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
         if (dot(unit_normal(points[a], points[d], points[c]), n) < min_cosine ||
             dot(unit_normal(points[d], points[b], points[c]), n) < min_cosine)
           continue;
-        if (crosses_others({a, d, c}, t1, t2) || crosses_others({d, b, c}, t1, t2)) continue;
-        boxes.erase_item(t1, triangle_box(points, triangles[t1]));
-        boxes.erase_item(t2, triangle_box(points, triangles[t2]));
+        if (params.keep_uncrossed &&
+            (crosses_others({a, d, c}, t1, t2) || crosses_others({d, b, c}, t1, t2)))
+          continue;
+        if (boxes) {
+          boxes->erase_item(t1, triangle_box(points, triangles[t1]));
+          boxes->erase_item(t2, triangle_box(points, triangles[t2]));
+        }
         flip(triangles, neighbours, t1, k, t2, j);
-        boxes.insert_item(t1, triangle_box(points, triangles[t1]));
-        boxes.insert_item(t2, triangle_box(points, triangles[t2]));
+        if (boxes) {
+          boxes->insert_item(t1, triangle_box(points, triangles[t1]));
+          boxes->insert_item(t2, triangle_box(points, triangles[t2]));
+        }
         smallest_angle[t1] = first;  // (a, d, c)
         smallest_angle[t2] = second;  // (d, b, c)
         edges.erase(edge_key(a, b));

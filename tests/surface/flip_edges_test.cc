@@ -67,6 +67,11 @@ TEST(FlipEdges, AFlipThatWouldCrossAnotherPartOfTheSurfaceIsNotMade) {
   ASSERT_TRUE(flips.ok()) << flips.status();
   EXPECT_EQ(*flips, 0);
   EXPECT_EQ(roof.triangles, before);
+  // Untested (FlipParams::keep_uncrossed off: generate_surface_mesh's first try), it is made.
+  const absl::StatusOr<std::int64_t> untested =
+      flip_edges(roof.points, roof.triangles, roof.patch, {}, {.keep_uncrossed = false});
+  ASSERT_TRUE(untested.ok()) << untested.status();
+  EXPECT_EQ(*untested, 1);
 }
 
 }  // namespace

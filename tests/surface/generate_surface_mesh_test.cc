@@ -654,7 +654,9 @@ TEST(Regression, Issue11ASideAcrossANarrowStripClosesToTheLinesAtItsEnds) {
 // of its own, and two of its ridges meet at a point that is not a corner. Its two lines run
 // between the same two corners; split into one side each they gave the same chord, so the
 // patch was bounded by a side and its reverse and the front stopped ("no face"). A line that
-// shares its corners with another now gets two sides.
+// shares its corners with another now gets two sides. (Since line points take the smaller size
+// of their two sides, a flip across the plate, 2 thick at size 9.8, makes the result cross
+// itself; the job runs again with every flip tested, flip_edges.h, and succeeds.)
 TEST(Regression, Issue11TwoLinesBetweenTheSameCornersGiveDifferentSides) {
   const absl::StatusOr<SurfaceResult> r = mesh_corpus_at_mean_edge(
       "gmsh_t13_data.stl", [](SurfaceParams& params) { params.curvature_angle_deg = 0.0; });
