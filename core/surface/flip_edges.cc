@@ -112,11 +112,8 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
   const auto make_boxes = [&] {
     Box domain = empty_box();
     for (const Point& x : points) enclose(domain, x);
-    double total_edge = 0.0;
-    for (const Triangle& t : triangles) total_edge += norm(sub(points[t[1]], points[t[0]]));
-    const double mean_edge =
-        total_edge / static_cast<double>(std::max<std::size_t>(triangles.size(), 1));
-    boxes.emplace(domain, mean_edge > 0.0 ? mean_edge : 1.0, FrontBins::Adaptive{});
+    // An octree has no cell size of its own (FrontBins only reports the one given).
+    boxes.emplace(domain, 1.0, FrontBins::Adaptive{});
     for (Index t = 0; t < static_cast<Index>(triangles.size()); ++t)
       boxes->insert_item(t, triangle_box(points, triangles[t]));
   };
