@@ -174,6 +174,18 @@ void DiscreteSurface::faces_at_edge(Index a, Index b, std::vector<Index>& forwar
   }
 }
 
+FaceId DiscreteSurface::face_at_edge(Index a, Index b) const {
+  FaceId backward = kNoFace;
+  for (const Index f : faces_at(a)) {
+    const Triangle& t = triangles_[f];
+    for (int k = 0; k < 3; ++k) {
+      if (t[k] == a && t[(k + 1) % 3] == b) return FaceId{f};
+      if (t[k] == b && t[(k + 1) % 3] == a && backward == kNoFace) backward = FaceId{f};
+    }
+  }
+  return backward;
+}
+
 double DiscreteSurface::squared_distance_to(const Point& x, FaceId f, Point& closest,
                                             Located& at) const {
   ++at.evaluations;

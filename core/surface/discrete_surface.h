@@ -115,6 +115,10 @@ class DiscreteSurface {
   // left), `backward` those traversing it b→a; each ascending.
   void faces_at_edge(Index a, Index b, std::vector<Index>& forward,
                      std::vector<Index>& backward) const;
+  // The host face of a point on edge (a, b) (a line's point, say): the first face traversing it
+  // a→b, else the first traversing it b→a (faces_at_edge's forward[0], else backward[0]);
+  // kNoFace when no face has the edge.
+  FaceId face_at_edge(Index a, Index b) const;
 
   // S3: the unit normal of face f, (b-a)x(c-a) normalised; zero for a degenerate face.
   const Point& normal(FaceId f) const { return normals_[index_of(f)]; }

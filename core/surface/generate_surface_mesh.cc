@@ -194,9 +194,8 @@ absl::Status sides_along_lines(SurfaceMeshState& s, const SizeField& split_sizes
     for (std::size_t i = 1; i < last; ++i) {
       const Index seg = split->segment[i];
       const Index a = line.vertices[seg], b = line.vertices[seg + 1];
-      surface.faces_at_edge(a, b, forward, backward);
-      const Index host = !forward.empty() ? forward[0] : backward[0];
-      ids[i] = s.add_point(split->points[i], s.field_size(split->points[i]), FaceId{host}, a);
+      ids[i] = s.add_point(split->points[i], s.field_size(split->points[i]),
+                           surface.face_at_edge(a, b), a);
     }
     s.points_along_lines.push_back({ids, split->segment});
     // Attached sizes (eq. 15's delta_A): a line point carries the length of its sides.

@@ -139,7 +139,6 @@ absl::StatusOr<std::int64_t> smooth_points(SurfaceMeshState& s, const SmoothPara
   const std::vector<LineSlot> slots =
       params.slide_line_points ? line_slots(s) : std::vector<LineSlot>(s.points.size());
   const LineArcs arcs(s);
-  std::vector<Index> forward, backward;  // a slid point's segment's faces
   // A point is looked at in a pass when it or a neighbour moved in the one before.
   std::vector<char> due(s.points.size(), 1), next(s.points.size(), 0);
   std::int64_t moves = 0;
@@ -204,8 +203,7 @@ absl::StatusOr<std::int64_t> smooth_points(SurfaceMeshState& s, const SmoothPara
         // segment the point lies on, and the segment's first vertex.
         const std::vector<Index>& vertices = s.features.lines[slot.line].vertices;
         const Index a = vertices[best_segment], b = vertices[best_segment + 1];
-        s.surface.faces_at_edge(a, b, forward, backward);
-        s.host[q] = FaceId{!forward.empty() ? forward[0] : backward[0]};
+        s.host[q] = s.surface.face_at_edge(a, b);
         s.anchor[q] = a;
         along.segment[slot.i] = best_segment;
         s.points[q] = best;
