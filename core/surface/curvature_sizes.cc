@@ -568,24 +568,18 @@ double CurvatureLimitedSize::smallest_near(const Point& x, double squared_distan
 
 double CurvatureLimitedSize::interpolated(FaceId face, const Point& y) const {
   const Triangle& t = surface_.triangle(face);
-  const std::vector<Point>& p = surface_.local_points();
   const double d[3] = {point_sizes_[t[0]], point_sizes_[t[1]], point_sizes_[t[2]]};
   const double smallest = std::min({d[0], d[1], d[2]});
   // Grading reaches every point of a component that has a size, so the corners are all finite
   // or all not.
   if (!std::isfinite(std::max({d[0], d[1], d[2]}))) return smallest;
   if (!held_.empty() && (held_[t[0]] || held_[t[1]] || held_[t[2]])) return smallest;
-  const Point n = cross(sub(p[t[1]], p[t[0]]), sub(p[t[2]], p[t[0]]));
-  const double n2 = squared_norm(n);
-  if (!(n2 > 0.0)) return smallest;
+  std::array<double, 3> lambda;
+  if (!barycentric(face, y, lambda)) return smallest;
   double weighted = 0.0, total = 0.0;
   for (int k = 0; k < 3; ++k) {
-    // The area of the sub-triangle opposite corner k, over the face's (y is on the face).
-    const double lambda = std::max(
-        0.0, dot(cross(sub(p[t[(k + 2) % 3]], p[t[(k + 1) % 3]]), sub(y, p[t[(k + 1) % 3]])), n) /
-                 n2);
-    weighted += lambda * d[k];
-    total += lambda;
+    weighted += std::max(0.0, lambda[k]) * d[k];
+    total += std::max(0.0, lambda[k]);
   }
   if (!(total > 0.0)) return smallest;
   const double cap = face_caps_.empty() ? std::numeric_limits<double>::infinity()
@@ -607,23 +601,29 @@ double CurvatureLimitedSize::size_at(const Point& x) const {
   return std::min(base, at_closest(nearest));
 }
 
-double CurvatureLimitedSize::at_closest(const Located& nearest) const {
-  const double own = interpolated(nearest.face, nearest.closest);
-  const Triangle& t = surface_.triangle(nearest.face);
+bool CurvatureLimitedSize::barycentric(FaceId face, const Point& y,
+                                       std::array<double, 3>& lambda) const {
+  const Triangle& t = surface_.triangle(face);
   const std::vector<Point>& p = surface_.local_points();
   const Point n = cross(sub(p[t[1]], p[t[0]]), sub(p[t[2]], p[t[0]]));
   const double n2 = squared_norm(n);
-  if (!(n2 > 0.0)) return own;
+  if (!(n2 > 0.0)) return false;
+  for (int k = 0; k < 3; ++k)
+    lambda[k] =
+        dot(cross(sub(p[t[(k + 2) % 3]], p[t[(k + 1) % 3]]), sub(y, p[t[(k + 1) % 3]])), n) / n2;
+  return true;
+}
+
+double CurvatureLimitedSize::at_closest(const Located& nearest) const {
+  const double own = interpolated(nearest.face, nearest.closest);
+  const Triangle& t = surface_.triangle(nearest.face);
+  std::array<double, 3> lambda;
+  if (!barycentric(nearest.face, nearest.closest, lambda)) return own;
   // The corners whose barycentric coordinate at the closest point is (about) zero: the point
   // lies on the edge opposite one, or at the corner opposite two.
   int on = 0, off_corner = -1, on_corner = -1;
   for (int k = 0; k < 3; ++k) {
-    const double lambda =
-        dot(cross(sub(p[t[(k + 2) % 3]], p[t[(k + 1) % 3]]),
-                  sub(nearest.closest, p[t[(k + 1) % 3]])),
-            n) /
-        n2;
-    if (lambda <= kOnEdgeBarycentric) {
+    if (lambda[k] <= kOnEdgeBarycentric) {
       ++on, on_corner = k;
     } else {
       off_corner = k;

@@ -130,6 +130,9 @@ class CurvatureLimitedSize final : public SizeField {
   // The corners' delta_i of `face` interpolated linearly at y, a point of the face (local
   // frame), no more than the face's cap.
   double interpolated(FaceId face, const Point& y) const;
+  // The barycentric coordinates of y, a point of the face's plane (local frame): the signed area
+  // of the sub-triangle opposite each corner over the face's; false for a face with no area.
+  bool barycentric(FaceId face, const Point& y, std::array<double, 3>& lambda) const;
   // interpolated() at nearest.closest, the smallest over the faces at the edge or corner of
   // nearest.face it lies on, if any.
   double at_closest(const Located& nearest) const;
