@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -229,23 +231,33 @@ TEST(CurvatureSizes, ANoisySphereAtTheDefaultAngleGetsTheCountTheSizeAsks) {
               0.05 * static_cast<double>(unbound->mesh.triangles.size()));
 }
 
-// The corner sizes of `at`'s face interpolated linearly at its closest point, solved here as the
-// 2x2 system of the point's coordinates along two edges (CurvatureLimitedSize takes sub-areas);
+// The coordinates of `at`'s closest point in its face, solved here as the 2x2 system of the
+// point's coordinates along two edges (CurvatureLimitedSize takes sub-areas); none for a face
+// with no area.
+std::optional<std::array<double, 3>> coordinates_at(const DiscreteSurface& surface,
+                                                    const Located& at) {
+  const Triangle& t = surface.triangle(at.face);
+  const std::vector<Point>& p = surface.local_points();
+  const Point e1 = sub(p[t[1]], p[t[0]]), e2 = sub(p[t[2]], p[t[0]]), r = sub(at.closest, p[t[0]]);
+  const double a = dot(e1, e1), b = dot(e1, e2), c = dot(e2, e2);
+  const double det = a * c - b * b;
+  if (!(det > 0.0)) return std::nullopt;
+  const double u = (c * dot(r, e1) - b * dot(r, e2)) / det;
+  const double v = (a * dot(r, e2) - b * dot(r, e1)) / det;
+  return std::array<double, 3>{1.0 - u - v, u, v};
+}
+
+// The corner sizes of `at`'s face interpolated linearly at its closest point (coordinates_at);
 // the smallest corner where a corner has no size or the face no area.
 double interpolated_at(const DiscreteSurface& surface, const std::vector<double>& sizes,
                        const Located& at) {
   const Triangle& t = surface.triangle(at.face);
-  const std::vector<Point>& p = surface.local_points();
   const double d0 = sizes[t[0]], d1 = sizes[t[1]], d2 = sizes[t[2]];
   const double smallest = std::min({d0, d1, d2});
   if (!std::isfinite(std::max({d0, d1, d2}))) return smallest;
-  const Point e1 = sub(p[t[1]], p[t[0]]), e2 = sub(p[t[2]], p[t[0]]), r = sub(at.closest, p[t[0]]);
-  const double a = dot(e1, e1), b = dot(e1, e2), c = dot(e2, e2);
-  const double det = a * c - b * b;
-  if (!(det > 0.0)) return smallest;
-  const double u = (c * dot(r, e1) - b * dot(r, e2)) / det;
-  const double v = (a * dot(r, e2) - b * dot(r, e1)) / det;
-  return std::max(smallest, (1.0 - u - v) * d0 + u * d1 + v * d2);
+  const std::optional<std::array<double, 3>> lambda = coordinates_at(surface, at);
+  if (!lambda) return smallest;
+  return std::max(smallest, (*lambda)[0] * d0 + (*lambda)[1] * d1 + (*lambda)[2] * d2);
 }
 
 // interpolated_at over every face at the edge or corner of at.face that at.closest lies on (all
@@ -253,18 +265,12 @@ double interpolated_at(const DiscreteSurface& surface, const std::vector<double>
 double smallest_at_closest(const DiscreteSurface& surface, const std::vector<double>& sizes,
                            const Located& at) {
   const Triangle& t = surface.triangle(at.face);
-  const std::vector<Point>& p = surface.local_points();
-  const Point e1 = sub(p[t[1]], p[t[0]]), e2 = sub(p[t[2]], p[t[0]]), r = sub(at.closest, p[t[0]]);
-  const double a = dot(e1, e1), b = dot(e1, e2), c = dot(e2, e2);
-  const double det = a * c - b * b;
   double own = interpolated_at(surface, sizes, at);
-  if (!(det > 0.0)) return own;
-  const double u = (c * dot(r, e1) - b * dot(r, e2)) / det;
-  const double v = (a * dot(r, e2) - b * dot(r, e1)) / det;
-  const double lambda[3] = {1.0 - u - v, u, v};
+  const std::optional<std::array<double, 3>> lambda = coordinates_at(surface, at);
+  if (!lambda) return own;
   std::vector<Index> on;  // the corners the point lies at or between
   for (int k = 0; k < 3; ++k)
-    if (lambda[k] > 1e-9) on.push_back(t[k]);
+    if ((*lambda)[k] > 1e-9) on.push_back(t[k]);
   if (on.size() == 3) return own;
   for (const Index f : surface.faces_at(on[0])) {
     const Triangle& g = surface.triangle(FaceId{f});
