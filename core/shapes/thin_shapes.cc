@@ -241,8 +241,8 @@ double thickness_profile(double u, double v) {
 // B at -t/2 N, interior grid points moved, other diagonal, normals +N). Rim points (grid
 // boundary) are the mid-surface points, shared by both sides.
 void add_sail_side(SurfaceBuilder& b, const SailShape& sail, double sign, double thickness,
-                   double heel_rad) {
-  const int nu = sail.chord_divisions, nv = sail.height_divisions;
+                   double heel_rad, int grid_scale) {
+  const int nu = sail.chord_divisions * grid_scale, nv = sail.height_divisions * grid_scale;
   const auto uv = [&](int i, int j) -> std::array<double, 2> {
     double u = static_cast<double>(i) / nu, v = static_cast<double>(j) / nv;
     const bool rim = i == 0 || i == nu || j == 0 || j == nv;
@@ -406,10 +406,15 @@ Mesh sails_surface(const SailsParams& params) {
   }};
   SurfaceBuilder b;
   for (const SailShape& sail : sails) {
-    add_sail_side(b, sail, +1.0, params.thickness, heel);
-    add_sail_side(b, sail, -1.0, params.thickness, heel);
+    add_sail_side(b, sail, +1.0, params.thickness, heel, params.grid_scale);
+    add_sail_side(b, sail, -1.0, params.thickness, heel, params.grid_scale);
   }
-  add_box(b, {-30.0, -35.0, -15.0}, {40.0, 25.0, 50.0}, params.box_size);
+  const Point lo{-30.0, -35.0, -15.0}, hi{40.0, 25.0, 50.0};
+  const Point middle = scale(add(lo, hi), 0.5);
+  const auto scaled = [&](const Point& corner) {
+    return add(middle, scale(sub(corner, middle), params.box_scale));
+  };
+  add_box(b, scaled(lo), scaled(hi), params.box_size);
   return b.take();
 }
 

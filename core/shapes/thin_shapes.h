@@ -79,6 +79,13 @@ struct SailsParams {
   double thickness = 0.001;  // m
   double heel_deg = 10.0;    // inclination about the x axis
   double box_size = 10.0;    // edge length of the box's grid, m
+  // Grid cells of each sail side per cell of the default grid, along the chord and the height
+  // (>= 1): 1 gives 864 sail triangles, 4 about 13.8k (issue 10, part 6: sails of ~15k
+  // triangles).
+  int grid_scale = 1;
+  // The box's extent about the sails' middle, as a multiple of the default box (70 x 60 x 65 m,
+  // about 7 mainsail chords; >= 1). 3 puts the sails in a box about 20 chords wide.
+  double box_scale = 1.0;
 };
 
 Mesh sails_surface(const SailsParams& params = {});

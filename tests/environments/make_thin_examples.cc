@@ -8,6 +8,7 @@
 // triangulations, boxes, heels and cambers (issue 10, part 6), as DIR/NAME.mesh, and one JSON
 // line per front in DIR/thin.jsonl (name, family, file, parameters), for bench/sweep.
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,20 @@ std::vector<Variant> thin_variants() {
       out.push_back({name, "sails", text, afmesh::sails_surface(p)});
     }
   }
+  // The issue's large sails: about 15k sail triangles in a box some 20 chords wide.
+  for (const double thickness : {0.001, 0.01}) {
+    afmesh::SailsParams p;
+    p.thickness = thickness;
+    p.grid_scale = 4;
+    p.box_scale = 3.0;
+    p.box_size = 30.0;
+    std::snprintf(text, sizeof text, "sails_t%g_grid4_box3", thickness);
+    const std::string name = text;
+    std::snprintf(text, sizeof text,
+                  "{\"thickness\": %g, \"grid_scale\": 4, \"box_scale\": 3, \"box_size\": 30}",
+                  thickness);
+    out.push_back({name, "sails", text, afmesh::sails_surface(p)});
+  }
   for (const double camber : {0.0, 0.02, 0.04}) {
     for (const int divisions : {3, 4, 6}) {
       for (const double thickness : {0.001, 0.01}) {
@@ -103,8 +118,19 @@ int write_variants(const std::string& dir) {
 
 int main(int argc, char** argv) {
   if (argc == 3 && std::string(argv[1]) == "--variants") return write_variants(argv[2]);
+  // One sails front with the given SailsParams (thin_shapes.h), for trying sizes by hand.
+  if (argc == 7 && std::string(argv[1]) == "--sails") {
+    afmesh::SailsParams p;
+    p.thickness = std::atof(argv[2]);
+    p.grid_scale = std::atoi(argv[3]);
+    p.box_scale = std::atof(argv[4]);
+    p.box_size = std::atof(argv[5]);
+    return afmesh::write_mesh(afmesh::sails_surface(p), argv[6]).ok() ? 0 : 1;
+  }
   if (argc != 2) {
-    std::fprintf(stderr, "usage: make-thin-examples EXAMPLES_DIR | --variants DIR\n");
+    std::fprintf(stderr,
+                 "usage: make-thin-examples EXAMPLES_DIR | --variants DIR\n"
+                 "       make-thin-examples --sails THICKNESS GRID_SCALE BOX_SCALE BOX_SIZE OUT\n");
     return 2;
   }
   const std::string dir = argv[1];

@@ -87,6 +87,26 @@ TEST(ThinExamples, SailsAreAClosedOrientedFrontWhoseSidesCross) {
   expect_valid_only_with_environments(sails);
 }
 
+// Issue 10, part 6: the issue's sails, about 15k sail triangles in a box about 20 chords wide,
+// are a front of the same kind: closed, oriented, its sides crossing, the box three times as
+// wide about the same middle.
+TEST(ThinExamples, TheIssuesLargeSailsAreAClosedOrientedFrontWhoseSidesCross) {
+  SailsParams params;
+  params.grid_scale = 4;
+  params.box_scale = 3.0;
+  params.box_size = 30.0;
+  const Mesh sails = sails_surface(params);
+  std::int64_t on_sails = 0;
+  for (const std::int32_t tag : sails.triangle_tags) on_sails += tag != 0;
+  EXPECT_EQ(on_sails, 16 * 864);  // four times the cells along the chord and the height
+  Box box = empty_box();
+  for (const Point& x : sails.points) enclose(box, x);
+  EXPECT_EQ(box.lo[0], -100.0);
+  EXPECT_EQ(box.hi[0], 110.0);
+  EXPECT_EQ(box.hi[2], 115.0);
+  expect_valid_only_with_environments(sails);
+}
+
 // The sail (0 = jib, 1 = main, -1 = the box) of a tag.
 int sail_of(Index tag) {
   if (tag == kJibSideA || tag == kJibSideB) return 0;
