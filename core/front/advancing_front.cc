@@ -14,8 +14,8 @@ std::size_t corner_of(const std::array<Index, Arity>& v, Index p) {
 
 template <std::size_t Arity>
 AdvancingFront<Arity>::AdvancingFront(const std::vector<Point>& points, const Box& domain,
-                                      double cell_size)
-    : points_(points), domain_(domain), bins_(domain, cell_size) {}
+                                      double cell_size, std::int64_t max_cells)
+    : points_(points), domain_(domain), bins_(domain, cell_size, max_cells) {}
 
 template <std::size_t Arity>
 void AdvancingFront<Arity>::use_adaptive_bins() {

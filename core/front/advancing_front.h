@@ -54,8 +54,10 @@ class AdvancingFront {
   using Simplex = typename Item::Simplex;
 
   // `points` is the mesher's point array; it must outlive the front and may grow (never move
-  // points that are on the front). `domain` and `cell_size` set up the bins (FrontBins).
-  AdvancingFront(const std::vector<Point>& points, const Box& domain, double cell_size);
+  // points that are on the front). `domain`, `cell_size` and `max_cells` set up the bins
+  // (FrontBins).
+  AdvancingFront(const std::vector<Point>& points, const Box& domain, double cell_size,
+                 std::int64_t max_cells = FrontBins::kDefaultMaxCells);
 
   // Adds item `v` (oriented towards the unmeshed space) with queue key `size` (the size of the
   // element it would form); returns its id.

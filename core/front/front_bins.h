@@ -36,7 +36,8 @@ class FrontBins {
   // `domain` bounds every point that will ever be inserted (points outside are clamped into the
   // border cells, which keeps queries correct). `cell_size` > 0 is the wanted edge of a cell;
   // it is enlarged so the grid has at most `max_cells` cells.
-  FrontBins(const Box& domain, double cell_size, std::int64_t max_cells = std::int64_t{1} << 22);
+  static constexpr std::int64_t kDefaultMaxCells = std::int64_t{1} << 22;
+  FrontBins(const Box& domain, double cell_size, std::int64_t max_cells = kDefaultMaxCells);
   // Adaptive bins: an octree (front_tree.h) in lieu of the grid, for fronts whose element sizes
   // span orders of magnitude (the cell size is then only reported).
   struct Adaptive {};

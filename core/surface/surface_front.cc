@@ -247,8 +247,9 @@ struct Candidate {
 
 class PatchFront {
  public:
-  PatchFront(SurfaceMeshState& s, PatchId patch, const Box& domain, double cell)
-      : s_(s), patch_(patch), front_(s.points, domain, cell) {}
+  PatchFront(SurfaceMeshState& s, PatchId patch, const Box& domain, double cell,
+             std::int64_t max_cells)
+      : s_(s), patch_(patch), front_(s.points, domain, cell, max_cells) {}
 
   // One of the patch's initial sides (kept by every back-off).
   void add_initial_side(const Side& v) {
@@ -724,6 +725,10 @@ void PatchFront::add_face(Index f, const Side& v, Index p) {
 // (gmsh_lever at its mean edge; 32 left it stuck); at a quarter of its mean edge, its lines split
 // at the ledge's own size (the smaller of their two sides', curvature_sizes.h), over 64.
 constexpr std::size_t kMaxHoleSides = 256;
+// The patch front's bins (mesh_patch): at most this many cells per triangle the patch may build,
+// and this many more.
+constexpr std::int64_t kCellsPerTriangle = 16;
+constexpr std::int64_t kMinCells = 4096;
 // A corner of the hole this near an ear's diagonal, as a fraction of the diagonal's length, lies
 // on it (a rounding's width; not in the paper).
 constexpr double kOnDiagonal = 1e-9;
@@ -1253,7 +1258,16 @@ absl::Status mesh_patch(SurfaceMeshState& s, PatchId patch, const std::vector<Si
   double cell = std::numeric_limits<double>::infinity();
   for (const Side& v : initial)
     cell = std::min(cell, std::max(s.point_size[v[0]], norm(sub(s.points[v[1]], s.points[v[0]]))));
-  PatchFront pf(s, patch, domain, cell);
+  // The bins' cells are the smallest initial side, but no more cells than a few per triangle
+  // the patch may build (not in the paper): a patch whose lines hold one short side had a grid
+  // of up to 4M cells over its box to clear and fault in (gmsh_lever: 127 grids, 1.2M cells, for
+  // 22k triangles; FrontBins was 6% of its time). Its points and sides still spread over no
+  // fewer cells than the front has points; crowded bins turn adaptive (adapt_bins_when_crowded).
+  const std::int64_t max_cells =
+      std::min(FrontBins::kDefaultMaxCells,
+               kCellsPerTriangle * std::min(params.max_triangles, FrontBins::kDefaultMaxCells) +
+                   kMinCells);
+  PatchFront pf(s, patch, domain, cell, max_cells);
   if (seed) pf.add_seed(*seed);
   for (const Side& v : initial) pf.add_initial_side(v);
   std::int64_t steps = 0, back_offs = 0;
