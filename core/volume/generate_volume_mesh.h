@@ -108,7 +108,7 @@ absl::StatusOr<std::unique_ptr<SizeField>> make_size_field(const VolumeParams& p
 // Fills the volume enclosed by `front` (outward-oriented closed triangles) with tetrahedra whose
 // boundary faces are exactly the front's triangles. Where the front gets stuck (its back-off
 // fails), it is meshed again with the size halved within 3 sizes of there, at most 8 times, each
-// said in VolumeResult::warnings (not with crossing environments).
+// said in VolumeResult::warnings (with crossing environments too).
 // Errors: INVALID_ARGUMENT (bad front or params), CANCELLED (progress.cancelled()),
 // FAILED_PRECONDITION (the front could not be closed; the message says where).
 absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const VolumeParams& params,

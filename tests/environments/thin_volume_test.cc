@@ -50,10 +50,11 @@ SizeSpec read_spec(const std::string& relative) {
 }
 
 // Meshes `front` with `face_environments` and checks the result: valid against the front, and
-// no tet across a gap. Prints the figures.
+// no tet across a gap. Prints the figures; gives the job's warnings to `warnings` when set.
 void expect_meshes_valid(const char* name, const Mesh& front, const std::optional<SizeSpec>& spec,
                          double size, double growth,
-                         std::vector<std::int32_t> face_environments) {
+                         std::vector<std::int32_t> face_environments,
+                         std::vector<std::string>* warnings = nullptr) {
   VolumeParams params;
   params.size = size;
   params.growth = growth;
@@ -64,6 +65,7 @@ void expect_meshes_valid(const char* name, const Mesh& front, const std::optiona
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_TRUE(result.ok()) << result.status();
+  if (warnings != nullptr) *warnings = result->warnings;
   const std::vector<std::int32_t> lpocr =
       point_environments(front.points.size(), front.triangles, face_environments);
   ValidationParams validation;
@@ -127,6 +129,27 @@ TEST(ThinVolume, CrossingPlatesOfOtherShapesMeshValid) {
       expect_meshes_valid(name.c_str(), plates, std::nullopt, 0.5, 1.3, plates.triangle_tags);
     }
   }
+}
+
+// Fronts with environments whose front stops are meshed again with the size halved where they
+// stopped, as other fronts are (generate_volume_mesh.cc, kMaxLocalRefinements): the X of camber
+// 0.02 with 6 cells across a half plate, 0.001 thick, stopped before, with tags and with auto.
+TEST(ThinVolume, CrossingPlatesThatStopAreMeshedAgainWhereTheyStopped) {
+  CrossingPlatesParams params;
+  params.camber = 0.02;
+  params.divisions = 6;
+  params.thickness = 0.001;
+  const Mesh plates = crossing_plates_surface(params);
+  const SizeSpec spec = read_spec("examples/crossing/crossing-sizes.json");
+  std::vector<std::string> warnings;
+  expect_meshes_valid("crossing plates c0.02 n6 (tags)", plates, spec, 0.5, 1.3,
+                      plates.triangle_tags, &warnings);
+  ASSERT_FALSE(warnings.empty());
+  EXPECT_THAT(warnings.back(), HasSubstr("meshed again with the size halved within"));
+  absl::StatusOr<DetectedEnvironments> found = detect_environments(plates, {}, no_progress());
+  ASSERT_TRUE(found.ok()) << found.status();
+  expect_meshes_valid("crossing plates c0.02 n6 (auto)", plates, spec, 0.5, 1.3,
+                      found->environments.face);
 }
 
 // With environments off the dome cannot be meshed. The input check refuses it first (its
