@@ -185,7 +185,7 @@ class HalfDisks {
     for (Index h = 0; h < m; ++h) {
       Face& face = faces_[slot_[h]];
       face.centroid = surface_.centroid(FaceId{h});
-      face.vector_area = cross(sub(p[t[h][1]], p[t[h][0]]), sub(p[t[h][2]], p[t[h][0]]));
+      face.vector_area = afmesh::vector_area(p, t[h]);
       for (int j = 0; j < 3; ++j) {
         const Index across = neighbours.across[h][j];
         face.across[j] = across == kInvalidIndex ? kInvalidIndex : slot_[across];
@@ -605,7 +605,7 @@ bool CurvatureLimitedSize::barycentric(FaceId face, const Point& y,
                                        std::array<double, 3>& lambda) const {
   const Triangle& t = surface_.triangle(face);
   const std::vector<Point>& p = surface_.local_points();
-  const Point n = cross(sub(p[t[1]], p[t[0]]), sub(p[t[2]], p[t[0]]));
+  const Point n = vector_area(p, t);
   const double n2 = squared_norm(n);
   if (!(n2 > 0.0)) return false;
   for (int k = 0; k < 3; ++k)

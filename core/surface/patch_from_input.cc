@@ -40,10 +40,6 @@ constexpr int kExtraSplitPasses = 4;
 constexpr double kCollapseUnder = 4.0 / 5.0;
 constexpr int kMaxCollapsePasses = 16;
 
-Point normal_of(const std::vector<Point>& p, const Triangle& t) {
-  return cross(sub(p[t[1]], p[t[0]]), sub(p[t[2]], p[t[0]]));
-}
-
 // Whether a triangle whose (unnormalised) normal was `before` may become one with `after`: it keeps
 // an area and turns by at most kMaxNormalTurnDeg.
 bool turns_little(const Point& before, const Point& after) {
@@ -242,9 +238,9 @@ bool InputPatch::split(Index a, Index b, Index m, bool check) {
   };
   for (const Index t : on_edge) {
     const auto [x, y, w] = corners(t);
-    const Point before = normal_of(s_.points, tris_[t]);
-    const Point first = normal_of(s_.points, {x, m, w});
-    const Point second = normal_of(s_.points, {m, y, w});
+    const Point before = vector_area(s_.points, tris_[t]);
+    const Point first = vector_area(s_.points, {x, m, w});
+    const Point second = vector_area(s_.points, {m, y, w});
     if (check ? !turns_little(before, first) || !turns_little(before, second)
               : (!(squared_norm(first) > 0.0) && !goes_later(x)) ||
                     (!(squared_norm(second) > 0.0) && !goes_later(y)))
@@ -339,7 +335,7 @@ bool InputPatch::remove_line_vertex(Index x, Index y1, Index y2) {
   for (const Index t : fan_x_) {
     const Triangle& tri = tris_[t];
     normal_after[tri[(std::find(tri.begin(), tri.end(), x) - tri.begin() + 1) % 3]] =
-        normal_of(s_.points, tri);
+        vector_area(s_.points, tri);
   }
   std::vector<Triangle> made;
   std::vector<Point> old_normals;
@@ -369,7 +365,7 @@ bool InputPatch::remove_line_vertex(Index x, Index y1, Index y2) {
         for (std::size_t k = i + 1; k < j; ++k) {
           const double inner = std::min(best[i * n + k], best[k * n + j]);
           if (inner <= best[i * n + j]) continue;
-          const Point nt = normal_of(s_.points, {c[i], c[k], c[j]});
+          const Point nt = vector_area(s_.points, {c[i], c[k], c[j]});
           if (std::none_of(old_normals.begin(), old_normals.end(),
                            [&](const Point& o) { return turns_little(o, nt); }))
             continue;
@@ -513,7 +509,7 @@ bool InputPatch::collapse(Index x, Index y) {
   for (const Index t : moved) {
     Triangle after = tris_[t];
     for (Index& q : after) q = q == x ? y : q;
-    if (!turns_little(normal_of(s_.points, tris_[t]), normal_of(s_.points, after))) return false;
+    if (!turns_little(vector_area(s_.points, tris_[t]), vector_area(s_.points, after))) return false;
     for (const Index w : after) {
       if (w == y) continue;
       if (distance(s_.points[y], s_.points[w]) > kSplitOver * edge_size(y, w)) return false;

@@ -14,11 +14,6 @@
 namespace afmesh {
 namespace {
 
-// (b - a) x (c - a) of face t = (a, b, c): its normal times twice its area.
-Point face_normal(const std::vector<Point>& p, const Triangle& t) {
-  return cross(sub(p[t[1]], p[t[0]]), sub(p[t[2]], p[t[0]]));
-}
-
 // Edits of a surface's faces in place, with their point incidence kept up to date: edge
 // collapses that keep the surface manifold and turn no face over; finish() drops the faces
 // collapsed and the points left on no face.
@@ -136,7 +131,7 @@ class SurfaceEdits {
       Triangle moved = was;
       for (Index& w : moved)
         if (w == gone) w = keep;
-      if (!(dot(face_normal(p, was), face_normal(p, moved)) > 0.0)) return false;
+      if (!(dot(vector_area(p, was), vector_area(p, moved)) > 0.0)) return false;
     }
     return true;
   }
@@ -226,14 +221,14 @@ StepRepairs repair_sliver_steps(Mesh& clean, const SizeField& sizes, double ridg
       if (l > longest) longest = l, st.longest_at = e;
       if (l < shortest) shortest = l, st.shortest_at = e;
     }
-    const Point n_f = face_normal(p, t);
+    const Point n_f = vector_area(p, t);
     st.height = norm(n_f) / longest;
     if (!(st.height < kStepHeightOfEdge * longest)) return std::nullopt;
     const Index a = t[st.longest_at], b = t[(st.longest_at + 1) % 3],
                 v = t[(st.longest_at + 2) % 3];
     st.across = edits.face_across(f, a, b);
     if (st.across == kInvalidIndex || tag(st.across) != tag(f)) return std::nullopt;
-    const Point n_g = face_normal(p, tris[st.across]);
+    const Point n_g = vector_area(p, tris[st.across]);
     if (turn_below(n_f, n_g, cos_ridge)) return std::nullopt;
     // The surface beyond the step continues the one across ab: a face at v turns less than the
     // ridge angle against g (a seam; a chamfer's or a rib's faces meet at a ridge instead).
@@ -241,7 +236,7 @@ StepRepairs repair_sliver_steps(Mesh& clean, const SizeField& sizes, double ridg
     edits.faces_of(v, fan);
     if (std::none_of(fan.begin(), fan.end(), [&](Index h) {
           return h != f && !(has_corner(tris[h], a) && has_corner(tris[h], b)) &&
-                 turn_below(face_normal(p, tris[h]), n_g, cos_ridge);
+                 turn_below(vector_area(p, tris[h]), n_g, cos_ridge);
         }))
       return std::nullopt;
     st.needle = shortest < kStepHeightOfEdge * longest;
@@ -331,10 +326,10 @@ StepRepairs repair_sliver_steps(Mesh& clean, const SizeField& sizes, double ridg
         const Triangle& u = tris[g];
         const Index w = u[0] != a && u[0] != b ? u[0] : u[1] != a && u[1] != b ? u[1] : u[2];
         if (w == v || edits.has_edge(v, w)) continue;
-        const Point n_g = face_normal(p, u);
+        const Point n_g = vector_area(p, u);
         const Triangle first{v, a, w}, second{v, w, b};
-        if (!turn_below(face_normal(p, first), n_g, cos_ridge) ||
-            !turn_below(face_normal(p, second), n_g, cos_ridge))
+        if (!turn_below(vector_area(p, first), n_g, cos_ridge) ||
+            !turn_below(vector_area(p, second), n_g, cos_ridge))
           continue;
         edits.replace(f, first);
         edits.replace(g, second);
