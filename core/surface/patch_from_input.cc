@@ -509,7 +509,9 @@ bool InputPatch::collapse(Index x, Index y) {
   for (const Index t : moved) {
     Triangle after = tris_[t];
     for (Index& q : after) q = q == x ? y : q;
-    if (!turns_little(vector_area(s_.points, tris_[t]), vector_area(s_.points, after))) return false;
+    if (!turns_little(vector_area(s_.points, tris_[t]), vector_area(s_.points, after))) {
+      return false;
+    }
     for (const Index w : after) {
       if (w == y) continue;
       if (distance(s_.points[y], s_.points[w]) > kSplitOver * edge_size(y, w)) return false;
