@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "core/geometry/vec.h"
@@ -33,6 +34,8 @@ class SurfaceBuilder {
     mesh_.triangles.push_back({a, b, c});
     mesh_.triangle_tags.push_back(tag);
   }
+
+  const Point& at(Index p) const { return mesh_.points[p]; }
 
   Mesh take() { return std::move(mesh_); }
 
@@ -273,28 +276,42 @@ void add_sail_side(SurfaceBuilder& b, const SailShape& sail, double sign, double
   }
 }
 
-// The box [lo, hi] with grid steps of about h, normals outward, tag 0.
-void add_box(SurfaceBuilder& b, const Point& lo, const Point& hi, double h) {
+// The grid of the box [lo, hi] with steps of about h: n[k] steps along axis k.
+struct BoxGrid {
+  Point lo, hi;
   std::array<int, 3> n{};
-  for (int k = 0; k < 3; ++k) n[k] = std::max(1, static_cast<int>(std::lround((hi[k] - lo[k]) / h)));
-  const auto coordinate = [&](int k, int i) {
+
+  BoxGrid(const Point& lo_in, const Point& hi_in, double h) : lo(lo_in), hi(hi_in) {
+    for (int k = 0; k < 3; ++k) {
+      n[k] = std::max(1, static_cast<int>(std::lround((hi[k] - lo[k]) / h)));
+    }
+  }
+
+  // Coordinate i of n[k] + 1 along axis k, exactly lo and hi at the ends.
+  double coordinate(int k, int i) const {
     if (i == n[k]) return hi[k];
     return lo[k] + (hi[k] - lo[k]) * i / n[k];
-  };
+  }
+};
+
+// The faces of the box grid, normals outward, tag 0; without the bottom z = lo when
+// `with_bottom` is false (a ground meshed otherwise, sharing the grid's points on its rim).
+void add_box(SurfaceBuilder& b, const BoxGrid& grid, bool with_bottom = true) {
   for (int a = 0; a < 3; ++a) {
     const int u = (a + 1) % 3, v = (a + 2) % 3;
     for (int side = 0; side < 2; ++side) {
+      if (a == 2 && side == 0 && !with_bottom) continue;
       Point wanted{0.0, 0.0, 0.0};
       wanted[a] = side == 0 ? -1.0 : 1.0;
       const auto at = [&](int i, int j) {
         Point p{0.0, 0.0, 0.0};
-        p[a] = side == 0 ? lo[a] : hi[a];
-        p[u] = coordinate(u, i);
-        p[v] = coordinate(v, j);
+        p[a] = side == 0 ? grid.lo[a] : grid.hi[a];
+        p[u] = grid.coordinate(u, i);
+        p[v] = grid.coordinate(v, j);
         return b.point(p);
       };
-      for (int i = 0; i < n[u]; ++i) {
-        for (int j = 0; j < n[v]; ++j) {
+      for (int i = 0; i < grid.n[u]; ++i) {
+        for (int j = 0; j < grid.n[v]; ++j) {
           add_quad(b, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), (i + j) % 2 == 0,
                    wanted, 0);
         }
@@ -303,6 +320,161 @@ void add_box(SurfaceBuilder& b, const Point& lo, const Point& hi, double h) {
   }
 }
 
+// ----- hemispherical shell --------------------------------------------------------------------
+
+// A closed ring of points about the z axis in the order of their angles: turn[j] (the angle over
+// 2 pi) increasing in [0, 1), id[j] the point. A ring of one point is a pole or a centre.
+struct Ring {
+  std::vector<double> turn;
+  std::vector<Index> id;
+};
+
+// m points on the circle of radius r at height z, turned by `phase` steps (one point at the axis
+// for m = 1).
+Ring circle_ring(SurfaceBuilder& b, double r, double z, int m, double phase) {
+  if (m == 1) return {{0.0}, {b.point({0.0, 0.0, z})}};
+  Ring ring;
+  const double shift = phase - std::floor(phase);
+  for (int j = 0; j < m; ++j) {
+    const double turn = (j + shift) / m;
+    const double angle = 2.0 * std::numbers::pi * turn;
+    ring.turn.push_back(turn);
+    ring.id.push_back(b.point({r * std::cos(angle), r * std::sin(angle), z}));
+  }
+  return ring;
+}
+
+// Joins rings a and c by triangles in the order of their angles (a fan where one is a single
+// point); each triangle's normal points along wanted(its centroid).
+template <class Wanted>
+void join_rings(SurfaceBuilder& b, const Ring& a, const Ring& c, const Wanted& wanted,
+                std::int32_t tag) {
+  const auto emit = [&](Index p, Index q, Index r) {
+    const Point centre = scale(add(add(b.at(p), b.at(q)), b.at(r)), 1.0 / 3.0);
+    b.triangle(p, q, r, wanted(centre), tag);
+  };
+  const int ma = static_cast<int>(a.id.size()), mc = static_cast<int>(c.id.size());
+  if (mc == 1 || ma == 1) {
+    const Ring& loop = mc == 1 ? a : c;
+    const Index tip = mc == 1 ? c.id[0] : a.id[0];
+    for (std::size_t i = 0; i < loop.id.size(); ++i) {
+      emit(loop.id[i], loop.id[(i + 1) % loop.id.size()], tip);
+    }
+    return;
+  }
+  // Angles unwrapped: a's from its first point on, c's from the point nearest it.
+  const auto turn_a = [&](int i) { return a.turn[i % ma] + i / ma; };
+  const auto turn_c = [&](int j) { return c.turn[j % mc] + j / mc - 1.0; };
+  int start = 0;
+  for (int j = 1; j < 2 * mc; ++j) {
+    if (std::abs(turn_c(j) - a.turn[0]) < std::abs(turn_c(start) - a.turn[0])) start = j;
+  }
+  int i = 0, j = start;
+  while (i < ma || j < start + mc) {
+    if (j == start + mc || (i < ma && turn_a(i + 1) <= turn_c(j + 1))) {
+      emit(a.id[i % ma], a.id[(i + 1) % ma], c.id[j % mc]);
+      ++i;
+    } else {
+      emit(a.id[i % ma], c.id[j % mc], c.id[(j + 1) % mc]);
+      ++j;
+    }
+  }
+}
+
+// The hemisphere of radius r over the ground z = 0 in n rings (HemisphericalShellParams), normals
+// along `side` × radial; returns its equator.
+Ring add_hemisphere(SurfaceBuilder& b, double r, int n, double phase, double side,
+                    std::int32_t tag) {
+  std::vector<Ring> rings;
+  for (int k = 0; k <= n; ++k) {
+    if (k == n) {
+      rings.push_back(circle_ring(b, 0.0, r, 1, 0.0));
+      break;
+    }
+    const double elevation = kHalfPi * k / n;
+    const double c = k == 0 ? 1.0 : std::cos(elevation), s = k == 0 ? 0.0 : std::sin(elevation);
+    const int m = std::max(3, static_cast<int>(std::lround(4.0 * n * c)));
+    rings.push_back(circle_ring(b, r * c, r * s, m, phase + 0.5 * k));
+  }
+  const auto radial = [side](const Point& centre) { return scale(centre, side); };
+  for (int k = 0; k < n; ++k) join_rings(b, rings[k], rings[k + 1], radial, tag);
+  return rings.front();
+}
+
+// The ground disk inside `equator` (radius r, drawn by a hemisphere of n rings): rings of the
+// same step down to the centre, normals -z.
+void add_ground_disk(SurfaceBuilder& b, const Ring& equator, double r, int n, double phase,
+                     std::int32_t tag) {
+  const int rings = std::max(1, static_cast<int>(std::lround(2.0 * n / std::numbers::pi)));
+  const auto down = [](const Point&) { return Point{0.0, 0.0, -1.0}; };
+  Ring outer = equator;
+  for (int k = rings - 1; k >= 0; --k) {
+    const int m = k == 0 ? 1 : std::max(3, static_cast<int>(std::lround(4.0 * n * k / rings)));
+    Ring inner = circle_ring(b, r * k / rings, 0.0, m, phase + 0.5 * (rings - k));
+    join_rings(b, outer, inner, down, tag);
+    outer = std::move(inner);
+  }
+}
+
+// The ground z = 0 between `equator` (radius r) and the bottom edges of the box grid: `layers`
+// rings, ring i at fraction (g^i - 1) / (g^layers - 1) of the way from the circle to the square
+// along each direction (i / layers for g = 1), its point count likewise between the two; normals
+// -z.
+void add_ground_outside(SurfaceBuilder& b, const Ring& equator, double r, const BoxGrid& grid,
+                        int layers, double growth, double phase, std::int32_t tag) {
+  Ring square;
+  {
+    std::vector<std::pair<double, Index>> rim;
+    const auto add_point = [&](double x, double y) {
+      double turn = std::atan2(y, x) / (2.0 * std::numbers::pi);
+      if (turn < 0.0) turn += 1.0;
+      rim.emplace_back(turn, b.point({x, y, grid.lo[2]}));
+    };
+    for (int i = 0; i < grid.n[0]; ++i) {  // each edge without its last corner
+      add_point(grid.coordinate(0, i), grid.lo[1]);
+      add_point(grid.coordinate(0, grid.n[0] - i), grid.hi[1]);
+    }
+    for (int j = 0; j < grid.n[1]; ++j) {
+      add_point(grid.hi[0], grid.coordinate(1, j));
+      add_point(grid.lo[0], grid.coordinate(1, grid.n[1] - j));
+    }
+    std::sort(rim.begin(), rim.end());
+    for (const auto& [turn, id] : rim) {
+      square.turn.push_back(turn);
+      square.id.push_back(id);
+    }
+  }
+  const auto fraction = [&](int i) {
+    if (growth == 1.0) return static_cast<double>(i) / layers;
+    return (std::pow(growth, i) - 1.0) / (std::pow(growth, layers) - 1.0);
+  };
+  const auto down = [](const Point&) { return Point{0.0, 0.0, -1.0}; };
+  const double half = 0.5 * (grid.hi[0] - grid.lo[0]);
+  Ring inner = equator;
+  for (int i = 1; i <= layers; ++i) {
+    Ring outer;
+    if (i == layers) {
+      outer = square;
+    } else {
+      const double f = fraction(i);
+      const double from = static_cast<double>(equator.id.size());
+      const double count = from + f * (static_cast<double>(square.id.size()) - from);
+      const int m = std::max(3, static_cast<int>(std::lround(count)));
+      const double shift = phase + 0.5 * i - std::floor(phase + 0.5 * i);
+      for (int j = 0; j < m; ++j) {
+        const double turn = (j + shift) / m;
+        const double angle = 2.0 * std::numbers::pi * turn;
+        const double c = std::cos(angle), s = std::sin(angle);
+        const double to_square = half / std::max(std::abs(c), std::abs(s));
+        const double radius = r + f * (to_square - r);
+        outer.turn.push_back(turn);
+        outer.id.push_back(b.point({radius * c, radius * s, grid.lo[2]}));
+      }
+    }
+    join_rings(b, inner, outer, down, tag);
+    inner = std::move(outer);
+  }
+}
 
 // ----- crossing plates ------------------------------------------------------------------------
 
@@ -391,6 +563,24 @@ Mesh quarter_dome_surface(const QuarterDomeParams& params) {
   return b.take();
 }
 
+Mesh hemispherical_shell_surface(const HemisphericalShellParams& params) {
+  SurfaceBuilder b;
+  const double ri = params.inner_radius, ro = params.inner_radius + params.thickness;
+  // Inside: the half ball r < r_i.
+  const Ring inner = add_hemisphere(b, ri, params.inner_rings, params.inner_phase, +1.0,
+                                    kDomeInsideEnvironment);
+  add_ground_disk(b, inner, ri, params.inner_rings, params.inner_phase, kDomeInsideEnvironment);
+  // Outside: the box minus the half ball r < r_o.
+  const Ring outer = add_hemisphere(b, ro, params.outer_rings, params.outer_phase, -1.0,
+                                    kDomeOutsideEnvironment);
+  const double half = 0.5 * params.box_side;
+  const BoxGrid box({-half, -half, 0.0}, {half, half, params.box_side}, params.box_size);
+  add_ground_outside(b, outer, ro, box, params.radial_layers, params.radial_growth,
+                     params.outer_phase, kDomeOutsideEnvironment);
+  add_box(b, box, /*with_bottom=*/false);
+  return b.take();
+}
+
 Mesh sails_surface(const SailsParams& params) {
   const double heel = params.heel_deg * std::numbers::pi / 180.0;
   const double jib_angle = 10.0 * std::numbers::pi / 180.0;  // the jib's chord, turned to leeward
@@ -414,7 +604,7 @@ Mesh sails_surface(const SailsParams& params) {
   const auto scaled = [&](const Point& corner) {
     return add(middle, scale(sub(corner, middle), params.box_scale));
   };
-  add_box(b, scaled(lo), scaled(hi), params.box_size);
+  add_box(b, BoxGrid(scaled(lo), scaled(hi), params.box_size));
   return b.take();
 }
 
@@ -424,7 +614,7 @@ Mesh crossing_plates_surface(const CrossingPlatesParams& params) {
     add_quadrant_side(b, params, kQuadrantSigns[q][0], kQuadrantSigns[q][1],
                       static_cast<std::int32_t>(q) + 1);
   }
-  add_box(b, {-3.0, -3.0, -3.0}, {3.0, 3.0, 3.0}, params.box_size);
+  add_box(b, BoxGrid({-3.0, -3.0, -3.0}, {3.0, 3.0, 3.0}, params.box_size));
   return b.take();
 }
 

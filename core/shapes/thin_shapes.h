@@ -55,6 +55,40 @@ struct QuarterDomeParams {
 Mesh quarter_dome_surface(const QuarterDomeParams& params = {});
 
 // ---------------------------------------------------------------------------------------------
+// The whole hemispherical shell of issue 10 (part 6): inner radius r_i, outer radius r_i +
+// thickness, on the ground z = 0 in the box [-L/2, L/2]^2 x [0, L] (L = box_side, 4 r_i by
+// default). As for the quarter dome, the domain is the air inside the shell (the half ball r <
+// r_i) and outside it (the box minus the half ball r < r_o); the ground closes both.
+//
+// Triangulation by rings, each side on its own: a hemisphere of n rings (inner_rings,
+// outer_rings) has ring k at elevation (pi/2) k / n with about 4 n cos(elevation) points (n = 1
+// point at the pole), ring k turned by (phase + k / 2) of its step (inner_phase, outer_phase:
+// different, so the two sides' points do not line up); consecutive rings are joined in the order
+// of their angles. The inner ground disk has rings of the same step down to its centre; the
+// ground outside r_o goes from the outer equator to the box's bottom edges through
+// `radial_layers` rings growing geometrically; the box's four walls and its top are uniform grids
+// of about `box_size` squares. At the default shell size (a quarter circle in 20 and 22 steps,
+// 0.08 r_i) the chord sag exceeds the thickness: the sides cross.
+//
+// Tags: the inner hemisphere and the ground disk kDomeInsideEnvironment, the outer hemisphere and
+// the ground outside it kDomeOutsideEnvironment, the walls and the top 0.
+// ---------------------------------------------------------------------------------------------
+struct HemisphericalShellParams {
+  double inner_radius = 1.0;
+  double thickness = 0.001;
+  double box_side = 4.0;
+  double box_size = 0.5;
+  int inner_rings = 20;  // >= 2
+  int outer_rings = 22;  // >= 2
+  double inner_phase = 0.0;
+  double outer_phase = 0.37;
+  int radial_layers = 6;  // >= 1
+  double radial_growth = 1.4;  // >= 1
+};
+
+Mesh hemispherical_shell_surface(const HemisphericalShellParams& params = {});
+
+// ---------------------------------------------------------------------------------------------
 // Two inclined sails (§5 (b), Figure 13): a jib and a mainsail, each a thin closed body about
 // 30 m high whose two sides are `thickness` (1 mm) apart over the sail and meet at its rim,
 // with a narrow slot (about 1 m) between the jib's trailing edge and the mainsail, heeled by

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/io/mesh_io.h"
@@ -46,6 +47,22 @@ std::vector<Variant> thin_variants() {
           out.push_back({name, "dome", text, afmesh::quarter_dome_surface(p)});
         }
       }
+    }
+  }
+  // The whole hemispherical shell (4 r box, box size r / 2), its sides in rings of
+  // different counts and phases.
+  for (const double thickness : {0.001, 0.01}) {
+    for (const auto& [inner, outer] : {std::pair{20, 22}, std::pair{12, 15}}) {
+      afmesh::HemisphericalShellParams p;
+      p.thickness = thickness;
+      p.inner_rings = inner;
+      p.outer_rings = outer;
+      std::snprintf(text, sizeof text, "shell_t%g_n%d_m%d", thickness, inner, outer);
+      const std::string name = text;
+      std::snprintf(text, sizeof text,
+                    "{\"thickness\": %g, \"inner_rings\": %d, \"outer_rings\": %d}", thickness,
+                    inner, outer);
+      out.push_back({name, "dome", text, afmesh::hemispherical_shell_surface(p)});
     }
   }
   for (const double thickness : {0.001, 0.01}) {
@@ -127,10 +144,19 @@ int main(int argc, char** argv) {
     p.box_size = std::atof(argv[5]);
     return afmesh::write_mesh(afmesh::sails_surface(p), argv[6]).ok() ? 0 : 1;
   }
+  // One hemispherical shell with the given HemisphericalShellParams.
+  if (argc == 6 && std::string(argv[1]) == "--shell") {
+    afmesh::HemisphericalShellParams p;
+    p.thickness = std::atof(argv[2]);
+    p.inner_rings = std::atoi(argv[3]);
+    p.outer_rings = std::atoi(argv[4]);
+    return afmesh::write_mesh(afmesh::hemispherical_shell_surface(p), argv[5]).ok() ? 0 : 1;
+  }
   if (argc != 2) {
     std::fprintf(stderr,
                  "usage: make-thin-examples EXAMPLES_DIR | --variants DIR\n"
-                 "       make-thin-examples --sails THICKNESS GRID_SCALE BOX_SCALE BOX_SIZE OUT\n");
+                 "       make-thin-examples --sails THICKNESS GRID_SCALE BOX_SCALE BOX_SIZE OUT\n"
+                 "       make-thin-examples --shell THICKNESS INNER_RINGS OUTER_RINGS OUT\n");
     return 2;
   }
   const std::string dir = argv[1];

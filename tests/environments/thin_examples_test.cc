@@ -107,6 +107,30 @@ TEST(ThinExamples, TheIssuesLargeSailsAreAClosedOrientedFrontWhoseSidesCross) {
   expect_valid_only_with_environments(sails);
 }
 
+// Issue 10, part 6: the whole hemispherical shell, 1/1000 of its radius thick, in a box of 4
+// radii with squares of half a radius, its sides in rings of 20 and 22 steps per quarter circle
+// (0.08 of the radius) with different phases: closed, oriented, its sides crossing. Both
+// environments are found automatically (the box is left out).
+TEST(ThinExamples, TheIssuesHemisphericalShellIsAClosedOrientedFrontWhoseSidesCross) {
+  const Mesh shell = hemispherical_shell_surface();
+  EXPECT_EQ(shell.triangles.size(), 7010u);
+  Box box = empty_box();
+  for (const Point& x : shell.points) enclose(box, x);
+  EXPECT_EQ(box.lo, (Point{-2.0, -2.0, 0.0}));
+  EXPECT_EQ(box.hi, (Point{2.0, 2.0, 4.0}));
+  std::int64_t inside = 0, outside = 0;
+  for (const std::int32_t tag : shell.triangle_tags) {
+    inside += tag == kDomeInsideEnvironment;
+    outside += tag == kDomeOutsideEnvironment;
+  }
+  EXPECT_GT(inside, 2000);  // the hemisphere and the ground disk
+  EXPECT_GT(outside, inside);  // the hemisphere, finer, and the ground out to the walls
+  expect_valid_only_with_environments(shell);
+  absl::StatusOr<DetectedEnvironments> found = detect_environments(shell, {}, no_progress());
+  ASSERT_TRUE(found.ok()) << found.status();
+  EXPECT_EQ(found->stats.environment_count, 2);
+}
+
 // The sail (0 = jib, 1 = main, -1 = the box) of a tag.
 int sail_of(Index tag) {
   if (tag == kJibSideA || tag == kJibSideB) return 0;

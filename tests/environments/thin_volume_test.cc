@@ -99,6 +99,27 @@ TEST(ThinVolume, SailsWithTagEnvironmentsMeshValid) {
                       1.0, sails.triangle_tags);
 }
 
+// Issue 10, part 6: hemispherical shells whose sides are rings of other counts and phases than
+// the quarter dome's grids, 1/1000 and 1/100 of the radius thick, with the dome's sizes: valid
+// with the tags and with the environments found automatically.
+TEST(ThinVolume, HemisphericalShellsMeshValid) {
+  for (const double thickness : {0.001, 0.01}) {
+    HemisphericalShellParams params;
+    params.thickness = thickness;
+    params.inner_rings = 12;
+    params.outer_rings = 15;
+    const Mesh shell = hemispherical_shell_surface(params);
+    const std::string name = "hemispherical shell, thickness " + std::to_string(thickness);
+    SCOPED_TRACE(name);
+    const SizeSpec spec = read_spec("examples/dome/dome-sizes.json");
+    expect_meshes_valid((name + " (tags)").c_str(), shell, spec, 0.8, 1.0, shell.triangle_tags);
+    absl::StatusOr<DetectedEnvironments> found = detect_environments(shell, {}, no_progress());
+    ASSERT_TRUE(found.ok()) << found.status();
+    expect_meshes_valid((name + " (auto)").c_str(), shell, spec, 0.8, 1.0,
+                        found->environments.face);
+  }
+}
+
 // The X: one environment per quadrant (thin_shapes.h), each a sheet folded at the crossing;
 // by the tags and found automatically.
 TEST(ThinVolume, CrossingPlatesMeshValid) {
