@@ -496,48 +496,119 @@ double plate_camber(double camber, double w, double z) {
 constexpr std::array<std::array<double, 2>, 4> kQuadrantSigns = {
     {{1.0, 1.0}, {-1.0, 1.0}, {-1.0, -1.0}, {1.0, -1.0}}};
 
-// The side of quadrant (sx, sy): one grid over (i, j) in [0, 2n] × [0, 2n], z = -1 + j / n.
-// Columns i > n are plate A's face y = m_A + sy t_A / 2 from the corner to the rim x = sx;
-// columns i < n plate B's face x = m_B + sx t_B / 2 from the corner to the rim y = sy (m the
-// camber, t the thickness); column i = n is the
-// corner line (sx t_c / 2, sy t_c / 2, z) where the two faces meet, t_c the thickness on the
-// crossing line, 0 at z = ±1 (the apexes, shared by all four quadrants). Rim points (i = 0,
-// i = 2n, j = 0, j = 2n) lie on the mid-planes and are shared with the neighbouring quadrant
-// across the plate. Quadrants 2 and 4 (sx sy < 0) move their interior points by a fraction of
-// a cell and cut their quads along the other diagonal, so the two sides of every half plate
-// are triangulated independently. Normals point into the plates.
+// Plate B's direction from the crossing towards the quadrants sy = +1 and its normal towards
+// the quadrants sx = +1: (0, 1, 0) and (1, 0, 0) at 90°, exactly; else turned about the z axis
+// so that the plates make `angle_deg`.
+struct PlateB {
+  Point along;
+  Point normal;
+};
+
+PlateB plate_b(double angle_deg) {
+  if (angle_deg == 90.0) return {{0.0, 1.0, 0.0}, {1.0, 0.0, 0.0}};
+  const double a = angle_deg * std::numbers::pi / 180.0;
+  return {{std::cos(a), std::sin(a), 0.0}, {std::sin(a), -std::cos(a), 0.0}};
+}
+
+// Thickness of a plate at (w, z): tapering to 0 on the rim (plate_thickness), or the same
+// everywhere when the rims are closed by strips.
+double thickness_at(const CrossingPlatesParams& params, double w, double z) {
+  return params.rim_strips ? params.thickness : plate_thickness(params.thickness, w, z);
+}
+
+// Point (i, j) of the side of quadrant (sx, sy): one grid over (i, j) in [0, 2n] × [0, 2n],
+// z = -1 + j / n. Columns i > n are plate A's face y = m_A + sy t_A / 2 from the corner to the
+// rim x = sx; columns i < n plate B's face (m_B + sx t_B / 2 along its normal) from the corner to
+// the rim at sy along it (m the camber, t the thickness); column i = n is the corner line where
+// the two faces meet, (sx t_c / 2, sy t_c / 2, z) at 90°, t_c the thickness on the crossing line. Tapered plates: t_c is 0 at z = ±1 (the apexes, shared by all
+// four quadrants) and rim points (i = 0, i = 2n, j = 0, j = 2n) lie on the mid-planes, shared
+// with the neighbouring quadrant across the plate; with rim strips every point is t / 2 off the
+// mid-surface. Quadrants 2 and 4 (sx sy < 0) move their interior points by a fraction of a cell,
+// so the two sides of every half plate are triangulated independently.
+Point quadrant_point(const CrossingPlatesParams& params, double sx, double sy, int i, int j) {
+  const int n = params.divisions;
+  const bool moved = sx * sy < 0.0;
+  const double z = j == 2 * n ? 1.0 : -1.0 + static_cast<double>(j) / n;
+  const double corner = 0.5 * thickness_at(params, 0.0, z);
+  const PlateB b = plate_b(params.angle_deg);
+  if (i == n) {  // on A's face y = sy corner and on B's face at sx corner along its normal
+    return {(sx * corner - sy * corner * b.normal[1]) / b.normal[0], sy * corner, z};
+  }
+  const bool on_a = i > n;
+  const int k = on_a ? i - n : n - i;  // columns from the corner, 1..n
+  const bool rim = k == n || j == 0 || j == 2 * n;
+  double s = static_cast<double>(k) / n, v = static_cast<double>(j) / (2 * n);
+  if (moved && !rim) {
+    const double s0 = s, v0 = v;
+    s += 0.35 / n * std::sin(2.0 * std::numbers::pi * v0) * std::sin(std::numbers::pi * s0);
+    v += 0.35 / (2 * n) * std::sin(3.0 * std::numbers::pi * s0) *
+         std::sin(std::numbers::pi * v0);
+  }
+  const double height = rim ? z : -1.0 + 2.0 * v;
+  const double w = k == n ? 1.0 : corner + s * (1.0 - corner);
+  const double off = rim && !params.rim_strips
+                         ? 0.0
+                         : plate_camber(params.camber, w, height) +
+                               (on_a ? sy : sx) * 0.5 * thickness_at(params, w, height);
+  if (on_a) return {sx * w, off, height};
+  if (params.angle_deg == 90.0) return {off, sy * w, height};
+  return add(add(scale(b.normal, off), scale(b.along, sy * w)), Point{0.0, 0.0, height});
+}
+
+// The side of quadrant (sx, sy) (quadrant_point), its quads cut along the other diagonal in the
+// moved quadrants. Normals point into the plates.
 void add_quadrant_side(SurfaceBuilder& b, const CrossingPlatesParams& params, double sx,
                        double sy, std::int32_t tag) {
   const int n = params.divisions;
   const bool moved = sx * sy < 0.0;
-  const auto at = [&](int i, int j) {
-    const double z = j == 2 * n ? 1.0 : -1.0 + static_cast<double>(j) / n;
-    const double corner = 0.5 * plate_thickness(params.thickness, 0.0, z);
-    if (i == n) return b.point({sx * corner, sy * corner, z});
-    const bool on_a = i > n;
-    const int k = on_a ? i - n : n - i;  // columns from the corner, 1..n
-    const bool rim = k == n || j == 0 || j == 2 * n;
-    double s = static_cast<double>(k) / n, v = static_cast<double>(j) / (2 * n);
-    if (moved && !rim) {
-      const double s0 = s, v0 = v;
-      s += 0.35 / n * std::sin(2.0 * std::numbers::pi * v0) * std::sin(std::numbers::pi * s0);
-      v += 0.35 / (2 * n) * std::sin(3.0 * std::numbers::pi * s0) *
-           std::sin(std::numbers::pi * v0);
-    }
-    const double height = rim ? z : -1.0 + 2.0 * v;
-    const double w = k == n ? 1.0 : corner + s * (1.0 - corner);
-    const double off = rim ? 0.0
-                           : plate_camber(params.camber, w, height) +
-                                 (on_a ? sy : sx) * 0.5 *
-                                     plate_thickness(params.thickness, w, height);
-    return on_a ? b.point({sx * w, off, height}) : b.point({off, sy * w, height});
-  };
-  const Point into_a{0.0, -sy, 0.0}, into_b{-sx, 0.0, 0.0};
+  const auto at = [&](int i, int j) { return b.point(quadrant_point(params, sx, sy, i, j)); };
+  const Point into_a{0.0, -sy, 0.0};
+  const Point into_b = params.angle_deg == 90.0 ? Point{-sx, 0.0, 0.0}
+                                                : scale(plate_b(params.angle_deg).normal, -sx);
   for (int i = 0; i < 2 * n; ++i) {
     for (int j = 0; j < 2 * n; ++j) {
       add_quad(b, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1), !moved,
                i >= n ? into_a : into_b, tag);
     }
+  }
+}
+
+// The rims of plates of constant thickness (CrossingPlatesParams::rim_strips), tag 0: each half
+// plate's end and its edges at z = ±1 closed by strips between the sides of the two quadrants
+// it parts, and at z = ±1 the small cap between the four ends of the corner lines. Normals point
+// into the plates.
+void add_rim_strips(SurfaceBuilder& b, const CrossingPlatesParams& params) {
+  const int n = params.divisions;
+  const auto at = [&](int q, int i, int j) {
+    return b.point(quadrant_point(params, kQuadrantSigns[q][0], kQuadrantSigns[q][1], i, j));
+  };
+  struct HalfPlate {
+    int p, q;     // the quadrants on its two sides
+    int rim;      // its rim column: 2n on plate A, 0 on plate B
+    Point in;     // from its end into it
+  };
+  const Point along_b = plate_b(params.angle_deg).along;
+  const HalfPlate halves[] = {{0, 3, 2 * n, {-1.0, 0.0, 0.0}},
+                              {1, 2, 2 * n, {1.0, 0.0, 0.0}},
+                              {0, 1, 0, scale(along_b, -1.0)},
+                              {3, 2, 0, along_b}};
+  for (const HalfPlate& h : halves) {
+    for (int j = 0; j < 2 * n; ++j) {  // its end
+      add_quad(b, at(h.p, h.rim, j), at(h.p, h.rim, j + 1), at(h.q, h.rim, j + 1),
+               at(h.q, h.rim, j), true, h.in, 0);
+    }
+    const int step = h.rim > n ? 1 : -1;
+    for (int c = n; c != h.rim; c += step) {  // its edges at z = -1 and z = +1
+      for (const int row : {0, 2 * n}) {
+        const Point in{0.0, 0.0, row == 0 ? 1.0 : -1.0};
+        add_quad(b, at(h.p, c, row), at(h.p, c + step, row), at(h.q, c + step, row),
+                 at(h.q, c, row), true, in, 0);
+      }
+    }
+  }
+  for (const int row : {0, 2 * n}) {  // the caps where the corner lines end
+    const Point in{0.0, 0.0, row == 0 ? 1.0 : -1.0};
+    add_quad(b, at(0, n, row), at(1, n, row), at(2, n, row), at(3, n, row), true, in, 0);
   }
 }
 }  // namespace
@@ -614,6 +685,7 @@ Mesh crossing_plates_surface(const CrossingPlatesParams& params) {
     add_quadrant_side(b, params, kQuadrantSigns[q][0], kQuadrantSigns[q][1],
                       static_cast<std::int32_t>(q) + 1);
   }
+  if (params.rim_strips) add_rim_strips(b, params);
   add_box(b, BoxGrid({-3.0, -3.0, -3.0}, {3.0, 3.0, 3.0}, params.box_size));
   return b.take();
 }

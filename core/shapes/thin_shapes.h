@@ -137,7 +137,8 @@ Mesh sails_surface(const SailsParams& params = {});
 // plates' rims and at the two apexes (0, 0, ±1), where the rims cross. Across each half plate
 // the two quadrants' sheets are `thickness` apart and triangulated independently (quadrants 2
 // and 4 move their grid); with a bulge whose chord sag exceeds the thickness they cross.
-// Tags: the quadrant, 1 = (+x, +y), 2 = (-x, +y), 3 = (-x, -y), 4 = (+x, -y); box 0.
+// Tags: the quadrant, 1 = (+x, +y), 2 = (-x, +y), 3 = (-x, -y), 4 = (+x, -y); box (and rim
+// strips) 0.
 // ---------------------------------------------------------------------------------------------
 struct CrossingPlatesParams {
   double thickness = 0.001;
@@ -147,6 +148,14 @@ struct CrossingPlatesParams {
   double camber = 0.02;
   int divisions = 4;  // grid cells across a half plate (rim to crossing); 2 × this in z
   double box_size = 1.0;  // edge length of the box's grid
+  // The angle between the plates (degrees, in (0, 180)): plate B is turned about the z axis
+  // from the plane x = 0 so that the quadrant (+x, +y) spans this angle. 60 is issue 10's plates
+  // crossing at ±30°.
+  double angle_deg = 90.0;
+  // Plates of the same thickness everywhere whose rims are closed by narrow strips (`thickness`
+  // wide, tag 0: the faces of no environment a user would leave untagged) instead of tapering to
+  // 0 on the rim; at z = ±1 a small cap joins the strips where the corner lines end.
+  bool rim_strips = false;
 };
 
 Mesh crossing_plates_surface(const CrossingPlatesParams& params = {});

@@ -5,7 +5,8 @@
 // thin_examples_test checks that they still are.
 //
 // make-thin-examples --variants DIR: the same three families with other thicknesses,
-// triangulations, boxes, heels and cambers (issue 10, part 6), as DIR/NAME.mesh, and one JSON
+// triangulations, boxes, heels and cambers, whole hemispherical shells, and plates crossing at
+// ±30° with strips closing their rims (issue 10, part 6), as DIR/NAME.mesh, and one JSON
 // line per front in DIR/thin.jsonl (name, family, file, parameters), for bench/sweep.
 #include <cstdio>
 #include <cstdlib>
@@ -106,6 +107,26 @@ std::vector<Variant> thin_variants() {
       }
     }
   }
+  // The issue's plates crossing at ±30° whose rims are closed by strips of no environment.
+  for (const double camber : {0.0, 0.02}) {
+    for (const int divisions : {4, 8}) {
+      for (const double thickness : {0.001, 0.01}) {
+        afmesh::CrossingPlatesParams p;
+        p.angle_deg = 60.0;
+        p.rim_strips = true;
+        p.camber = camber;
+        p.divisions = divisions;
+        p.thickness = thickness;
+        std::snprintf(text, sizeof text, "strips60_c%g_n%d_t%g", camber, divisions, thickness);
+        const std::string name = text;
+        std::snprintf(text, sizeof text,
+                      "{\"angle_deg\": 60, \"rim_strips\": true, \"camber\": %g, "
+                      "\"divisions\": %d, \"thickness\": %g}",
+                      camber, divisions, thickness);
+        out.push_back({name, "crossing", text, afmesh::crossing_plates_surface(p)});
+      }
+    }
+  }
   return out;
 }
 
@@ -152,11 +173,22 @@ int main(int argc, char** argv) {
     p.outer_rings = std::atoi(argv[4]);
     return afmesh::write_mesh(afmesh::hemispherical_shell_surface(p), argv[5]).ok() ? 0 : 1;
   }
+  // One X of crossing plates with the given CrossingPlatesParams (rim strips: 1, tapered: 0).
+  if (argc == 8 && std::string(argv[1]) == "--plates") {
+    afmesh::CrossingPlatesParams p;
+    p.angle_deg = std::atof(argv[2]);
+    p.thickness = std::atof(argv[3]);
+    p.camber = std::atof(argv[4]);
+    p.divisions = std::atoi(argv[5]);
+    p.rim_strips = std::atoi(argv[6]) != 0;
+    return afmesh::write_mesh(afmesh::crossing_plates_surface(p), argv[7]).ok() ? 0 : 1;
+  }
   if (argc != 2) {
     std::fprintf(stderr,
                  "usage: make-thin-examples EXAMPLES_DIR | --variants DIR\n"
                  "       make-thin-examples --sails THICKNESS GRID_SCALE BOX_SCALE BOX_SIZE OUT\n"
-                 "       make-thin-examples --shell THICKNESS INNER_RINGS OUTER_RINGS OUT\n");
+                 "       make-thin-examples --shell THICKNESS INNER_RINGS OUTER_RINGS OUT\n"
+                 "       make-thin-examples --plates ANGLE THICKNESS CAMBER DIVISIONS STRIPS OUT\n");
     return 2;
   }
   const std::string dir = argv[1];

@@ -231,6 +231,28 @@ TEST(ThinExamples, CrossingPlatesAreAValidFrontWithEnvironmentsAndAutoFindsThem)
   expect_auto_matches_tags(flat_plates, "crossing plates, flat");
 }
 
+// Issue 10, part 6: plates crossing at ±30° (60° between them), of one thickness with their
+// rims closed by narrow strips of no environment, as a user would leave them: a valid front with
+// the quadrants' environments.
+TEST(ThinExamples, PlatesCrossingAt60DegreesWithRimStripsAreAValidFront) {
+  for (const double camber : {0.0, 0.02}) {
+    CrossingPlatesParams params;
+    params.angle_deg = 60.0;
+    params.rim_strips = true;
+    params.camber = camber;
+    const Mesh plates = crossing_plates_surface(params);
+    SCOPED_TRACE(camber);
+    // 4 quadrants × 2n × 2n quads; per half plate its end (2n quads) and two edges (n quads
+    // each); the two caps; the box.
+    const std::size_t n = 4;
+    EXPECT_EQ(plates.triangles.size(), 2 * (16 * n * n + 16 * n + 2) + 6 * 2 * 36);
+    ValidationParams relaxed;
+    relaxed.face_environments = plates.triangle_tags;
+    const ValidationReport report = validate_surface(plates, relaxed);
+    EXPECT_TRUE(report.valid()) << report.to_string();
+  }
+}
+
 TEST(ThinExamples, ShippedCrossingPlatesAreTheGeneratorsOutput) {
   expect_same_front(read_example("crossing/crossing.mesh"), crossing_plates_surface());
 }
