@@ -139,7 +139,11 @@ bool nearly_touch_back_to_back(const Mesh& front, const FaceFrames& frames,
                                double& distance_out) {
   const Point& nf = frames.normal[f];
   const Point& ng = frames.normal[g];
-  if (!(dot(nf, ng) < 0.0)) return false;  // not facing opposite ways
+  const double fold_cosine = std::cos(params.fold_angle_deg * std::numbers::pi / 180.0);
+  // Not folded against each other: a thin region's two sides look nearly opposite ways (more
+  // than the fold angle apart, as where they meet, step 2); faces at a corner of the front, a
+  // side and the narrow strip closing its rim, say, do not.
+  if (!(dot(nf, ng) < fold_cosine)) return false;
   const Triangle& t = front.triangles[f];
   const Triangle& u = front.triangles[g];
   const ClosestPair closest =
@@ -188,6 +192,28 @@ absl::StatusOr<std::vector<ThinPair>> find_thin_pairs(const Mesh& front, const F
   return pairs;
 }
 
+// The faces around each point, compressed rows with faces ascending: those of point p are
+// faces[start[p]] .. faces[start[p + 1] - 1].
+struct FacesAroundPoints {
+  std::vector<Index> start;
+  std::vector<Index> faces;
+};
+
+FacesAroundPoints faces_around_points(const Mesh& front) {
+  FacesAroundPoints around;
+  around.start.assign(front.points.size() + 1, 0);
+  for (const Triangle& t : front.triangles) {
+    for (const Index p : t) ++around.start[p + 1];
+  }
+  for (std::size_t p = 0; p < front.points.size(); ++p) around.start[p + 1] += around.start[p];
+  around.faces.resize(around.start.back());
+  std::vector<Index> fill(around.start.begin(), around.start.end() - 1);
+  for (std::size_t t = 0; t < front.triangles.size(); ++t) {
+    for (const Index p : front.triangles[t]) around.faces[fill[p]++] = static_cast<Index>(t);
+  }
+  return around;
+}
+
 // Step 2: groups the faces of thin pairs into sides; returns, per face, the smallest face id of
 // its side, or kInvalidIndex for faces in no thin pair.
 //
@@ -203,17 +229,9 @@ std::vector<Index> group_sides(const Mesh& front, const FaceFrames& frames,
   std::vector<bool> marked(face_count, false);
   for (const ThinPair& p : pairs) marked[p.f] = marked[p.g] = true;
 
-  // The faces around each point (compressed rows, faces ascending).
-  std::vector<Index> start(front.points.size() + 1, 0);
-  for (const Triangle& t : front.triangles) {
-    for (const Index p : t) ++start[p + 1];
-  }
-  for (std::size_t p = 0; p < front.points.size(); ++p) start[p + 1] += start[p];
-  std::vector<Index> faces_at(start.back());
-  std::vector<Index> fill(start.begin(), start.end() - 1);
-  for (std::size_t t = 0; t < face_count; ++t) {
-    for (const Index p : front.triangles[t]) faces_at[fill[p]++] = static_cast<Index>(t);
-  }
+  const FacesAroundPoints around = faces_around_points(front);
+  const std::vector<Index>& start = around.start;
+  const std::vector<Index>& faces_at = around.faces;
 
   const double fold_cosine = std::cos(fold_angle_deg * std::numbers::pi / 180.0);
   SmallestIdSets sides(face_count);
@@ -300,9 +318,50 @@ std::vector<std::pair<Index, Index>> non_fold_edge_neighbours(const Mesh& front,
   return neighbours;
 }
 
+// True when face f, in the fan of faces around its point x, is joined across edges through x
+// that do not fold (as in group_sides) to a face of a side other than `s`.
+bool fan_meets_other_side(const Mesh& front, const FaceFrames& frames,
+                          const FacesAroundPoints& around, double fold_cosine,
+                          const std::vector<Index>& side, Index f, Index x, Index s) {
+  const Index first = around.start[x], count = around.start[x + 1] - first;
+  std::vector<bool> reached(count, false);
+  std::vector<Index> stack;
+  for (Index i = 0; i < count; ++i) {
+    if (around.faces[first + i] == f) {
+      reached[i] = true;
+      stack.push_back(i);
+    }
+  }
+  const auto share_edge = [&](Index g, Index h) {  // an edge through x
+    for (const Index q : front.triangles[g]) {
+      if (q == x) continue;
+      const Triangle& u = front.triangles[h];
+      if (std::find(u.begin(), u.end(), q) != u.end()) return true;
+    }
+    return false;
+  };
+  while (!stack.empty()) {
+    const Index g = around.faces[first + stack.back()];
+    stack.pop_back();
+    for (Index i = 0; i < count; ++i) {
+      const Index h = around.faces[first + i];
+      if (reached[i] || !share_edge(g, h) || dot(frames.normal[g], frames.normal[h]) < fold_cosine)
+        continue;
+      if (side[h] != kInvalidIndex && side[h] != s) return true;
+      reached[i] = true;
+      stack.push_back(i);
+    }
+  }
+  return false;
+}
+
 // One ring of growth: the sides after unmarked faces whose marked neighbours all lie on one
-// side joined it. Returns false when no face joined.
-bool grow_one_ring(const std::vector<std::pair<Index, Index>>& neighbours,
+// side joined it. A face that the fan around one of its points joins without a fold to a face
+// of another side stays unmarked too: the narrow strip closing a plate's rim between its two
+// sides (not in the paper, whose sides meet in shared rim points, the fans folding between
+// them). Returns false when no face joined.
+bool grow_one_ring(const Mesh& front, const FaceFrames& frames, const FacesAroundPoints& around,
+                   double fold_cosine, const std::vector<std::pair<Index, Index>>& neighbours,
                    std::vector<Index>& side) {
   std::vector<Index> next = side;
   bool grew = false;
@@ -321,8 +380,14 @@ bool grow_one_ring(const std::vector<std::pair<Index, Index>>& neighbours,
       }
     }
     if (side[f] == kInvalidIndex && joined != kInvalidIndex && !ambiguous) {
-      next[f] = joined;
-      grew = true;
+      for (const Index x : front.triangles[f]) {
+        ambiguous = ambiguous ||
+                    fan_meets_other_side(front, frames, around, fold_cosine, side, f, x, joined);
+      }
+      if (!ambiguous) {
+        next[f] = joined;
+        grew = true;
+      }
     }
     first = last;
   }
@@ -337,10 +402,12 @@ bool grow_one_ring(const std::vector<std::pair<Index, Index>>& neighbours,
 void grow_sides(const Mesh& front, const FaceFrames& frames, int rings, double fold_angle_deg,
                 std::vector<Index>& side) {
   if (rings == 0) return;
-  const std::vector<std::pair<Index, Index>> neighbours = non_fold_edge_neighbours(
-      front, frames, std::cos(fold_angle_deg * std::numbers::pi / 180.0));
+  const double fold_cosine = std::cos(fold_angle_deg * std::numbers::pi / 180.0);
+  const std::vector<std::pair<Index, Index>> neighbours =
+      non_fold_edge_neighbours(front, frames, fold_cosine);
+  const FacesAroundPoints around = faces_around_points(front);
   for (int ring = 0; ring < rings; ++ring) {
-    if (!grow_one_ring(neighbours, side)) break;
+    if (!grow_one_ring(front, frames, around, fold_cosine, neighbours, side)) break;
   }
 }
 

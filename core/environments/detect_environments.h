@@ -12,7 +12,9 @@
 //       (b) they nearly touch from the two sides of a thin solid: they share no vertex, their
 //           distance d (closest points, core/geometry/closest_points.h) is below
 //           `closeness` × min(h_f, h_g), with h the face's mean edge length (the local size of
-//           the front), their normals point opposite ways (n_f · n_g < 0), and the solid lies
+//           the front), their normals fold against each other (the angle between them exceeds
+//           `fold_angle_deg`, as where a thin sheet's two sides meet, step 2; a side and the
+//           narrow strip closing its rim at 90° are a corner, not thin), and the solid lies
 //           between them: with v the vector from f's closest point to g's, n_f · v > 0 and
 //           n_g · v < 0 (front normals point out of the domain, i.e. into the solid). Two faces
 //           facing each other across a narrow gap of the domain (n_f · v < 0) are not thin:
@@ -30,7 +32,8 @@
 //     paper's "all the surfaces lying on one side of a potentially troublesome region have been
 //     given the same environment variable" (Figure 4).
 //  3. Growth (grow_sides). Faces next to a side join it, ring by ring (`grow_rings` rings of
-//     faces sharing an edge without a fold), unless they touch two sides. This marks the faces
+//     faces sharing an edge without a fold), unless they touch two sides (by an edge, or by a
+//     point on a face of another side: a narrow strip closing a plate's rim between its sides). This marks the faces
 //     at the rim of a thin region, whose only close faces on the other side share their rim
 //     vertices (and so are not thin pairs by (b)), and which the front would otherwise build on
 //     without filtering, a few tenths of a millimetre from the other side.

@@ -233,8 +233,9 @@ TEST(ThinExamples, CrossingPlatesAreAValidFrontWithEnvironmentsAndAutoFindsThem)
 
 // Issue 10, part 6: plates crossing at ±30° (60° between them), of one thickness with their
 // rims closed by narrow strips of no environment, as a user would leave them: a valid front with
-// the quadrants' environments.
-TEST(ThinExamples, PlatesCrossingAt60DegreesWithRimStripsAreAValidFront) {
+// the quadrants' environments, and detection finds them (before, a strip at 90° to a side was
+// paired with the side's faces, joining the two sides through it, and auto refused).
+TEST(ThinExamples, PlatesCrossingAt60DegreesWithRimStripsAreFoundByAuto) {
   for (const double camber : {0.0, 0.02}) {
     CrossingPlatesParams params;
     params.angle_deg = 60.0;
@@ -250,6 +251,7 @@ TEST(ThinExamples, PlatesCrossingAt60DegreesWithRimStripsAreAValidFront) {
     relaxed.face_environments = plates.triangle_tags;
     const ValidationReport report = validate_surface(plates, relaxed);
     EXPECT_TRUE(report.valid()) << report.to_string();
+    expect_auto_matches_tags(plates, "plates at 60 degrees with rim strips");
   }
 }
 
