@@ -23,6 +23,25 @@ std::vector<std::int32_t> point_environments(std::size_t point_count,
       }
     }
   }
+  // A face of no environment whose points belong to two different positive environments joins
+  // the two sides where they meet: a narrow strip closing the rim of a plate instead of the
+  // sides sharing their rim points. Its points are ridge points too, so that elements on it,
+  // which must touch both sides, join no two environments (not in the paper, whose sides meet in
+  // shared points). Decided on the marks above, not on marks this loop sets.
+  std::vector<Index> rim;
+  for (std::size_t t = 0; t < triangles.size() && t < face_environments.size(); ++t) {
+    if (face_environments[t] > 0) continue;
+    std::int32_t seen = kNoEnvironment;
+    bool two = false;
+    for (const Index p : triangles[t]) {
+      const std::int32_t mark = point[p];
+      if (mark <= 0) continue;
+      if (seen != kNoEnvironment && mark != seen) two = true;
+      seen = mark;
+    }
+    if (two) rim.insert(rim.end(), triangles[t].begin(), triangles[t].end());
+  }
+  for (const Index p : rim) point[p] = kSharedEnvironment;
   return point;
 }
 

@@ -48,7 +48,10 @@ struct FrontEnvironments {
 //     it also touches: a point on the surface of environment k belongs to k even where that
 //     surface meets unmarked faces (its rim on a symmetry plane, say), so the filter of §2 (a)
 //     keeps it away from the other side;
-//   - faces of two or more positive environments -> kSharedEnvironment (-1), the ridge points.
+//   - faces of two or more positive environments -> kSharedEnvironment (-1), the ridge points;
+//   - and kSharedEnvironment for every point of a face of environment 0 whose points (by the
+//     rules above) belong to two different positive environments: a strip closing a plate's rim
+//     between its two sides is where they meet, as the shared rim points are (not in the paper).
 // Points that no triangle uses get 0. `triangles` (M×3) must have indices in [0, point_count),
 // `face_environments` has M entries (negative entries count as environment 0 here; callers
 // validate them first).

@@ -113,13 +113,17 @@ TEST_F(CliFiles, ConvertRefusesToDropTetsIntoStl) {
 // 1, face (1, 2, 3) (opposite point 0) tagged 2, the others 0. Point 0 is then on environment 1
 // only, point 3 on environment 2 only, points 1 and 2 on both (-1): the tet joins environments
 // 1 and 2 across the gap.
+// A bipyramid of three tets around the axis from its apex 0 (z = 1) to its apex 4 (z = -1):
+// the faces at apex 0 are environment 1, those at apex 4 environment 2, so the equator points
+// are on both (ridge points) and every tet joins point 0 of environment 1 with point 4 of
+// environment 2.
 Mesh tet_across_a_gap() {
   Mesh m;
-  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  m.triangles = {{0, 2, 1}, {1, 2, 3}, {0, 1, 3}, {0, 3, 2}};
-  m.triangle_tags = {1, 2, 0, 0};
-  m.tets = {{0, 1, 2, 3}};
-  m.tet_tags = {0};
+  m.points = {{0, 0, 1}, {1, 0, 0}, {-0.5, 0.9, 0}, {-0.5, -0.9, 0}, {0, 0, -1}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {4, 2, 1}, {4, 3, 2}, {4, 1, 3}};
+  m.triangle_tags = {1, 1, 1, 2, 2, 2};
+  m.tets = {{0, 4, 2, 1}, {0, 4, 3, 2}, {0, 4, 1, 3}};
+  m.tet_tags = {0, 0, 0};
   return m;
 }
 
@@ -128,7 +132,7 @@ TEST_F(CliFiles, StatsReportsTetsAcrossAGapAsAWarningWhenTagsArePresent) {
   EXPECT_EQ(run("stats " + (dir_ / "gap.mesh").string(), dir_ / "out"), 0);
   const std::string out = slurp(dir_ / "out");
   EXPECT_NE(out.find("environment_gap            warning"), std::string::npos) << out;
-  EXPECT_NE(out.find("tet 0 (0,1,2,3) joins environment 1 (point 0) and environment 2 (point 3)"),
+  EXPECT_NE(out.find("tet 0 (0,4,2,1) joins environment 1 (point 0) and environment 2 (point 4)"),
             std::string::npos)
       << out;
 }
@@ -144,7 +148,7 @@ TEST_F(CliFiles, StatsWithEnvsTagsFailsOnTetsAcrossAGap) {
 
 TEST_F(CliFiles, StatsWithoutTagsHasNoGapCheck) {
   Mesh m = tet_across_a_gap();
-  m.triangle_tags.assign(4, 0);
+  m.triangle_tags.assign(6, 0);
   ASSERT_TRUE(write_mesh(m, (dir_ / "untagged.mesh").string()).ok());
   EXPECT_EQ(run("stats " + (dir_ / "untagged.mesh").string(), dir_ / "out"), 0);
   EXPECT_EQ(slurp(dir_ / "out").find("environment_gap"), std::string::npos) << slurp(dir_ / "out");

@@ -67,6 +67,37 @@ TEST(PointEnvironments, ThreeEnvironmentsAtOnePointGiveMinusOne) {
   EXPECT_EQ(lpocr[5], 2);
 }
 
+// A thin triangular prism: bottom (points 0-2) and top (3-5) in environments `bottom` and
+// `top`, its three rim quads in none (the strips closing a plate's rim).
+Mesh thin_prism(std::int32_t bottom, std::int32_t top) {
+  Mesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 0.001}, {1, 0, 0.001}, {0, 1, 0.001}};
+  m.triangles = {{0, 2, 1}, {3, 4, 5}};
+  m.triangle_tags = {bottom, top};
+  for (Index i = 0; i < 3; ++i) {
+    const Index j = (i + 1) % 3;
+    m.triangles.push_back({i, j, j + 3});
+    m.triangles.push_back({i, j + 3, i + 3});
+    m.triangle_tags.insert(m.triangle_tags.end(), {0, 0});
+  }
+  return m;
+}
+
+TEST(PointEnvironments, FacesOfNoEnvironmentBetweenTwoEnvironmentsHaveRidgePoints) {
+  // Each rim face has points of environments 1 and 2: it is where the two sides meet.
+  const Mesh two = thin_prism(1, 2);
+  EXPECT_THAT(point_environments(two.points.size(), two.triangles, two.triangle_tags),
+              ElementsAre(-1, -1, -1, -1, -1, -1));
+  // One environment on both: the rim faces touch only it.
+  const Mesh one = thin_prism(4, 4);
+  EXPECT_THAT(point_environments(one.points.size(), one.triangles, one.triangle_tags),
+              ElementsAre(4, 4, 4, 4, 4, 4));
+  // Only the bottom marked: nothing to join.
+  const Mesh bottom = thin_prism(1, 0);
+  EXPECT_THAT(point_environments(bottom.points.size(), bottom.triangles, bottom.triangle_tags),
+              ElementsAre(1, 1, 1, 0, 0, 0));
+}
+
 TEST(EnvironmentsFromTags, FaceEnvironmentIsTheTag) {
   const Mesh m = pillow(4, 9);
   absl::StatusOr<FrontEnvironments> env = environments_from_tags(m);
