@@ -165,8 +165,13 @@ double element_size_for_face(const MesherState& s, const Triangle& v) {
   return element_size_for_target(s, v, target_size_for_face(s, v));
 }
 
-bool is_sliver_face(const MesherState& s, double best) {
-  return s.point_env.empty() && best < kSliverFaceQuality;
+bool is_sliver_face(const MesherState& s, Index env, const Triangle& v, double best) {
+  if (!(best < kSliverFaceQuality)) return false;
+  if (s.point_env.empty()) return true;
+  return env == kNoEnvironment && !s.rim_strip_point.empty() &&
+         std::all_of(v.begin(), v.end(), [&](Index p) {
+           return p < static_cast<Index>(s.rim_strip_point.size()) && s.rim_strip_point[p];
+         });
 }
 
 double best_element_quality(const MesherState& s, const Triangle& v) {
@@ -176,11 +181,11 @@ double best_element_quality(const MesherState& s, const Triangle& v) {
   return tet_shape_quality(a, b, c, ideal_point(s, v, mean_edge(a, b, c)));
 }
 
-double queue_size_for_face(const MesherState& s, const Triangle& v) {
+double queue_size_for_face(const MesherState& s, const Triangle& v, Index env) {
   const double target = target_size_for_face(s, v);
   const double key = queue_key_for_element(target, element_size_for_target(s, v, target));
   const double best = best_element_quality(s, v);
-  return is_sliver_face(s, best) ? key * std::max(best, 0.0) / kSliverFaceQuality : key;
+  return is_sliver_face(s, env, v, best) ? key * std::max(best, 0.0) / kSliverFaceQuality : key;
 }
 
 Point ideal_point(const MesherState& s, const Triangle& v, double d) {
@@ -206,7 +211,7 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
   // Not in the paper: on a sliver face no element reaches the shapes asked of the others; it
   // is asked the same share of the best it can have.
   const double best = best_element_quality(s, v);
-  const bool sliver = is_sliver_face(s, best);
+  const bool sliver = is_sliver_face(s, env, v, best);
   const double min_quality = sliver ? rules.min_quality * best : rules.min_quality;
   if (sliver) neighbour_apex_candidates(s, face, best);
 

@@ -55,18 +55,22 @@ double element_size_for_face(const MesherState& s, const Triangle& v);
 // degrees, a needle with one under ~5), on which every element is a sliver too.
 double best_element_quality(const MesherState& s, const Triangle& v);
 inline constexpr double kSliverFaceQuality = 0.15;
-// True when a face of best_element_quality `best` is treated as a sliver (queue_size_for_face,
-// gather_candidates): under kSliverFaceQuality, on a front without crossing environments. With
-// environments (paper §2) the rules for slivers left the crossing plates of other shapes stuck
-// (ThinVolume.CrossingPlatesOfOtherShapesMeshValid): thin regions keep the rules they had.
-bool is_sliver_face(const MesherState& s, double best);
+// True when face v of environment `env` and best_element_quality `best` is treated as a sliver
+// (queue_size_for_face, gather_candidates): under kSliverFaceQuality, on a front without
+// crossing environments. With environments (paper §2) the rules for slivers left the crossing
+// plates of other shapes stuck (ThinVolume.CrossingPlatesOfOtherShapesMeshValid) and, on faces
+// of rim points, let the large sails escape their box: thin regions keep the rules they
+// had, but for the faces among the points of strips closing plates' rims
+// (MesherState::rim_strip_point), needles that stop the front without them
+// (ThinVolume.PlatesWithRimStripsMeshValid).
+bool is_sliver_face(const MesherState& s, Index env, const Triangle& v, double best);
 
 // F6: the queue key of face v: queue_key_for_element (core/front/front_sizes.h) of its target
 // and element sizes; for a sliver face (is_sliver_face), that key scaled down by its best
 // quality over kSliverFaceQuality, so that slivers are deleted first, the worst first (not in
 // the paper: like the faces of crossing environments, §2, the troublesome faces go first,
 // while the faces beside them are still on the front to be closed with them).
-double queue_size_for_face(const MesherState& s, const Triangle& v);
+double queue_size_for_face(const MesherState& s, const Triangle& v, Index env);
 
 // F7.1: the 'best point' for face v and element size d: above the centroid, along the face
 // normal, at the height that makes the edges to the face's corners about d long.

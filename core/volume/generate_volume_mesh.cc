@@ -84,13 +84,24 @@ absl::Status load_initial_front(MesherState& s, const Mesh& input,
   s.point_size = *std::move(sizes);
   if (!face_env.empty())
     s.point_env = point_environments(input.points.size(), input.triangles, face_env);
+  for (std::size_t t = 0; t < input.triangles.size() && !s.point_env.empty(); ++t) {
+    const Triangle& u = input.triangles[t];
+    if (face_env[t] != kNoEnvironment ||
+        !std::all_of(u.begin(), u.end(),
+                     [&](Index p) { return s.point_env[p] == kSharedEnvironment; }))
+      continue;
+    s.rim_strip_point.resize(input.points.size(), false);
+    for (const Index p : u) s.rim_strip_point[p] = true;
+  }
   for (std::size_t t = 0; t < input.triangles.size(); ++t) {
     const Triangle& u = input.triangles[t];
     const Triangle inward{u[0], u[2], u[1]};
+    const Index env = face_env.empty() ? 0 : face_env[t];
     s.sliver_front = s.sliver_front ||
-                     volume::is_sliver_face(s, volume::best_element_quality(s, inward));
-    s.front.add(inward, volume::queue_size_for_face(s, inward),
-                face_env.empty() ? 0 : face_env[t]);
+                     (s.point_env.empty() &&
+                      volume::is_sliver_face(s, env, inward,
+                                             volume::best_element_quality(s, inward)));
+    s.front.add(inward, volume::queue_size_for_face(s, inward, env), env);
   }
   return absl::OkStatus();
 }
@@ -276,7 +287,9 @@ absl::Status back_off(MesherState& s, const Mesh& input, Index face, BackOffCoun
   const double d = volume::element_size_for_face(s, v);
   const auto requeue = [&] {
     const FrontItem<3>& f = s.front.item(face);
-    if (f.alive && f.stamp == stamp) s.front.requeue(face, volume::queue_size_for_face(s, v));
+    if (f.alive && f.stamp == stamp) {
+      s.front.requeue(face, volume::queue_size_for_face(s, v, f.env));
+    }
     return absl::OkStatus();
   };
   const auto fill_part = [&](RepairCounts& fill_counts, int max_fills, auto&& fill) {
@@ -457,7 +470,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
       continue;
     const FrontItem<3>& f = s.front.item(*face);
     if (f.attempts + 1 < kAttemptsBeforeBackOff) {
-      s.front.defer(*face, volume::queue_size_for_face(s, f.v));
+      s.front.defer(*face, volume::queue_size_for_face(s, f.v, f.env));
       continue;
     }
     const Point at = s.points[f.v[0]];  // where refine_where_stuck halves the size

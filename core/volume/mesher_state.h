@@ -40,6 +40,10 @@ struct MesherState {
   // Crossing environments (paper §2): LPOCR per point (0 none, -1 on several, new points 0);
   // empty when the input has none. The environment of a front face is FrontItem::env (LFACR).
   std::vector<std::int32_t> point_env;
+  // Points of the input faces of no environment whose points are all ridge points (-1): the
+  // strips closing plates' rims between their two sides (environments.h). Empty when there are
+  // none.
+  std::vector<bool> rim_strip_point;
   // The input front has sliver faces (is_sliver_face, so no crossing environments): new points
   // closer to a face keep the best point's spacing from front points (gather_candidates).
   bool sliver_front = false;

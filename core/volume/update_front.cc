@@ -24,7 +24,8 @@ void delete_tet(MesherState& s, Index t) {
       s.front.remove(*g);
     } else {
       const Triangle inward{f[0], f[2], f[1]};
-      s.front.add(inward, queue_size_for_face(s, inward), face_environment(s, inward));
+      const Index env = face_environment(s, inward);
+      s.front.add(inward, queue_size_for_face(s, inward, env), env);
     }
   }
   s.incidence.remove(s.tets, t);
@@ -51,7 +52,8 @@ void add_element(MesherState& s, Index face, Index p) {
     if (auto g = s.front.find({side[0], side[2], side[1]})) {
       s.front.remove(*g);
     } else {
-      s.front.add(side, queue_size_for_face(s, side), face_environment(s, side));  // F8, F9
+      const Index env = face_environment(s, side);
+      s.front.add(side, queue_size_for_face(s, side, env), env);  // F8, F9
     }
   }
 }

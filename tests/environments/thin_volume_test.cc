@@ -152,6 +152,31 @@ TEST(ThinVolume, CrossingPlatesOfOtherShapesMeshValid) {
   }
 }
 
+// Issue 10, part 6: plates crossing at ±30° and at 90°, 1/1000 thick, with their rims closed by
+// strips of no environment (needles 0.001 × 0.25) instead of tapering: with tags and with auto.
+// Before, elements on a strip joined its two sides' environments and their new faces, taking one
+// side's environment, went blind to the other side and crossed it ("the elements overlap");
+// then the strips' needles stopped the front, as sliver faces did before the rules for slivers
+// (environments.h: the strip's points are ridge points; front_steps.h, is_sliver_face: faces
+// among them follow the rules for slivers).
+TEST(ThinVolume, PlatesWithRimStripsMeshValid) {
+  for (const double angle : {60.0, 90.0}) {
+    CrossingPlatesParams params;
+    params.angle_deg = angle;
+    params.rim_strips = true;
+    params.thickness = 0.001;
+    const Mesh plates = crossing_plates_surface(params);
+    const std::string name = "plates with rim strips at " + std::to_string(angle) + " degrees";
+    SCOPED_TRACE(name);
+    const SizeSpec spec = read_spec("examples/crossing/crossing-sizes.json");
+    expect_meshes_valid((name + " (tags)").c_str(), plates, spec, 0.5, 1.3, plates.triangle_tags);
+    absl::StatusOr<DetectedEnvironments> found = detect_environments(plates, {}, no_progress());
+    ASSERT_TRUE(found.ok()) << found.status();
+    expect_meshes_valid((name + " (auto)").c_str(), plates, spec, 0.5, 1.3,
+                        found->environments.face);
+  }
+}
+
 // Fronts with environments whose front stops are meshed again with the size halved where they
 // stopped, as other fronts are (generate_volume_mesh.cc, kMaxLocalRefinements): the X of camber
 // 0.02 with 6 cells across a half plate, 0.001 thick, stopped before, with tags and with auto.
