@@ -425,11 +425,30 @@ std::vector<std::int32_t> number_sides(const std::vector<Index>& side) {
   return environment;
 }
 
+// Normals of crossing faces more than this far from parallel or opposite (degrees) make a steep
+// crossing (check_sides_separated).
+constexpr double kSteepCrossingDeg = 30.0;
+
 // Step 5: the two faces of each thin pair lie in different environments.
-absl::Status check_sides_separated(const std::vector<ThinPair>& pairs,
+absl::Status check_sides_separated(const std::vector<ThinPair>& pairs, const FaceFrames& frames,
                                    const std::vector<std::int32_t>& environment) {
   for (const ThinPair& p : pairs) {
     if (environment[p.f] != environment[p.g]) continue;
+    // The two sides of a thin region look nearly opposite ways, even where they cross. Faces
+    // crossing at a steep angle are surfaces passing through each other (two solids given
+    // overlapping, say): no environments can tell them apart; say so, naming a pair (not in
+    // the paper).
+    for (const ThinPair& q : pairs) {
+      if (q.kind != PairKind::kCrossing) continue;
+      const double c = dot(frames.normal[q.f], frames.normal[q.g]);
+      if (std::abs(c) > std::cos(kSteepCrossingDeg * std::numbers::pi / 180.0)) continue;
+      return absl::InvalidArgumentError(absl::StrFormat(
+          "automatic environments: triangles %d and %d cross at %.0f degrees: not the two sides "
+          "of one thin region, which look nearly opposite ways, but surfaces that pass through "
+          "each other (two solids given overlapping?), which environments cannot tell apart; "
+          "give the boundary of the domain (the union of such solids)",
+          q.f, q.g, std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi));
+    }
     const std::string how =
         p.kind == PairKind::kCrossing
             ? std::string("cross")
@@ -457,7 +476,7 @@ absl::StatusOr<DetectedEnvironments> detect_environments(const Mesh& front,
 
   DetectedEnvironments result;
   result.environments.face = number_sides(side);
-  if (absl::Status status = check_sides_separated(*pairs, result.environments.face);
+  if (absl::Status status = check_sides_separated(*pairs, frames, result.environments.face);
       !status.ok()) {
     return status;
   }

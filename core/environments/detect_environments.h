@@ -41,7 +41,10 @@
 //     of its smallest face index (deterministic). All other faces get 0.
 //  5. Separation (check_sides_separated). The two faces of every thin pair must end up in
 //     different environments; otherwise the sides could not be told apart automatically and
-//     INVALID_ARGUMENT names the pair (mark the environments by tags instead).
+//     INVALID_ARGUMENT names the pair (mark the environments by tags instead) -- or, when faces
+//     cross at a steep angle (normals more than 30° from parallel), names them: surfaces that
+//     pass through each other, like two solids given overlapping, are no thin region, and no
+//     environments can mesh them (give the boundary of their union).
 // LPOCR then follows from LFACR (point_environments, environments.h): ridge points of two
 // environments get -1.
 #pragma once

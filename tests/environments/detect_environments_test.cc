@@ -5,7 +5,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <utility>
 #include <vector>
+
+#include "core/shapes/shapes.h"
 
 namespace afmesh {
 namespace {
@@ -122,6 +125,29 @@ TEST(DetectEnvironments, OverlapWithinOneSideIsReported) {
   absl::StatusOr<DetectedEnvironments> found = detect_environments(m, {}, no_progress());
   ASSERT_FALSE(found.ok());
   EXPECT_THAT(found.status().message(), HasSubstr("triangles 0 and 1 cross"));
+}
+
+TEST(DetectEnvironments, SolidsPassingThroughEachOtherAreNamedAsSuch) {
+  // The air in a box around two thin slabs given as two closed boxes crossing at 90° (normals
+  // into the slabs), not as the boundary of their union: the end faces of the shorter slab cross
+  // the other's sides, joining its two sides, and the sides cross at 90°. No environments can
+  // tell these apart; the error says what it is.
+  Mesh front = box_surface({-3, -3, -3}, {3, 3, 3}, 1.0);
+  for (const auto& [lo, hi] : {std::pair<Point, Point>{{-1, -0.01, -1}, {1, 0.01, 1}},
+                               std::pair<Point, Point>{{-0.01, -1, -0.8}, {0.01, 1, 0.8}}}) {
+    const Mesh slab = box_surface(lo, hi, 0.25);
+    const Index offset = static_cast<Index>(front.points.size());
+    front.points.insert(front.points.end(), slab.points.begin(), slab.points.end());
+    for (const Triangle& t : slab.triangles) {  // reversed: the slab is a solid in the air
+      front.triangles.push_back({t[0] + offset, t[2] + offset, t[1] + offset});
+    }
+  }
+  front.triangle_tags.assign(front.triangles.size(), 0);
+  absl::StatusOr<DetectedEnvironments> found = detect_environments(front, {}, no_progress());
+  ASSERT_FALSE(found.ok());
+  EXPECT_EQ(found.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(found.status().message(), HasSubstr("cross at 90 degrees"));
+  EXPECT_THAT(found.status().message(), HasSubstr("pass through each other"));
 }
 
 TEST(DetectEnvironments, BadInputIsNamed) {
