@@ -30,7 +30,8 @@ within the tolerance after all runs, the closest run shown), the volume phase's 
 bytes/tet, min dihedral, %<20°, edge/h, %e in band and the afmesh/peer ratios at those counts. A
 tool that fails or times out says so, with its error, instead of a row.
 
-Thin inputs (--thin, in the full run; --thin-only): each of THIN_INPUTS goes as it is to afmesh
+Thin inputs (--thin, in the full run; --thin-only): each of THIN_INPUTS, and of THIN_GENERATED
+(written by make-thin-examples into the work directory), goes as it is to afmesh
 (`afmesh volume IN -o OUT.msh --spec SIZES --envs tags`, then `--envs auto`) and to every peer.
 Per tool: outcome (valid / INVALID with the failing checks / FAILED or CRASHED with exit status,
 or TIMED OUT; the reason line below the table: the exception or error, and the first log line
@@ -84,6 +85,16 @@ THIN_INPUTS = (
      "two sails 1 mm thick in a 70 m box (paper §5 (b))"),
     ("crossing", "examples/crossing/crossing.mesh", "examples/crossing/crossing-sizes.json",
      "an X of two plates 1/1000 thick crossing each other (paper §2, Figures 3 and 4)"),
+)
+# Thin inputs written by make-thin-examples (core/shapes/thin_shapes.h) into the work directory
+# before they are run like THIN_INPUTS: name, its arguments, size specification, title.
+THIN_GENERATED = (
+    ("shell", ["--shell", "0.001", "20", "22"], "examples/dome/dome-sizes.json",
+     "whole hemispherical shell 1/1000 of the radius thick, sides in rings of 20 and 22 steps "
+     "(issue 10)"),
+    ("strip-plates", ["--plates", "60", "0.001", "0.02", "4", "1"],
+     "examples/crossing/crossing-sizes.json",
+     "two plates 1/1000 thick crossing at ±30°, rims closed by strips of tag 0 (issue 10)"),
 )
 # What meshes a thin input: afmesh with each --envs mode, then the peers (tetgen three ways: the
 # benchmark's -pYq1.2 -a, plain -p, and -d which only counts intersecting face pairs).
@@ -141,7 +152,7 @@ def parse_arguments(argv):
                         help="skip the thin (crossing) inputs")
     parser.add_argument("--thin-only", action="store_true",
                         help="only the thin inputs: afmesh and every peer on examples/dome, "
-                             "examples/sails")
+                             "examples/sails, examples/crossing and THIN_GENERATED")
     parser.add_argument("--thin-timeout", type=float, default=300.0,
                         help="seconds before one run on a thin input is killed (timed out)")
     args = parser.parse_args(argv)
@@ -400,6 +411,15 @@ def run_thin_peer(args, tool, prefix, size, work):
 def thin_tools(tools):
     """The peers of THIN_PEERS that --tools asks for (tetgen stands for its three runs)."""
     return [t for t in THIN_PEERS if t in tools or (t.startswith("tetgen") and "tetgen" in tools)]
+
+
+def generate_thin(args, name, generator_args):
+    """Writes THIN_GENERATED's input `name` into the work directory; returns its path."""
+    out = os.path.join(args.work_dir, "thin-inputs", name + ".mesh")
+    os.makedirs(os.path.dirname(out), exist_ok=True)
+    tool = os.path.join(args.build_dir, "tests", "environments", "make-thin-examples")
+    subprocess.run([tool, *generator_args, out], check=True)
+    return out
 
 
 def run_thin(args, tools, name, surface, spec, title):
@@ -890,6 +910,10 @@ def main(argv):
     if args.thin_only or (args.thin and not only):
         results["thin"] = {name: run_thin(args, tools, name, *rest)
                            for name, *rest in THIN_INPUTS}
+        for name, generator_args, spec, title in THIN_GENERATED:
+            results["thin"][name] = run_thin(args, tools, name,
+                                             generate_thin(args, name, generator_args), spec,
+                                             title)
     with open(os.path.join(args.work_dir, "results.json"), "w") as f:
         json.dump(results, f, indent=1)
     print(f"\n{load_line()}\nfigures saved in {os.path.join(args.work_dir, 'results.json')}")

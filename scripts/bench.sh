@@ -39,7 +39,7 @@ else
   cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 fi
 cmake --build "$build_dir" --target afmesh-bench-volume afmesh-bench-io \
-  afmesh-bench-sizing afmesh afmesh-server -j "${AFMESH_BENCH_JOBS:-2}"
+  afmesh-bench-sizing afmesh afmesh-server make-thin-examples -j "${AFMESH_BENCH_JOBS:-2}"
 
 exec /usr/bin/python3 bench/run_bench.py --build-dir "$build_dir" \
   --work-dir "$build_dir/bench-work" "$@"
