@@ -192,6 +192,31 @@ bool crossing_allowed(std::span<const std::int32_t> env, Index t, Index u) {
 
 // no_self_intersections: exact test of every pair of triangles whose boxes overlap. `env` is
 // empty, or valid face environments whose cross-environment intersections are allowed.
+// What to do about triangles t and u of environments et and eu that intersect, though only two
+// different positive environments may cross: the faces to tag, and with what.
+std::string environment_crossing_message(Index t, Index u, std::int32_t et, std::int32_t eu) {
+  if ((et == 0) != (eu == 0)) {
+    const Index none = et == 0 ? t : u, some = et == 0 ? u : t;
+    const std::int32_t side = std::max(et, eu);
+    return absl::StrFormat(
+        "triangles %d and %d intersect: triangle %d has no environment and crosses triangle %d "
+        "of environment %d (only two different positive environments may cross); tag "
+        "triangle %d with a positive environment other than %d, the one of its own side",
+        t, u, none, some, side, none, side);
+  }
+  if (et == 0) {
+    return absl::StrFormat(
+        "triangles %d and %d intersect and have no environment (only two different positive "
+        "environments may cross); tag them with the environments of their sides",
+        t, u);
+  }
+  return absl::StrFormat(
+      "triangles %d and %d intersect within environment %d (only two different positive "
+      "environments may cross): a side crosses itself, or the two sides of a thin region share "
+      "that environment",
+      t, u, et);
+}
+
 Check check_self_intersections(const Mesh& surface, const ProperTriangles& proper,
                                std::span<const std::int32_t> env, const ValidationParams& params,
                                CancelCheck& stop) {
@@ -229,10 +254,7 @@ Check check_self_intersections(const Mesh& surface, const ProperTriangles& prope
       if (env.empty()) {
         return Finding{absl::StrFormat("triangles %d and %d intersect", t, u), {}, {t, u}, {}};
       }
-      return Finding{absl::StrFormat("triangles %d and %d intersect (environments %d and %d: "
-                                     "only two different positive environments may cross)",
-                                     t, u, env[t], env[u]),
-                     {}, {t, u}, {}};
+      return Finding{environment_crossing_message(t, u, env[t], env[u]), {}, {t, u}, {}};
     });
   }
   const std::string allowed_note =

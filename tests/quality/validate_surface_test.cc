@@ -1,11 +1,13 @@
 // Tests of validate_surface: closed surfaces pass, and each defect is found with the right
 // elements named.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <limits>
 #include <utility>
 
+#include "absl/strings/str_format.h"
 #include "core/common/progress.h"
 #include "core/quality/validate.h"
 #include "tests/quality/report_helpers.h"
@@ -260,6 +262,33 @@ TEST(ValidateSurface, TheSelfIntersectionCheckAloneReadsFaceEnvironments) {
   params.face_environments = env;
   EXPECT_EQ(check_surface_self_intersections(overlapping, params, no_progress())->outcome,
             CheckOutcome::kNotRun);
+}
+
+// A forbidden crossing names what to tag: a face of no environment crossing one of environment
+// 1 is to get its own side's environment; two faces of one environment share a side.
+TEST(ValidateSurface, AForbiddenCrossingSaysWhichTriangleToTag) {
+  const Mesh cube = testing::five_tet_cube_boundary();
+  const Mesh overlapping = testing::merge(cube, testing::translated(cube, {0.5, 0.5, 0.5}));
+  std::vector<std::int32_t> env(overlapping.triangles.size(), 1);
+  std::fill(env.begin() + static_cast<std::ptrdiff_t>(cube.triangles.size()), env.end(), 0);
+  ValidationParams params;
+  params.face_environments = env;
+  const Check crossing = check_of(validate_surface(overlapping, params),
+                                  check::kNoSelfIntersections);
+  ASSERT_FALSE(crossing.findings.empty());
+  const Finding& first = crossing.findings.front();
+  ASSERT_EQ(first.triangles.size(), 2u);
+  const Index none = env[first.triangles[0]] == 0 ? first.triangles[0] : first.triangles[1];
+  EXPECT_THAT(first.message,
+              ::testing::HasSubstr(absl::StrFormat("triangle %d has no environment", none)));
+  EXPECT_THAT(first.message, ::testing::HasSubstr(absl::StrFormat(
+                                 "tag triangle %d with a positive environment other than 1",
+                                 none)));
+  std::fill(env.begin(), env.end(), 3);
+  const Check within = check_of(validate_surface(overlapping, params),
+                                check::kNoSelfIntersections);
+  ASSERT_FALSE(within.findings.empty());
+  EXPECT_THAT(within.findings.front().message, ::testing::HasSubstr("within environment 3"));
 }
 
 TEST(ValidateSurface, OutOfRangeIndexStopsTheOtherChecks) {

@@ -1206,7 +1206,7 @@ TEST_F(MesherServiceTest, RejectsCrossingWithinOneEnvironment) {
   for (Index& tag : dome.triangle_tags) tag = tag > 0 ? 1 : 0;  // both sides in environment 1
   expect_rejected(requests_with_environments(dome, v1::ENVIRONMENT_MODE_TAGS),
                   grpc::StatusCode::INVALID_ARGUMENT,
-                  {"invalid front: no_self_intersections", "environments 1 and 1"});
+                  {"invalid front: no_self_intersections", "within environment 1"});
 }
 
 TEST_F(MesherServiceTest, RejectsUnknownEnvironmentMode) {
