@@ -32,11 +32,11 @@
 //     paper's "all the surfaces lying on one side of a potentially troublesome region have been
 //     given the same environment variable" (Figure 4).
 //  3. Growth (grow_sides). Faces next to a side join it, ring by ring (`grow_rings` rings of
-//     faces sharing an edge without a fold), unless they touch two sides (by an edge, or by a
-//     point on a face of another side: a narrow strip closing a plate's rim between its sides). This marks the faces
-//     at the rim of a thin region, whose only close faces on the other side share their rim
-//     vertices (and so are not thin pairs by (b)), and which the front would otherwise build on
-//     without filtering, a few tenths of a millimetre from the other side.
+//     faces sharing an edge without a fold), unless they touch two sides (by an edge, or by a point
+//     on a face of another side: a narrow strip closing a plate's rim between its sides). This
+//     marks the faces at the rim of a thin region, whose only close faces on the other side share
+//     their rim vertices (and so are not thin pairs by (b)), and which the front would otherwise
+//     build on without filtering, a few tenths of a millimetre from the other side.
 //  4. Numbering (number_sides). Each side is one environment, numbered 1, 2, ... in the order
 //     of its smallest face index (deterministic). All other faces get 0.
 //  5. Separation (check_sides_separated). The two faces of every thin pair must end up in

@@ -520,11 +520,12 @@ double thickness_at(const CrossingPlatesParams& params, double w, double z) {
 // z = -1 + j / n. Columns i > n are plate A's face y = m_A + sy t_A / 2 from the corner to the
 // rim x = sx; columns i < n plate B's face (m_B + sx t_B / 2 along its normal) from the corner to
 // the rim at sy along it (m the camber, t the thickness); column i = n is the corner line where
-// the two faces meet, (sx t_c / 2, sy t_c / 2, z) at 90°, t_c the thickness on the crossing line. Tapered plates: t_c is 0 at z = ±1 (the apexes, shared by all
-// four quadrants) and rim points (i = 0, i = 2n, j = 0, j = 2n) lie on the mid-planes, shared
-// with the neighbouring quadrant across the plate; with rim strips every point is t / 2 off the
-// mid-surface. Quadrants 2 and 4 (sx sy < 0) move their interior points by a fraction of a cell,
-// so the two sides of every half plate are triangulated independently.
+// the two faces meet, (sx t_c / 2, sy t_c / 2, z) at 90°, t_c the thickness on the crossing
+// line. Tapered plates: t_c is 0 at z = ±1 (the apexes, shared by all four quadrants) and rim
+// points (i = 0, i = 2n, j = 0, j = 2n) lie on the mid-planes, shared with the neighbouring
+// quadrant across the plate; with rim strips every point is t / 2 off the mid-surface.
+// Quadrants 2 and 4 (sx sy < 0) move their interior points by a fraction of a cell, so the two
+// sides of every half plate are triangulated independently.
 Point quadrant_point(const CrossingPlatesParams& params, double sx, double sy, int i, int j) {
   const int n = params.divisions;
   const bool moved = sx * sy < 0.0;

@@ -188,7 +188,8 @@ int main(int argc, char** argv) {
                  "usage: make-thin-examples EXAMPLES_DIR | --variants DIR\n"
                  "       make-thin-examples --sails THICKNESS GRID_SCALE BOX_SCALE BOX_SIZE OUT\n"
                  "       make-thin-examples --shell THICKNESS INNER_RINGS OUTER_RINGS OUT\n"
-                 "       make-thin-examples --plates ANGLE THICKNESS CAMBER DIVISIONS STRIPS OUT\n");
+                 "       make-thin-examples --plates ANGLE THICKNESS CAMBER DIVISIONS STRIPS "
+                 "OUT\n");
     return 2;
   }
   const std::string dir = argv[1];
