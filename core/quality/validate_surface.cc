@@ -190,8 +190,6 @@ bool crossing_allowed(std::span<const std::int32_t> env, Index t, Index u) {
   return !env.empty() && env[t] > 0 && env[u] > 0 && env[t] != env[u];
 }
 
-// no_self_intersections: exact test of every pair of triangles whose boxes overlap. `env` is
-// empty, or valid face environments whose cross-environment intersections are allowed.
 // What to do about triangles t and u of environments et and eu that intersect, though only two
 // different positive environments may cross: the faces to tag, and with what.
 std::string environment_crossing_message(Index t, Index u, std::int32_t et, std::int32_t eu) {
@@ -217,6 +215,8 @@ std::string environment_crossing_message(Index t, Index u, std::int32_t et, std:
       t, u, et);
 }
 
+// no_self_intersections: exact test of every pair of triangles whose boxes overlap. `env` is
+// empty, or valid face environments whose cross-environment intersections are allowed.
 Check check_self_intersections(const Mesh& surface, const ProperTriangles& proper,
                                std::span<const std::int32_t> env, const ValidationParams& params,
                                CancelCheck& stop) {
