@@ -132,14 +132,17 @@ int shared_vertex_count(const Triangle& t, const Triangle& u) {
   return shared;
 }
 
+// The cosine of an angle in degrees (the fold angle's, compared with dot products of normals).
+double cosine_of_degrees(double degrees) { return std::cos(degrees * std::numbers::pi / 180.0); }
+
 // Step 1, rule (b): f and g (sharing no vertex, not intersecting) nearly touch from the two
-// sides of a thin solid. Sets `distance` when they do.
+// sides of a thin solid; `fold_cosine` is that of params.fold_angle_deg. Sets `distance` when
+// they do.
 bool nearly_touch_back_to_back(const Mesh& front, const FaceFrames& frames,
-                               const AutoEnvironmentParams& params, Index f, Index g,
-                               double& distance_out) {
+                               const AutoEnvironmentParams& params, double fold_cosine, Index f,
+                               Index g, double& distance_out) {
   const Point& nf = frames.normal[f];
   const Point& ng = frames.normal[g];
-  const double fold_cosine = std::cos(params.fold_angle_deg * std::numbers::pi / 180.0);
   // Not folded against each other: a thin region's two sides look nearly opposite ways (more
   // than the fold angle apart, as where they meet, step 2); faces at a corner of the front, a
   // side and the narrow strip closing its rim, say, do not.
@@ -161,6 +164,7 @@ bool nearly_touch_back_to_back(const Mesh& front, const FaceFrames& frames,
 absl::StatusOr<std::vector<ThinPair>> find_thin_pairs(const Mesh& front, const FaceFrames& frames,
                                                       const AutoEnvironmentParams& params,
                                                       Progress& progress) {
+  const double fold_cosine = cosine_of_degrees(params.fold_angle_deg);
   std::vector<Box> boxes = triangle_boxes(front.points, front.triangles);
   for (std::size_t t = 0; t < boxes.size(); ++t) {
     const double margin = params.closeness * frames.size[t];
@@ -185,7 +189,7 @@ absl::StatusOr<std::vector<ThinPair>> find_thin_pairs(const Mesh& front, const F
     }
     double d = 0.0;
     if (shared_vertex_count(t, u) == 0 &&
-        nearly_touch_back_to_back(front, frames, params, f, g, d)) {
+        nearly_touch_back_to_back(front, frames, params, fold_cosine, f, g, d)) {
       pairs.push_back({f, g, PairKind::kClose, d});
     }
   }
@@ -233,7 +237,7 @@ std::vector<Index> group_sides(const Mesh& front, const FaceFrames& frames,
   const std::vector<Index>& start = around.start;
   const std::vector<Index>& faces_at = around.faces;
 
-  const double fold_cosine = std::cos(fold_angle_deg * std::numbers::pi / 180.0);
+  const double fold_cosine = cosine_of_degrees(fold_angle_deg);
   SmallestIdSets sides(face_count);
   std::vector<std::pair<Index, Index>> spokes;  // (other end of an edge through p, fan slot)
   SmallestIdSets fan(0);                        // the parts of the fan, over its slots
@@ -402,7 +406,7 @@ bool grow_one_ring(const Mesh& front, const FaceFrames& frames, const FacesAroun
 void grow_sides(const Mesh& front, const FaceFrames& frames, int rings, double fold_angle_deg,
                 std::vector<Index>& side) {
   if (rings == 0) return;
-  const double fold_cosine = std::cos(fold_angle_deg * std::numbers::pi / 180.0);
+  const double fold_cosine = cosine_of_degrees(fold_angle_deg);
   const std::vector<std::pair<Index, Index>> neighbours =
       non_fold_edge_neighbours(front, frames, fold_cosine);
   const FacesAroundPoints around = faces_around_points(front);
@@ -441,7 +445,7 @@ absl::Status check_sides_separated(const std::vector<ThinPair>& pairs, const Fac
     for (const ThinPair& q : pairs) {
       if (q.kind != PairKind::kCrossing) continue;
       const double c = dot(frames.normal[q.f], frames.normal[q.g]);
-      if (std::abs(c) > std::cos(kSteepCrossingDeg * std::numbers::pi / 180.0)) continue;
+      if (std::abs(c) > cosine_of_degrees(kSteepCrossingDeg)) continue;
       return absl::InvalidArgumentError(absl::StrFormat(
           "automatic environments: triangles %d and %d cross at %.0f degrees: not the two sides "
           "of one thin region, which look nearly opposite ways, but surfaces that pass through "
