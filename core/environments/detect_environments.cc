@@ -218,6 +218,41 @@ FacesAroundPoints faces_around_points(const Mesh& front) {
   return around;
 }
 
+// The parts of the fan of faces around a point p: its faces (slots 0 .. count - 1 of p's row in
+// FacesAroundPoints) joined across edges through p whose two faces do not fold (the angle
+// between their normals at most the fold angle, `fold_cosine` its cosine).
+class FanParts {
+ public:
+  void split(const Mesh& front, const FaceFrames& frames, const FacesAroundPoints& around,
+             double fold_cosine, Index p) {
+    const Index first = around.start[p], count = around.start[p + 1] - first;
+    spokes_.clear();
+    for (Index i = 0; i < count; ++i) {
+      for (const Index q : front.triangles[around.faces[first + i]]) {
+        if (q != p) spokes_.emplace_back(q, i);
+      }
+    }
+    std::sort(spokes_.begin(), spokes_.end());
+    parts_.reset(count);
+    for (std::size_t k = 0; k < spokes_.size(); ++k) {  // faces on one edge (p, q)
+      for (std::size_t l = k + 1; l < spokes_.size() && spokes_[l].first == spokes_[k].first;
+           ++l) {
+        const Index f = around.faces[first + spokes_[k].second];
+        const Index g = around.faces[first + spokes_[l].second];
+        if (dot(frames.normal[f], frames.normal[g]) >= fold_cosine) {
+          parts_.unite(spokes_[k].second, spokes_[l].second);
+        }
+      }
+    }
+  }
+  // The part of slot i (its smallest slot).
+  Index part(Index i) { return parts_.find(i); }
+
+ private:
+  std::vector<std::pair<Index, Index>> spokes_;  // (other end of an edge through p, slot)
+  SmallestIdSets parts_{0};
+};
+
 // Step 2: groups the faces of thin pairs into sides; returns, per face, the smallest face id of
 // its side, or kInvalidIndex for faces in no thin pair.
 //
@@ -239,34 +274,17 @@ std::vector<Index> group_sides(const Mesh& front, const FaceFrames& frames,
 
   const double fold_cosine = cosine_of_degrees(fold_angle_deg);
   SmallestIdSets sides(face_count);
-  std::vector<std::pair<Index, Index>> spokes;  // (other end of an edge through p, fan slot)
-  SmallestIdSets fan(0);                        // the parts of the fan, over its slots
+  FanParts fan;
   std::vector<Index> part_face;
   for (std::size_t p = 0; p < front.points.size(); ++p) {
     const Index first = start[p], count = start[p + 1] - first;
     if (count < 2) continue;
-    spokes.clear();
-    for (Index i = 0; i < count; ++i) {
-      for (const Index q : front.triangles[faces_at[first + i]]) {
-        if (q != static_cast<Index>(p)) spokes.emplace_back(q, i);
-      }
-    }
-    std::sort(spokes.begin(), spokes.end());
-    fan.reset(count);
-    for (std::size_t k = 0; k < spokes.size(); ++k) {  // faces on one edge (p, q)
-      for (std::size_t l = k + 1; l < spokes.size() && spokes[l].first == spokes[k].first; ++l) {
-        const Index f = faces_at[first + spokes[k].second];
-        const Index g = faces_at[first + spokes[l].second];
-        if (dot(frames.normal[f], frames.normal[g]) >= fold_cosine) {
-          fan.unite(spokes[k].second, spokes[l].second);
-        }
-      }
-    }
+    fan.split(front, frames, around, fold_cosine, static_cast<Index>(p));
     part_face.assign(count, kInvalidIndex);  // the first marked face of each part of the fan
     for (Index i = 0; i < count; ++i) {
       const Index f = faces_at[first + i];
       if (!marked[f]) continue;
-      Index& seen = part_face[fan.find(i)];
+      Index& seen = part_face[fan.part(i)];
       if (seen == kInvalidIndex) {
         seen = f;
       } else {
@@ -323,38 +341,20 @@ std::vector<std::pair<Index, Index>> non_fold_edge_neighbours(const Mesh& front,
 }
 
 // True when face f, in the fan of faces around its point x, is joined across edges through x
-// that do not fold (as in group_sides) to a face of a side other than `s`.
+// that do not fold (FanParts, as in group_sides) to a face of a side other than `s`.
 bool fan_meets_other_side(const Mesh& front, const FaceFrames& frames,
                           const FacesAroundPoints& around, double fold_cosine,
-                          const std::vector<Index>& side, Index f, Index x, Index s) {
+                          const std::vector<Index>& side, Index f, Index x, Index s,
+                          FanParts& fan) {
   const Index first = around.start[x], count = around.start[x + 1] - first;
-  std::vector<bool> reached(count, false);
-  std::vector<Index> stack;
-  for (Index i = 0; i < count; ++i) {
-    if (around.faces[first + i] == f) {
-      reached[i] = true;
-      stack.push_back(i);
-    }
+  fan.split(front, frames, around, fold_cosine, x);
+  Index of_f = kInvalidIndex;
+  for (Index i = 0; i < count && of_f == kInvalidIndex; ++i) {
+    if (around.faces[first + i] == f) of_f = fan.part(i);
   }
-  const auto share_edge = [&](Index g, Index h) {  // an edge through x
-    for (const Index q : front.triangles[g]) {
-      if (q == x) continue;
-      const Triangle& u = front.triangles[h];
-      if (std::find(u.begin(), u.end(), q) != u.end()) return true;
-    }
-    return false;
-  };
-  while (!stack.empty()) {
-    const Index g = around.faces[first + stack.back()];
-    stack.pop_back();
-    for (Index i = 0; i < count; ++i) {
-      const Index h = around.faces[first + i];
-      if (reached[i] || !share_edge(g, h) || dot(frames.normal[g], frames.normal[h]) < fold_cosine)
-        continue;
-      if (side[h] != kInvalidIndex && side[h] != s) return true;
-      reached[i] = true;
-      stack.push_back(i);
-    }
+  for (Index i = 0; i < count; ++i) {
+    const Index h = around.faces[first + i];
+    if (side[h] != kInvalidIndex && side[h] != s && fan.part(i) == of_f) return true;
   }
   return false;
 }
@@ -369,6 +369,7 @@ bool grow_one_ring(const Mesh& front, const FaceFrames& frames, const FacesAroun
                    std::vector<Index>& side) {
   std::vector<Index> next = side;
   bool grew = false;
+  FanParts fan;
   for (std::size_t first = 0; first < neighbours.size();) {
     const Index f = neighbours[first].first;
     Index joined = kInvalidIndex;
@@ -386,7 +387,8 @@ bool grow_one_ring(const Mesh& front, const FaceFrames& frames, const FacesAroun
     if (side[f] == kInvalidIndex && joined != kInvalidIndex && !ambiguous) {
       for (const Index x : front.triangles[f]) {
         ambiguous = ambiguous ||
-                    fan_meets_other_side(front, frames, around, fold_cosine, side, f, x, joined);
+                    fan_meets_other_side(front, frames, around, fold_cosine, side, f, x, joined,
+                                         fan);
       }
       if (!ambiguous) {
         next[f] = joined;
