@@ -18,7 +18,11 @@
 //           between them: with v the vector from f's closest point to g's, n_f · v > 0 and
 //           n_g · v < 0 (front normals point out of the domain, i.e. into the solid). Two faces
 //           facing each other across a narrow gap of the domain (n_f · v < 0) are not thin:
-//           that gap must be filled with tets joining both, so it gets no environment.
+//           that gap must be filled with tets joining both, so it gets no environment. Last,
+//           the two faces lie over each other: projected along the coordinate axis nearest
+//           n_f − n_g, they overlap in more than a line or a point (exact, orient2d_projected;
+//           not in the paper). Faces of a step, near and facing each other but side by side,
+//           have no thin region between them.
 //     Candidate pairs come from an AABB tree (core/spatial) over the faces' boxes, each
 //     enlarged by closeness × h; no all-pairs scan.
 //  2. Sides (group_sides). The faces of thin pairs are grouped: two such faces at a common point

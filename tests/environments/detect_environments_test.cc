@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -66,6 +67,26 @@ TEST(DetectEnvironments, CloseMeansBelowTheFractionOfTheLocalSize) {
   EXPECT_THAT(detect(parallel_pair(0.01, false), tight).environments.face, ElementsAre(0, 0));
 }
 
+// Regression (netgen_hinge with --envs auto): two faces near and facing each other, as in
+// BackToBackCloseFacesAreTwoEnvironments, but side by side rather than over each other, seen from
+// where they face: a step between two levels (the hinge's bore changing radius by 1 where
+// facets 20 and 15 long end in one plane). No thin region lies between them. Moved over the
+// lower face by `overlap` in x, they lie over each other and are a thin pair again.
+Mesh side_by_side_pair(double gap, double overlap) {
+  return triangles_mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0},                                 // +z
+                         {overlap, 0, gap}, {overlap, 1, gap}, {overlap - 1, 0, gap}},  // -z
+                        {{0, 1, 2}, {3, 5, 4}});
+}
+
+TEST(DetectEnvironments, FacesThatMeetOnlyEdgeToEdgeSeenFromWhereTheyFaceAreNotThin) {
+  const DetectedEnvironments apart = detect(side_by_side_pair(0.01, 0.0));
+  EXPECT_THAT(apart.environments.face, ElementsAre(0, 0));
+  EXPECT_EQ(apart.stats.close_pairs, 0);
+  const DetectedEnvironments over = detect(side_by_side_pair(0.01, 0.1));
+  EXPECT_THAT(over.environments.face, ElementsAre(1, 2));
+  EXPECT_EQ(over.stats.close_pairs, 1);
+}
+
 TEST(DetectEnvironments, CrossingFacesAreMarkedWhateverTheirOrientation) {
   const Mesh m = triangles_mesh({{0, 0, 0}, {2, 0, 0}, {0, 2, 0},             // z = 0
                                  {0.5, 0.5, -1}, {0.5, 0.5, 1}, {1.5, -0.5, 0.2}},  // pierces it
@@ -75,41 +96,48 @@ TEST(DetectEnvironments, CrossingFacesAreMarkedWhateverTheirOrientation) {
   EXPECT_EQ(found.stats.crossing_pairs, 1);
 }
 
-// A thin body (a flat double pyramid over the square with corners (±1, 0, 0), (0, ±1, 0)):
-// four top faces around the apex (0, 0, t), four bottom faces around (0, 0, -t), normals into
-// the body. The two sides meet at the rim, a fold of nearly 180°.
+// A thin body (a flat double pyramid over the regular hexagon with corners (1, 0, 0),
+// (0.5, ±√3/2, 0), ...): six top faces around the apex (0.2, 0.1, t), six bottom faces around
+// (-0.2, -0.1, -t), normals into the body. The two sides meet at the rim, a fold of nearly 180°.
+// Every face touches the rim; a top and a bottom face that share no point lie over each other
+// (seen from above) only where the apexes are off the centre: over a centred apex they would
+// only touch there (the square pyramid these tests used first had no other pairs).
 Mesh flat_double_pyramid(double t) {
-  Mesh m = triangles_mesh({{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, t}, {0, 0, -t}},
+  const double s = std::sqrt(3.0) / 2.0;
+  Mesh m = triangles_mesh({{1, 0, 0}, {0.5, s, 0}, {-0.5, s, 0}, {-1, 0, 0}, {-0.5, -s, 0},
+                           {0.5, -s, 0}, {0.2, 0.1, t}, {-0.2, -0.1, -t}},
                           {});
-  for (Index i = 0; i < 4; ++i) m.triangles.push_back({i, 4, (i + 1) % 4});
-  for (Index i = 0; i < 4; ++i) m.triangles.push_back({i, (i + 1) % 4, 5});
-  m.triangle_tags.assign(8, 0);
+  for (Index i = 0; i < 6; ++i) m.triangles.push_back({i, 6, (i + 1) % 6});
+  for (Index i = 0; i < 6; ++i) m.triangles.push_back({i, (i + 1) % 6, 7});
+  m.triangle_tags.assign(12, 0);
   return m;
 }
 
 TEST(DetectEnvironments, SidesStopAtTheFoldAndTheRimIsARidge) {
   const DetectedEnvironments found = detect(flat_double_pyramid(0.01));
-  EXPECT_THAT(found.environments.face, ElementsAre(1, 1, 1, 1, 2, 2, 2, 2));
-  EXPECT_THAT(found.environments.point, ElementsAre(-1, -1, -1, -1, 1, 2));
-  EXPECT_EQ(found.stats.marked_faces, 8);
+  EXPECT_THAT(found.environments.face, ElementsAre(1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 2, 2));
+  EXPECT_THAT(found.environments.point, ElementsAre(-1, -1, -1, -1, -1, -1, 1, 2));
+  EXPECT_EQ(found.stats.marked_faces, 12);
 }
 
 TEST(DetectEnvironments, NumberingFollowsTheSmallestFaceIndex) {
   Mesh m = flat_double_pyramid(0.01);
-  std::swap(m.triangles[0], m.triangles[7]);  // a bottom face comes first now
+  std::swap(m.triangles[0], m.triangles[11]);  // a bottom face comes first now
   const DetectedEnvironments found = detect(m);
-  EXPECT_THAT(found.environments.face, ElementsAre(1, 2, 2, 2, 1, 1, 1, 2));
+  EXPECT_THAT(found.environments.face, ElementsAre(1, 2, 2, 2, 2, 2, 1, 1, 1, 1, 1, 2));
 }
 
 TEST(DetectEnvironments, AThickBodyHasNoEnvironments) {
   const DetectedEnvironments found = detect(flat_double_pyramid(0.8));
-  EXPECT_THAT(found.environments.face, ElementsAre(0, 0, 0, 0, 0, 0, 0, 0));
+  EXPECT_THAT(found.environments.face, ElementsAre(0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0));
   EXPECT_EQ(found.stats.environment_count, 0);
 }
 
 TEST(DetectEnvironments, AFoldAngleAboveTheRimJoinsTheSidesAndIsReported) {
   AutoEnvironmentParams wide;
-  wide.fold_angle_deg = 179.9;  // the rim no longer stops the grouping
+  // The rim no longer stops the grouping: its faces' normals are 178.58–178.66° apart, and
+  // those of the thin pairs within 0.57° of opposite.
+  wide.fold_angle_deg = 179.0;
   absl::StatusOr<DetectedEnvironments> found =
       detect_environments(flat_double_pyramid(0.01), wide, no_progress());
   ASSERT_FALSE(found.ok());
