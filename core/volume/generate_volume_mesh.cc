@@ -543,6 +543,11 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
       !st.ok())
     return st;
   VolumeParams run = params;
+  // A front none of whose faces has an environment (--envs auto that found no thin region) is
+  // meshed as one given without environments, by the same rules (not in the paper): the
+  // filters of §2 would change nothing, but the rules that differ on fronts with environments
+  // (sliver faces, back-off) would.
+  if (count_environments(run.face_environments) == 0) run.face_environments.clear();
   absl::StatusOr<std::unique_ptr<SizeField>> size_field = make_size_field(run, front);
   if (!size_field.ok()) return size_field.status();
   const double growth = params.spec ? params.spec->growth : params.growth;

@@ -222,5 +222,22 @@ TEST(Regression, Issue10RawCadShapeMeshesWithTheSizeHalvedWhereItStuck) {
   }
 }
 
+// Regression (netgen_hinge with --envs auto): environments that mark no face (--envs auto on a
+// thick part) must mesh as none given. They made the front take the rules of fronts with
+// environments (no sliver rules), and on the hinge the job failed otherwise than with --envs none.
+TEST(Regression, EnvironmentsThatMarkNoFaceMeshAsNoneGiven) {
+  const Mesh front = cube_with_split_top_edges(3, 1e-3);
+  VolumeParams none;
+  none.size = 0.2;
+  VolumeParams zeros = none;
+  zeros.face_environments.assign(front.triangles.size(), 0);
+  absl::StatusOr<VolumeResult> a = generate_volume_mesh(front, none, no_progress());
+  absl::StatusOr<VolumeResult> b = generate_volume_mesh(front, zeros, no_progress());
+  ASSERT_TRUE(a.ok()) << a.status();
+  ASSERT_TRUE(b.ok()) << b.status();
+  EXPECT_EQ(a->mesh.points, b->mesh.points);
+  EXPECT_EQ(a->mesh.tets, b->mesh.tets);
+}
+
 }  // namespace
 }  // namespace afmesh
