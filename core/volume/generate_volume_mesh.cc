@@ -45,16 +45,24 @@ constexpr int kMaxGrownPartFills = 8;
 // A front whose back-off fails (stuck_report) is meshed again from the start with the size
 // halved (kLocalRefinementShare) within kLocalRefinementRadius sizes of the first corner of the
 // face it stopped at, growing back to the size in force over one more size (a point source,
-// eq. 10-11), at most kMaxLocalRefinements times (refine_where_stuck). The sweep's raw CAD and
-// corpus runs (bench/sweep): occt 5 -> 9 of 12 valid (shape.stl at every size, TR12J_OCC), the
-// corpus 19 -> 22 of 60. Where the size is halved matters: about the face's centroid, 7 of 12.
-// A front over its budget (sh2.stl) is not meshed again: there each run stopped somewhere else,
-// 16 times in a row. Fronts with crossing environments are meshed again too (they were not
-// before): the sails at twice their default cells (thin_shapes.h, grid_scale 2) stopped on the
-// jib's cambered side, among flat pockets left under elements whose four corners are input
-// points, and mesh once the size is halved there three times; bench/sweep's thin group went
-// from 94 to 96 of 100 valid (the crossing X of camber 0.02, 6 cells, 0.001 thick).
-constexpr int kMaxLocalRefinements = 8;
+// eq. 10-11), at most VolumeParams::local_refinements times (refine_where_stuck). The sweep's
+// raw CAD and corpus runs (bench/sweep): occt 5 -> 9 of 12 valid (shape.stl at every size,
+// TR12J_OCC), the corpus 19 -> 22 of 60. Where the size is halved matters: about the face's
+// centroid, 7 of 12.
+// Fronts with crossing environments are meshed again too (they were not before): the sails at
+// twice their default cells (thin_shapes.h, grid_scale 2) stopped on the jib's cambered side,
+// among flat pockets left under elements whose four corners are input points, and mesh once the
+// size is halved there three times; bench/sweep's thin group went from 94 to 96 of 100 valid
+// (the crossing X of camber 0.02, 6 cells, 0.001 thick). A sliver front (MesherState::
+// sliver_front) over its VolumeBudget is meshed again likewise, about the first corner of the
+// face it was working on when the budget ran out: it spends it re-opening the same pockets of
+// slivers, at most kMaxRefinementsOverBudget times, each run costing a whole budget. The sweep's
+// corpus runs went from 22 to 25 of 60 valid (gmsh_lever at its mean edge, inv_coil at both
+// sizes; 2 such runs are needed there), and at --growth 1.3 netgen_part1, gmsh_lever and
+// cgal_pinion mesh; the failing runs take 2-10 times longer (sh2.stl 3 -> 35 s, the case that
+// kept budget overruns out before: it stops somewhere else each time). VolumeParams::
+// local_refinements sets how many times a front is meshed again in all.
+constexpr int kMaxRefinementsOverBudget = 2;
 constexpr double kLocalRefinementShare = 0.5;
 constexpr double kLocalRefinementRadius = 3.0;
 constexpr int kCancelCheckInterval = 256;  // faces between cancellation checks
@@ -419,11 +427,17 @@ absl::StatusOr<Mesh> compact_result(const MesherState& s, const Mesh& input, Pro
   return out;
 }
 
+// Where a run of the front loop stopped for refine_where_stuck to mesh again, and why.
+struct Stop {
+  Point at;
+  bool over_budget = false;  // a sliver front over its VolumeBudget (otherwise stuck)
+};
+
 // F1–F11: the front loop itself. Returns the compacted mesh; the mesher's state (front, bins,
 // incidence lists) is freed on return, before the optimiser builds its own structures.
 absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params,
                                    const SizeField& size_field, double growth, StageClock& clock,
-                                   Progress& progress, std::optional<Point>& stopped_near) {
+                                   Progress& progress, std::optional<Stop>& stopped_near) {
   const double boundary_edge = mean_edge_length(front);
   const double domain_volume = enclosed_volume(front.points, front.triangles, nullptr);
   const double max_size = params.spec ? params.spec->max_size : params.size;
@@ -451,8 +465,10 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
   while (std::optional<Index> face = s.front.pop()) {                  // F6, F11
     ++steps;
     reopenings.step(s);
-    if (std::string overrun = budget_overrun(s, budget, expected_tets); !overrun.empty())
+    if (std::string overrun = budget_overrun(s, budget, expected_tets); !overrun.empty()) {
+      if (s.sliver_front) stopped_near = Stop{s.points[s.front.item(*face).v[0]], true};
       return failure_at_face(s, front, *face, overrun);
+    }
     if (end_game.stalled(s.meshed_volume, domain_volume, s.front.size(), steps))
       return end_game_report(s, front, *face, domain_volume, end_game.smallest_front());
     if (steps % kCancelCheckInterval == 0) {
@@ -477,7 +493,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
     if (absl::Status st = back_off(s, front, *face, back_off_counts, reopenings,
                                    budget.reopenings_without_progress);
         !st.ok()) {
-      if (st.code() == absl::StatusCode::kFailedPrecondition) stopped_near = at;
+      if (st.code() == absl::StatusCode::kFailedPrecondition) stopped_near = Stop{at, false};
       return st;
     }
   }
@@ -492,11 +508,11 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
   return mesh;
 }
 
-// Not in the paper (kMaxLocalRefinements): the run's size specification (made from its uniform
-// size and growth when it has none) gains a point source at x, halving the size `field` gives
-// there within kLocalRefinementRadius of it; returns that radius. Sliver input triangles (CAD
-// tessellations) leave the front pockets no element of their sizes fits; smaller elements there
-// do.
+// Not in the paper (VolumeParams::local_refinements): the run's size specification (made from
+// its uniform size and growth when it has none) gains a point source at x, halving the size
+// `field` gives there within kLocalRefinementRadius of it; returns that radius. Sliver input
+// triangles (CAD tessellations) leave the front pockets no element of their sizes fits; smaller
+// elements there do.
 double refine_where_stuck(VolumeParams& run, const SizeField& field, const Point& x) {
   if (!run.spec) run.spec = SizeSpec{.max_size = run.size, .growth = run.growth};
   const double local = field.size_at(x);
@@ -536,6 +552,9 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
       return absl::InvalidArgumentError(
           absl::StrFormat("growth must be >= 1, got %g", params.growth));
   }
+  if (params.local_refinements < 0)
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "local_refinements must be >= 0, got %d", params.local_refinements));
   if (absl::Status st = check_face_environments(front, params.face_environments); !st.ok())
     return st;
   if (absl::Status st = validate_front(front, params.face_environments,
@@ -557,11 +576,13 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
   // in the paper), each time said in a warning; the last failure names every such place.
   absl::StatusOr<Mesh> mesh = absl::UnknownError("not run");
   std::string where;  // the places the size was halved, for the last failure
+  int over_budget = 0;  // runs that stopped over their budget
   for (int refinement = 0;; ++refinement) {
-    std::optional<Point> stopped_near;
+    std::optional<Stop> stopped_near;
     mesh = advance_front(front, run, **size_field, growth, clock, progress, stopped_near);
-    if (mesh.ok() || !stopped_near || refinement == kMaxLocalRefinements) break;
-    const Point& x = *stopped_near;
+    if (mesh.ok() || !stopped_near || refinement >= params.local_refinements) break;
+    if (stopped_near->over_budget && ++over_budget > kMaxRefinementsOverBudget) break;
+    const Point& x = stopped_near->at;
     const std::string place = absl::StrFormat("(%g, %g, %g)", x[0], x[1], x[2]);
     const double radius = refine_where_stuck(run, **size_field, x);
     result.warnings.push_back(absl::StrCat(

@@ -149,13 +149,16 @@ std::int64_t count_before(std::string_view message, std::string_view what) {
 // closed among its slivers; the back-off re-opened 43 regions, the whole mesh twice, building
 // 56k tets (19x the 3k expected) in 101k steps and 18-45 s before the ring limit stopped it.
 // It stops within its VolumeBudget (now when its crossing tests run out, in about 1 s), naming
-// where; checked in counts of steps and tets, not seconds.
+// where; checked in counts of steps and tets, not seconds. That is one run: meshed again with
+// the size halved where its budget ran out, it now closes (twice, 7 s; the lever below shows
+// it), so this one asks for no such run (local_refinements 0).
 TEST(Regression, Issue10SliverFrontThatCannotCloseStopsWithinItsBudget) {
   const Mesh front = corpus_front("netgen_part1.stl");
   ASSERT_FALSE(front.triangles.empty());
   VolumeParams params;
   params.size = 0.5 * mean_edge_length(front);
   params.optimise = false;
+  params.local_refinements = 0;
   absl::StatusOr<VolumeEstimate> estimate = estimate_volume_mesh(front, params);
   ASSERT_TRUE(estimate.ok()) << estimate.status();
   const VolumeBudget budget =
@@ -182,24 +185,31 @@ TEST(RealSurfaces, CorpusKnotMeshesAtGrowthOne) {
 }
 
 // Regression for issue 10: a front that cannot be closed says why, in terms of the input. The
-// lever (gmsh-doc) has fans of triangles with angles down to 0.008 degrees; the front fails there, and
-// the message must say so instead of advising "a size near the input's edge lengths" (the size
-// already was). When sliver fronts mesh (issue 10, part 3), this becomes a test that it meshes;
-// meanwhile the place it stops moves on as the back-off gets further (at its fans of 0.008-degree
-// triangles first, then in its plate, among triangles down to 0.087 degrees, now where its
-// VolumeBudget runs out, among triangles down to 1.3 degrees), so the test asks for the sliver
-// diagnosis, not for one angle.
-TEST(Regression, Issue10StuckFrontOnSliversNamesThem) {
+// lever (gmsh-doc) has fans of triangles with angles down to 0.008 degrees; the front failed
+// there, and the message had to say so instead of advising "a size near the input's edge
+// lengths" (the size already was). Issue 10, part 3: it now meshes as given at its mean edge.
+// Its first run's VolumeBudget runs out among the slivers, and a sliver front over its budget is
+// meshed again with the size halved where it ran out (it was not before); the second run gets
+// stuck, the third closes. Each warning says why and where.
+TEST(Regression, Issue10LeverMeshesAsGivenWithTheSizeHalvedWhereItStopped) {
   const Mesh front = corpus_front("gmsh_lever.stl");
   ASSERT_FALSE(front.triangles.empty());
   VolumeParams params;
   params.size = mean_edge_length(front);
+  params.optimise = false;
   absl::StatusOr<VolumeResult> result = generate_volume_mesh(front, params, no_progress());
-  ASSERT_FALSE(result.ok());
-  EXPECT_EQ(result.status().code(), absl::StatusCode::kFailedPrecondition);
-  EXPECT_NE(result.status().message().find("sliver triangles"), std::string::npos)
-      << result.status();
-  EXPECT_EQ(result.status().message().find("give a size near"), std::string::npos);
+  ASSERT_TRUE(result.ok()) << result.status();
+  const ValidationReport report = validate_volume_mesh(result->mesh, &front);
+  EXPECT_TRUE(report.valid()) << report.to_string();
+  ASSERT_FALSE(result->warnings.empty());
+  EXPECT_NE(result->warnings[0].find("did not close within its budget"), std::string::npos)
+      << result->warnings[0];
+  for (const std::string& warning : result->warnings) {
+    EXPECT_NE(warning.find("sliver triangles"), std::string::npos) << warning;
+    EXPECT_EQ(warning.find("give a size near"), std::string::npos) << warning;
+    EXPECT_NE(warning.find("meshed again with the size halved within"), std::string::npos)
+        << warning;
+  }
 }
 
 }  // namespace
