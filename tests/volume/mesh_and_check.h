@@ -8,12 +8,9 @@
 
 namespace afmesh {
 
-// Meshes `front` and checks the result the way a user would: valid, boundary equal to the front,
-// volumes adding up, and no element worse than the quality bar.
-inline VolumeResult mesh_and_check(const Mesh& front, double h, double growth = 1.0) {
-  VolumeParams params;
-  params.size = h;
-  params.growth = growth;
+// Meshes `front` with `params` and checks the result the way a user would: valid, boundary
+// equal to the front, volumes adding up, and no element worse than the quality bar.
+inline VolumeResult mesh_and_check(const Mesh& front, const VolumeParams& params) {
   absl::StatusOr<VolumeResult> result = generate_volume_mesh(front, params, no_progress());
   EXPECT_TRUE(result.ok()) << result.status();
   if (!result.ok()) return {};
@@ -23,6 +20,14 @@ inline VolumeResult mesh_and_check(const Mesh& front, double h, double growth = 
   for (std::size_t p = 0; p < front.points.size(); ++p)
     EXPECT_EQ(result->mesh.points[p], front.points[p]) << "point " << p;
   return *std::move(result);
+}
+
+// The same at the uniform size h and growth c_i.
+inline VolumeResult mesh_and_check(const Mesh& front, double h, double growth = 1.0) {
+  VolumeParams params;
+  params.size = h;
+  params.growth = growth;
+  return mesh_and_check(front, params);
 }
 
 }  // namespace afmesh
