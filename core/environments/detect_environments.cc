@@ -470,6 +470,7 @@ constexpr double kSteepCrossingDeg = 30.0;
 // Step 5: the two faces of each thin pair lie in different environments.
 absl::Status check_sides_separated(const std::vector<ThinPair>& pairs, const FaceFrames& frames,
                                    const std::vector<std::int32_t>& environment) {
+  const double steep_cosine = cosine_of_degrees(kSteepCrossingDeg);
   for (const ThinPair& p : pairs) {
     if (environment[p.f] != environment[p.g]) continue;
     // The two sides of a thin region look nearly opposite ways, even where they cross. Faces
@@ -479,7 +480,7 @@ absl::Status check_sides_separated(const std::vector<ThinPair>& pairs, const Fac
     for (const ThinPair& q : pairs) {
       if (q.kind != PairKind::kCrossing) continue;
       const double c = dot(frames.normal[q.f], frames.normal[q.g]);
-      if (std::abs(c) > cosine_of_degrees(kSteepCrossingDeg)) continue;
+      if (std::abs(c) > steep_cosine) continue;
       return absl::InvalidArgumentError(absl::StrFormat(
           "automatic environments: triangles %d and %d cross at %.0f degrees: not the two sides "
           "of one thin region, which look nearly opposite ways, but surfaces that pass through "
