@@ -174,6 +174,13 @@ bool is_sliver_face(const MesherState& s, Index env, const Triangle& v, double b
          });
 }
 
+bool touches_input_sliver(const MesherState& s, const Triangle& v) {
+  const auto marked = [&](Index p) {
+    return p < static_cast<Index>(s.input_sliver_point.size()) && s.input_sliver_point[p];
+  };
+  return std::any_of(v.begin(), v.end(), marked);
+}
+
 double best_element_quality(const MesherState& s, const Triangle& v) {
   const Point& a = s.points[v[0]];
   const Point& b = s.points[v[1]];

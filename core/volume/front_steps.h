@@ -65,6 +65,10 @@ inline constexpr double kSliverFaceQuality = 0.15;
 // (ThinVolume.PlatesWithRimStripsMeshValid).
 bool is_sliver_face(const MesherState& s, Index env, const Triangle& v, double best);
 
+// True when front face v has a corner of a sliver face of the input
+// (MesherState::input_sliver_point).
+bool touches_input_sliver(const MesherState& s, const Triangle& v);
+
 // F6: the queue key of face v: queue_key_for_element (core/front/front_sizes.h) of its target
 // and element sizes; for a sliver face (is_sliver_face), that key scaled down by its best
 // quality over kSliverFaceQuality, so that slivers are deleted first, the worst first (not in
