@@ -236,7 +236,7 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
 
   // The new point, and new points closer to the face, where the front leaves room for them:
   // under a front face too near for the best point. On a sliver front (MesherState::
-  // sliver_front) a closer point keeps the best point's spacing from front points (not in the
+  // sliver_front()) a closer point keeps the best point's spacing from front points (not in the
   // paper): allowed the spacing of its own smaller element, a face whose best point is crowded
   // made a smaller element among the same points, whose faces' best points were crowded in
   // turn, and the elements shrank without end (Regression.Issue10CubeWithSliversAlongItsEdges-
@@ -252,7 +252,7 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
     // Its clearance from the front is checked only if the loop gets to it (most faces take
     // the first candidate).
     s.candidates.push_back(
-        {kInvalidIndex, x, kRanks[i], d * kHeights[i], s.sliver_front ? d : d * kHeights[i]});
+        {kInvalidIndex, x, kRanks[i], d * kHeights[i], s.sliver_front() ? d : d * kHeights[i]});
   }
 
   std::sort(s.candidates.begin(), s.candidates.end(),

@@ -54,7 +54,7 @@ constexpr int kMaxGrownPartFills = 8;
 // among flat pockets left under elements whose four corners are input points, and mesh once the
 // size is halved there three times; bench/sweep's thin group went from 94 to 96 of 100 valid
 // (the crossing X of camber 0.02, 6 cells, 0.001 thick). A sliver front (MesherState::
-// sliver_front) over its VolumeBudget is meshed again likewise, about the first corner of the
+// sliver_front()) over its VolumeBudget is meshed again likewise, about the first corner of the
 // face it was working on when the budget ran out: it spends it re-opening the same pockets of
 // slivers, at most kMaxRefinementsOverBudget times, each run costing a whole budget. The sweep's
 // corpus runs went from 22 to 25 of 60 valid (gmsh_lever at its mean edge, inv_coil at both
@@ -107,7 +107,6 @@ absl::Status load_initial_front(MesherState& s, const Mesh& input,
     const Index env = face_env.empty() ? 0 : face_env[t];
     if (s.point_env.empty() &&
         volume::is_sliver_face(s, env, inward, volume::best_element_quality(s, inward))) {
-      s.sliver_front = true;
       s.input_sliver_point.resize(input.points.size(), false);
       for (const Index p : u) s.input_sliver_point[p] = true;
     }
@@ -474,7 +473,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
     ++steps;
     reopenings.step(s);
     if (std::string overrun = budget_overrun(s, budget, expected_tets); !overrun.empty()) {
-      if (s.sliver_front) stopped_near = Stop{s.points[s.front.item(*face).v[0]], true};
+      if (s.sliver_front()) stopped_near = Stop{s.points[s.front.item(*face).v[0]], true};
       return failure_at_face(s, front, *face, overrun);
     }
     if (end_game.stalled(s.meshed_volume, domain_volume, s.front.size(), steps))

@@ -44,13 +44,13 @@ struct MesherState {
   // strips closing plates' rims between their two sides (environments.h). Empty when there are
   // none.
   std::vector<bool> rim_strip_point;
-  // The input front has sliver faces (is_sliver_face, so no crossing environments): new points
-  // closer to a face keep the best point's spacing from front points (gather_candidates).
-  bool sliver_front = false;
-  // Per input point, whether it is a corner of a sliver face of the input (is_sliver_face): the
-  // faces touching one retry at once under later rules (touches_input_sliver). Empty when the
-  // input has no sliver face.
+  // Per input point, whether it is a corner of a sliver face of the input (is_sliver_face, so no
+  // crossing environments): the faces touching one retry at once under later rules
+  // (touches_input_sliver). Empty when the input has no sliver face.
   std::vector<bool> input_sliver_point;
+  // The input front has sliver faces: new points closer to a face keep the best point's spacing
+  // from front points (gather_candidates).
+  bool sliver_front() const { return !input_sliver_point.empty(); }
   std::vector<Tet> tets;           // a deleted tet has tet[0] == kInvalidIndex
   std::int64_t live_tets = 0;
   // Sum of the live tets' volumes (a measure, for the guard against overlapping elements).
