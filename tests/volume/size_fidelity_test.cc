@@ -147,6 +147,15 @@ std::int64_t count_before(std::string_view message, std::string_view what) {
   return std::stoll(std::string(message.substr(from, at - 1 - from)));
 }
 
+// The front loop alone (no optimiser) at `share` times the front's mean edge: how the
+// regressions below run the corpus's sliver fronts.
+VolumeParams front_only_at_mean_edge(const Mesh& front, double share = 1.0) {
+  VolumeParams params;
+  params.size = share * mean_edge_length(front);
+  params.optimise = false;
+  return params;
+}
+
 // Regression for issue 10, part 2 (never hang): netgen's part1 at 0.5 x its mean edge could
 // not be closed among its slivers; the back-off re-opened 43 regions, the whole mesh twice,
 // building 56k tets (19x the 3k expected) in 101k steps and 18-45 s before the ring limit
@@ -159,9 +168,7 @@ std::int64_t count_before(std::string_view message, std::string_view what) {
 TEST(Regression, Issue10SliverFrontThatCannotCloseStopsWithinItsBudget) {
   const Mesh front = corpus_front("cgal_rotor.stl");
   ASSERT_FALSE(front.triangles.empty());
-  VolumeParams params;
-  params.size = mean_edge_length(front);
-  params.optimise = false;
+  VolumeParams params = front_only_at_mean_edge(front);
   params.local_refinements = 0;
   absl::StatusOr<VolumeEstimate> estimate = estimate_volume_mesh(front, params);
   ASSERT_TRUE(estimate.ok()) << estimate.status();
@@ -187,9 +194,7 @@ TEST(Regression, Issue10SliverFrontThatCannotCloseStopsWithinItsBudget) {
 TEST(Regression, Issue10Part1AtHalfItsMeanEdgeMeshes) {
   const Mesh front = corpus_front("netgen_part1.stl");
   ASSERT_FALSE(front.triangles.empty());
-  VolumeParams params;
-  params.size = 0.5 * mean_edge_length(front);
-  params.optimise = false;
+  VolumeParams params = front_only_at_mean_edge(front, 0.5);
   mesh_and_check(front, params);
 }
 
@@ -208,9 +213,7 @@ TEST(RealSurfaces, CorpusKnotMeshesAtGrowthOne) {
 TEST(Regression, Issue10LeverMeshesAsGivenWithTheSizeHalvedWhereItStopped) {
   const Mesh front = corpus_front("gmsh_lever.stl");
   ASSERT_FALSE(front.triangles.empty());
-  VolumeParams params;
-  params.size = mean_edge_length(front);
-  params.optimise = false;
+  VolumeParams params = front_only_at_mean_edge(front);
   const VolumeResult result = mesh_and_check(front, params);
   ASSERT_FALSE(result.mesh.tets.empty());
   ASSERT_FALSE(result.warnings.empty());
@@ -223,15 +226,13 @@ TEST(Regression, Issue10LeverMeshesAsGivenWithTheSizeHalvedWhereItStopped) {
 }
 
 // Issue 10, part 3: the pinion (libcgal-demo, a gear: 420 of its 1,300 triangles with angles
-// under 5 degrees, down to 1.3) meshes as given at its mean edge. Every face of it retried at once under later
-// rules, not only those touching its slivers, it stopped over its budget three times and failed
-// (touches_input_sliver).
+// under 5 degrees, down to 1.3) meshes as given at its mean edge. When every face of it retried
+// at once under later rules, not only those touching its slivers (touches_input_sliver), it
+// stopped over its budget three times and failed.
 TEST(Regression, Issue10PinionMeshesAsGiven) {
   const Mesh front = corpus_front("cgal_pinion.stl");
   ASSERT_FALSE(front.triangles.empty());
-  VolumeParams params;
-  params.size = mean_edge_length(front);
-  params.optimise = false;
+  VolumeParams params = front_only_at_mean_edge(front);
   mesh_and_check(front, params);
 }
 
@@ -243,9 +244,7 @@ TEST(Regression, Issue10PinionMeshesAsGiven) {
 TEST(Regression, Issue10HandleMeshesAfterARunRanOverItsBudget) {
   const Mesh front = corpus_front("cgal_handle.stl");
   ASSERT_FALSE(front.triangles.empty());
-  VolumeParams params;
-  params.size = mean_edge_length(front);
-  params.optimise = false;
+  VolumeParams params = front_only_at_mean_edge(front);
   const VolumeResult result = mesh_and_check(front, params);
   const auto over_budget = [](const std::string& warning) {
     return warning.find("did not close within its budget") != std::string::npos;
