@@ -17,6 +17,7 @@ packages=(
   prometheus-cpp-dev  # afmesh-server --metrics (prometheus-cpp 1.0: core, and pull on civetweb)
   python3-minimal python3-numpy python3-meshio python3-gmsh python3-vtk9  # cross-checks: /usr/bin/python3 with meshio, gmsh and VTK
   yamllint  # deploy/k8s
+  occt-misc  # OCCT's sample data: raw CAD tessellations the volume tests mesh as given
   python3-grpcio python3-protobuf  # deploy/health_probe.py and the load driver (bench/load/)
 )
 for arg in "$@"; do

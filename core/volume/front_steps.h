@@ -65,7 +65,7 @@ inline constexpr double kSliverFaceQuality = 0.15;
 // (ThinVolume.PlatesWithRimStripsMeshValid).
 bool is_sliver_face(const MesherState& s, Index env, const Triangle& v, double best);
 
-// True when front face v has a corner of a sliver face of the input
+// True when front face v has a corner of a poor face of an input with slivers
 // (MesherState::input_sliver_point).
 bool touches_input_sliver(const MesherState& s, const Triangle& v);
 

@@ -44,9 +44,10 @@ struct MesherState {
   // strips closing plates' rims between their two sides (environments.h). Empty when there are
   // none.
   std::vector<bool> rim_strip_point;
-  // Per input point, whether it is a corner of a sliver face of the input (is_sliver_face, so no
-  // crossing environments): the faces touching one retry at once under later rules
-  // (touches_input_sliver). Empty when the input has no sliver face.
+  // Per input point, on a front with a sliver face (is_sliver_face, so no crossing
+  // environments), whether it is a corner of a poor input face, one whose best element is under
+  // kRetryMarkQuality (mark_poor_input_faces): the faces touching one retry at once under later
+  // rules (touches_input_sliver). Empty when the input has no sliver face.
   std::vector<bool> input_sliver_point;
   // The input front has sliver faces: new points closer to a face keep the best point's spacing
   // from front points (gather_candidates).
