@@ -159,15 +159,17 @@ TEST_F(CliVolumeTest, FrontMeshedAgainWhereItStoppedIsWarnedAbout) {
 }
 
 // A raw CAD tessellation the volume front cannot fill as given (netgen-doc's hinge, 488 of its
-// 1,212 triangles with angles under 5 degrees, down to 0.33, at its mean edge: it gets stuck
-// nine times, the size halved where it did, in about 3 s; part1 at half its mean edge and the
-// pinion, used here before, now mesh): the server's message says a re-triangulated surface
-// avoids that, and the CLI names the flag that does it, which the user had not given.
+// 1,212 triangles with angles under 5 degrees, down to 0.33, at 2.36643, a 25th of its
+// diagonal: it gets stuck nine times, the size halved where it did, in about 3 s; the hinge at
+// its mean edge, part1 at half its mean edge and the pinion, used here before, now mesh): the
+// server's message says a re-triangulated surface avoids that, and the CLI names the flag that
+// does it, which the user had not given.
 TEST_F(CliVolumeTest, SliverFrontThatStopsIsToldOfRemeshSurface) {
   const std::string in = std::string(AFMESH_SOURCE_DIR) + "/../shared/corpus/netgen_hinge.stl";
   ASSERT_TRUE(fs::exists(in)) << in;
   const fs::path out = dir_ / "hinge.msh";
-  EXPECT_EQ(run_volume(shell_quoted(in) + " -o " + shell_quoted(out) + " --quiet"), 6)
+  EXPECT_EQ(run_volume(shell_quoted(in) + " -o " + shell_quoted(out) + " --size 2.36643 --quiet"),
+            6)
       << stderr_text();
   EXPECT_THAT(stderr_text(), HasSubstr("sliver triangles"));
   EXPECT_THAT(stderr_text(), HasSubstr(kRetriangulatedSurfaceAdvice));
