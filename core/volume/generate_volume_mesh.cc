@@ -188,17 +188,17 @@ bool delete_face(MesherState& s, Index face, int attempts) {
 }
 
 // Not in the paper: a face touching a poor face of an input with slivers (touches_input_sliver,
-// mark_poor_input_faces) that failed under the rules of its queue class retries at once under
-// those of the later classes, before it is deferred. F6 orders the queue by class first, so a deferred face waits behind the
-// whole front, and among the forced slivers of a CAD tessellation the faces around it are meshed
-// over meanwhile and leave it no point at all (Regression.Issue10CubeWithOneOrFiveSplitsMeshes).
-// Retried at once, it takes the best point its surroundings offer while they are still open.
-// Away from the slivers it is not needed, and it did harm: applied to every face of a front that
-// has slivers somewhere, it took poor elements early where a deferred face would have found a
-// good one later, and the front filled pockets it then got stuck in; the sweep's corpus runs
-// (bench/sweep) went from 25 to 28 of 60 valid (cgal_pinion at both sizes, cgal_handle at its
-// mean edge), inv_coil took 2.6 s instead of 7.3 (14,608 tets, not 33,554), and of the raw CAD
-// runs TR12J_OCC at its mean edge stopped stuck (9 -> 8 of 12).
+// mark_poor_input_faces) that failed under the rules of its queue class retries at once under those
+// of the later classes, before it is deferred. F6 orders the queue by class first, so a deferred
+// face waits behind the whole front, and among the forced slivers of a CAD tessellation the faces
+// around it are meshed over meanwhile and leave it no point at all
+// (Regression.Issue10CubeWithOneOrFiveSplitsMeshes). Retried at once, it takes the best point its
+// surroundings offer while they are still open. Away from the slivers it is not needed, and it did
+// harm: applied to every face of a front that has slivers somewhere, it took poor elements early
+// where a deferred face would have found a good one later, and the front filled pockets it then got
+// stuck in; the sweep's corpus runs (bench/sweep) went from 25 to 28 of 60 valid (cgal_pinion at
+// both sizes, cgal_handle at its mean edge), inv_coil took 2.6 s instead of 7.3 (14,608 tets, not
+// 33,554), and of the raw CAD runs TR12J_OCC at its mean edge stopped stuck (9 -> 8 of 12).
 // Returns true when it closed.
 bool delete_face_with_later_rules(MesherState& s, Index face) {
   for (int attempts = s.front.item(face).attempts + 1; attempts < kAttemptsBeforeBackOff;
