@@ -99,16 +99,22 @@ TEST(SizeFidelity, FrontCoarserThanTheSizeComesDownToIt) {
   EXPECT_NEAR(f.mean_over_h, 1.0, 0.1) << f.edges << " edges";
 }
 
+// The surface in the file at `path`, read and repaired as the service does (empty, with a
+// failure naming the file and `where_from`, when it cannot be read).
+Mesh repaired_front(const std::string& path, std::string_view where_from) {
+  absl::StatusOr<Mesh> front = read_mesh(path);
+  EXPECT_TRUE(front.ok()) << path << ": " << front.status() << " (" << where_from << ")";
+  if (!front.ok()) return {};
+  repair_front(*front);
+  return *std::move(front);
+}
+
 // A closed surface from ../shared/corpus (real files from Debian packages; CI has ../shared
 // beside the checkout), read and repaired as the service does.
 Mesh corpus_front(const std::string& name) {
   const std::filesystem::path path =
       std::filesystem::path(AFMESH_SOURCE_DIR) / ".." / "shared" / "corpus" / name;
-  absl::StatusOr<Mesh> front = read_mesh(path.string());
-  EXPECT_TRUE(front.ok()) << path << ": " << front.status();
-  if (!front.ok()) return {};
-  repair_front(*front);
-  return *std::move(front);
+  return repaired_front(path.string(), "../shared/corpus");
 }
 
 // Regression for issue 10: a scan-like blob (openfoam-examples), closed and clean, got stuck at
@@ -159,12 +165,7 @@ std::int64_t count_before(std::string_view message, std::string_view what) {
 // A raw CAD tessellation of occt-misc (OCCT's sample data, /usr/share/opencascade/data/stl/;
 // scripts/install-deps.sh installs it), read and repaired as the service does.
 Mesh occt_front(const std::string& name) {
-  const std::string path = "/usr/share/opencascade/data/stl/" + name;
-  absl::StatusOr<Mesh> front = read_mesh(path);
-  EXPECT_TRUE(front.ok()) << path << ": " << front.status() << " (scripts/install-deps.sh)";
-  if (!front.ok()) return {};
-  repair_front(*front);
-  return *std::move(front);
+  return repaired_front("/usr/share/opencascade/data/stl/" + name, "scripts/install-deps.sh");
 }
 
 // Regression for issue 10, part 2 (never hang): netgen's part1 at 0.5 x its mean edge could
