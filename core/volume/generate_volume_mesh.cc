@@ -459,6 +459,17 @@ struct Stop {
   bool over_budget = false;  // a sliver front over its VolumeBudget (otherwise stuck)
 };
 
+// `share` of the work `budget` allows (VolumeParams::budget_share).
+VolumeBudget share_of(VolumeBudget budget, double share) {
+  const auto part = [&](std::int64_t n) {
+    return static_cast<std::int64_t>(share * static_cast<double>(n));
+  };
+  budget.searches = part(budget.searches);
+  budget.tets_built = part(budget.tets_built);
+  budget.face_tests = part(budget.face_tests);
+  return budget;
+}
+
 // F1–F11: the front loop itself. Returns the compacted mesh; the mesher's state (front, bins,
 // incidence lists) is freed on return, before the optimiser builds its own structures.
 absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params,
@@ -475,8 +486,9 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
                 padded_bounds(front.points), h);
   const double expected_tets =
       std::max(1.0, estimate_volume_mesh(front, size_field, max_size, growth).tets);
-  const VolumeBudget budget =
-      volume_budget(expected_tets, static_cast<std::int64_t>(front.triangles.size()));
+  const VolumeBudget budget = share_of(
+      volume_budget(expected_tets, static_cast<std::int64_t>(front.triangles.size())),
+      params.budget_share);
   const std::int64_t max_tets = params.max_tets;
   s.tets.reserve(static_cast<std::size_t>(
       std::min({expected_tets * 1.3, 1.0 * max_tets, 1.0 * budget.tets_built})));
@@ -579,6 +591,9 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
       return absl::InvalidArgumentError(
           absl::StrFormat("growth must be >= 1, got %g", params.growth));
   }
+  if (!(params.budget_share > 0) || !std::isfinite(params.budget_share))
+    return absl::InvalidArgumentError(
+        absl::StrFormat("budget_share must be > 0, got %g", params.budget_share));
   if (params.local_refinements < 0)
     return absl::InvalidArgumentError(absl::StrFormat(
         "local_refinements must be >= 0, got %d", params.local_refinements));

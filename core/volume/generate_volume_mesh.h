@@ -59,6 +59,10 @@ struct VolumeParams {
   // rule, so that a front whose faces cross can be given to the loop without environments, to
   // show how the advancing front fails on it (paper §2, Figure 1). The other rules still apply.
   bool check_self_intersections = true;
+  // Diagnostics only, never set from the wire: the share of its VolumeBudget a run of the front
+  // may use (searches, tets built and crossing tests; > 0), so that a test can run a front over
+  // its budget on a small input and watch what follows.
+  double budget_share = 1.0;
 };
 
 // Not in the paper: the most work one run of the front loop may do before it stops with

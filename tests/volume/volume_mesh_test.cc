@@ -122,6 +122,15 @@ TEST(VolumeMesh, RejectsBadParams) {
   params.growth = 0.5;
   EXPECT_EQ(generate_volume_mesh(front, params, no_progress()).status().code(),
             absl::StatusCode::kInvalidArgument);
+  params.growth = 1.0;
+  params.local_refinements = -1;
+  EXPECT_EQ(generate_volume_mesh(front, params, no_progress()).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  params.local_refinements = 0;
+  params.budget_share = 0;
+  const auto r = generate_volume_mesh(front, params, no_progress());
+  EXPECT_EQ(r.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(r.status().message().find("budget_share"), std::string_view::npos) << r.status();
 }
 
 class CancelAfter : public Progress {
