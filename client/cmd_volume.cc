@@ -1,4 +1,5 @@
 // afmesh volume IN -o OUT [--size H] [--growth C] [--spec SPEC.json] [--envs auto|tags|none]
+//                         [--max-reruns N]
 //                         [--remesh-surface [--ridge-angle DEG] [--corner-angle DEG]
 //                                           [--curvature-angle DEG] [--curvature-deviation E]
 //                                           [--wall-sizes F]]
@@ -13,6 +14,8 @@
 // physical tags; 0 = none), `auto` lets the server find them; default none.
 // Without --server a private afmesh-server runs for the command on a local socket: the same
 // code path as a remote server. Formats follow the file extensions (core/io/mesh_io.h).
+// --max-reruns bounds how many times a front that stops is meshed again with the size halved
+// where it stopped (VolumeOptions.max_reruns).
 // --remesh-surface re-triangulates IN on the server first (as `afmesh surface` does), then fills
 // the new surface, in one call and one server job; OUT's boundary is then the new surface.
 // The flags and the run it shares with `afmesh surface` are client/mesh_command.h's.
@@ -39,6 +42,8 @@ struct VolumeCommandOptions {
   MeshCommandOptions mesh;
   std::string envs = "none";  // auto, tags or none
   bool remesh_surface = false;
+  int max_reruns = 0;  // --max-reruns; sent only when given
+  bool max_reruns_given = false;
 };
 
 // The output must hold tetrahedra: checked before any meshing work.
@@ -96,6 +101,21 @@ absl::StatusOr<MeshAnswer> with_remesh_hint(absl::StatusOr<MeshAnswer> answer,
                    "(OUT's boundary is then the new surface)"));
 }
 
+// A front that stopped again after every rerun the job allowed (the server's message ends "after
+// meshing again N times ...") is told that --max-reruns allows more, unless N is the most.
+absl::StatusOr<MeshAnswer> with_reruns_hint(absl::StatusOr<MeshAnswer> answer, int max_reruns) {
+  if (answer.ok() || max_reruns >= kMaxLocalRefinements ||
+      answer.status().code() != absl::StatusCode::kFailedPrecondition ||
+      !absl::StrContains(answer.status().message(),
+                         absl::StrFormat("after meshing again %d times", max_reruns)))
+    return answer;
+  return absl::FailedPreconditionError(absl::StrCat(
+      answer.status().message(),
+      absl::StrFormat("; --max-reruns N (up to %d) meshes it again more times, each run up to "
+                      "as long as one",
+                      kMaxLocalRefinements)));
+}
+
 int run_volume(const VolumeCommandOptions& options) {
   MeshCommand command;
   command.name = "volume";
@@ -109,13 +129,16 @@ int run_volume(const VolumeCommandOptions& options) {
                                       : options.envs == "auto" ? EnvironmentSource::kAuto
                                                                : EnvironmentSource::kNone;
   command.call_options.remesh_surface = options.remesh_surface;
+  if (options.max_reruns_given) command.call_options.max_reruns = options.max_reruns;
   command.call = [](const std::string& address, const Mesh& front,
                     const VolumeCallOptions& call_options, const ProgressCallback& on_progress,
                     const WarningCallback& on_warning) -> absl::StatusOr<MeshAnswer> {
-    return with_remesh_hint(
-        mesh_answer(call_mesh_volume(address, front, call_options, on_progress, on_warning),
-                    print_summary),
-        call_options.remesh_surface);
+    return with_reruns_hint(
+        with_remesh_hint(
+            mesh_answer(call_mesh_volume(address, front, call_options, on_progress, on_warning),
+                        print_summary),
+            call_options.remesh_surface),
+        call_options.max_reruns.value_or(VolumeParams{}.local_refinements));
   };
   return run_mesh_command(options.mesh, std::move(command));
 }
@@ -139,6 +162,12 @@ void add_volume_command(CLI::App& app, Action& action) {
       "--remesh-surface", options->remesh_surface,
       "re-triangulate IN at the size first (as `afmesh surface`), then fill the new surface, in "
       "one server job; OUT's boundary is the new surface");
+  command
+      ->add_option("--max-reruns", options->max_reruns,
+                   "how many times a front that stops is meshed again with the size halved "
+                   "where it stopped, each run at most one run's work (default 8; 0: fail where "
+                   "it first stops)")
+      ->check(CLI::Range(0, 32));
   add_surface_angle_flags(*command, options->mesh);
   command->get_option("--ridge-angle")->needs(remesh);
   command->get_option("--corner-angle")->needs(remesh);
@@ -147,6 +176,7 @@ void add_volume_command(CLI::App& app, Action& action) {
   command->get_option("--wall-sizes")->needs(remesh);
   command->callback([options, command, &action] {
     note_given_flags(*command, options->mesh);
+    options->max_reruns_given = command->count("--max-reruns") > 0;
     action = [options] { return run_volume(*options); };
   });
 }

@@ -87,6 +87,7 @@ v1::MeshVolumeRequest header_request(const Mesh& front, const VolumeCallOptions&
     }
     if (options.wall_sizes) header.mutable_options()->set_wall_sizes(*options.wall_sizes);
   }
+  if (options.max_reruns) header.mutable_options()->set_max_reruns(*options.max_reruns);
   switch (options.environments) {
     case EnvironmentSource::kNone:
       header.mutable_options()->set_environments(v1::ENVIRONMENT_MODE_NONE);

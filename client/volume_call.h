@@ -61,6 +61,9 @@ struct VolumeCallOptions {
   ClientSecurity security;
   // MeshVolume: re-triangulate the front on the server first (VolumeOptions.remesh_surface).
   bool remesh_surface = false;
+  // MeshVolume: at most how many times a front that stops is meshed again
+  // (VolumeOptions.max_reruns); unset: the server's default.
+  std::optional<int> max_reruns;
   // MeshSurface, and MeshVolume with remesh_surface: ridge and corner angles in degrees
   // (SurfaceOptions; 0: the server's defaults, 30 and 60), and the curvature angle (unset: the
   // server's default, 30; 0: no curvature bound) and deviation (a fraction of the model size;

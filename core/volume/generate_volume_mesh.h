@@ -33,6 +33,10 @@ inline constexpr double kMinAttachedGrowth = 1.2;
 // that a client able to re-triangulate first (`afmesh volume --remesh-surface`) can say how.
 inline constexpr char kRetriangulatedSurfaceAdvice[] = "a surface re-triangulated";
 
+// The most VolumeParams::local_refinements the service accepts (VolumeOptions.max_reruns): each
+// run may do a whole VolumeBudget's work.
+inline constexpr int kMaxLocalRefinements = 32;
+
 struct VolumeParams {
   // Target edge length h of the uniform size field (> 0, in the units of the points).
   double size = 0.0;
@@ -50,7 +54,8 @@ struct VolumeParams {
   std::vector<std::int32_t> face_environments;  // LFACR per input triangle (paper §2); empty = none
   // How many times a front that stops (stuck, or a sliver front over its VolumeBudget, this at
   // most twice) is meshed again from the start with the size halved where it stopped (not in
-  // the paper; refine_where_stuck in generate_volume_mesh.cc); 0: it fails at once.
+  // the paper; refine_where_stuck in generate_volume_mesh.cc); 0: it fails at once. The wire's
+  // VolumeOptions.max_reruns, at most kMaxLocalRefinements.
   int local_refinements = 8;
   // The front stops with FAILED_PRECONDITION once it holds more tets than this (> 0; the
   // server's --max-elements), or once it has used up its VolumeBudget.

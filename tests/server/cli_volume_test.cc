@@ -162,8 +162,8 @@ TEST_F(CliVolumeTest, FrontMeshedAgainWhereItStoppedIsWarnedAbout) {
 // 1,212 triangles with angles under 5 degrees, down to 0.33, at 2.36643, a 25th of its
 // diagonal: it gets stuck nine times, the size halved where it did, in about 3 s; the hinge at
 // its mean edge, part1 at half its mean edge and the pinion, used here before, now mesh): the
-// server's message says a re-triangulated surface avoids that, and the CLI names the flag that
-// does it, which the user had not given.
+// server's message says a re-triangulated surface avoids that, and the CLI names the flags that
+// may help, which the user had not given: --remesh-surface, and --max-reruns (below).
 TEST_F(CliVolumeTest, SliverFrontThatStopsIsToldOfRemeshSurface) {
   const std::string in = std::string(AFMESH_SOURCE_DIR) + "/../shared/corpus/netgen_hinge.stl";
   ASSERT_TRUE(fs::exists(in)) << in;
@@ -171,10 +171,39 @@ TEST_F(CliVolumeTest, SliverFrontThatStopsIsToldOfRemeshSurface) {
   EXPECT_EQ(run_volume(shell_quoted(in) + " -o " + shell_quoted(out) + " --size 2.36643 --quiet"),
             6)
       << stderr_text();
+  EXPECT_THAT(stderr_text(), HasSubstr("after meshing again 8 times"));
+  EXPECT_THAT(stderr_text(), HasSubstr("--max-reruns N (up to 32) meshes it again more times"));
   EXPECT_THAT(stderr_text(), HasSubstr("sliver triangles"));
   EXPECT_THAT(stderr_text(), HasSubstr(kRetriangulatedSurfaceAdvice));
   EXPECT_THAT(stderr_text(), HasSubstr("--remesh-surface re-triangulates IN at the size first"));
   EXPECT_FALSE(fs::exists(out));
+}
+
+// Issue 10, part 3: the same hinge stops, each time elsewhere, in each of its first 9 runs (each
+// using 4-32% of its budget's crossing tests) and closes in its 10th: --max-reruns 9 meshes it,
+// valid, each rerun a warning.
+TEST_F(CliVolumeTest, MaxRerunsLetsAFrontBeMeshedAgainMoreTimes) {
+  const std::string in = std::string(AFMESH_SOURCE_DIR) + "/../shared/corpus/netgen_hinge.stl";
+  ASSERT_TRUE(fs::exists(in)) << in;
+  const fs::path out = dir_ / "hinge.msh";
+  ASSERT_EQ(run_volume(shell_quoted(in) + " -o " + shell_quoted(out) +
+                       " --size 2.36643 --max-reruns 9 --json"),
+            0)
+      << stderr_text();
+  std::size_t reruns = 0;
+  for (std::size_t at = 0; (at = stderr_text().find("meshed again with the size halved", at)) !=
+                           std::string::npos;
+       ++at)
+    ++reruns;
+  EXPECT_EQ(reruns, 9u) << stderr_text();
+  EXPECT_THAT(stdout_text(), HasSubstr("\"passed\": true"));
+}
+
+TEST_F(CliVolumeTest, MaxRerunsOutOfRangeIsAUsageError) {
+  EXPECT_EQ(run_volume(shell_quoted(dir_ / "front.mesh") + " -o " + shell_quoted(dir_ / "v.msh") +
+                       " --max-reruns 33"),
+            2);
+  EXPECT_THAT(stderr_text(), HasSubstr("--max-reruns"));
 }
 
 TEST_F(CliVolumeTest, MissingInputFileExitsWithBadInput) {

@@ -399,6 +399,7 @@ TEST_F(MesherServiceTest, JobReceivesTheFrontAndOptionsAsSent) {
   EXPECT_EQ(probe_->front.triangle_tags, front.triangle_tags);
   EXPECT_EQ(probe_->params.size, 0.25);
   EXPECT_EQ(probe_->params.growth, 1.2);
+  EXPECT_EQ(probe_->params.local_refinements, VolumeParams{}.local_refinements);
 }
 
 TEST_F(MesherServiceTest, TrianglesWithoutTagsGetTagZeroAndGrowthZeroMeansOne) {
@@ -412,6 +413,23 @@ TEST_F(MesherServiceTest, TrianglesWithoutTagsGetTagZeroAndGrowthZeroMeansOne) {
   ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
   EXPECT_EQ(probe_->front.triangle_tags, std::vector<Index>(4, 0));
   EXPECT_EQ(probe_->params.growth, 1.0);
+}
+
+// VolumeOptions.max_reruns reaches the job as VolumeParams::local_refinements; unset leaves the
+// core's default; out of [0, 32] is INVALID_ARGUMENT naming the field.
+TEST_F(MesherServiceTest, MaxRerunsReachesTheJobAndIsChecked) {
+  start(counting_job(probe_));  // keeps the first run's params
+  std::vector<Request> requests = requests_for(tetrahedron_front());
+  requests[0].mutable_header()->mutable_options()->set_max_reruns(3);
+  CallOutcome outcome = call(requests);
+  ASSERT_TRUE(outcome.status.ok()) << outcome.status.error_message();
+  EXPECT_EQ(probe_->params.local_refinements, 3);
+  for (const int bad : {-1, 33}) {
+    requests[0].mutable_header()->mutable_options()->set_max_reruns(bad);
+    outcome = call(requests);
+    EXPECT_EQ(outcome.status.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << bad;
+    EXPECT_THAT(outcome.status.error_message(), HasSubstr("options.max_reruns must be in [0, 32]"));
+  }
 }
 
 TEST_F(MesherServiceTest, ServesOverTcpOnAPortPickedBySystem) {
