@@ -165,8 +165,8 @@ void add_volume_command(CLI::App& app, Action& action) {
   command
       ->add_option("--max-reruns", options->max_reruns,
                    "how many times a front that stops is meshed again with the size halved "
-                   "where it stopped, each run at most one run's work (default 8; 0: fail where "
-                   "it first stops)")
+                   "where it stopped, each run taking up to as long as a whole run (default 8; "
+                   "0: fail where it first stops)")
       ->check(CLI::Range(0, 32));
   add_surface_angle_flags(*command, options->mesh);
   command->get_option("--ridge-angle")->needs(remesh);
