@@ -23,6 +23,7 @@
 // --tls-client-ca and --token-file (client/channel_credentials.h); they need --server.
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "absl/strings/match.h"
@@ -42,8 +43,8 @@ struct VolumeCommandOptions {
   MeshCommandOptions mesh;
   std::string envs = "none";  // auto, tags or none
   bool remesh_surface = false;
-  int max_reruns = 0;  // --max-reruns; sent only when given
-  bool max_reruns_given = false;
+  std::optional<int> max_reruns;  // --max-reruns; unset: the server's default
+  int max_reruns_flag = 0;        // its parsed value
 };
 
 // The output must hold tetrahedra: checked before any meshing work.
@@ -107,7 +108,7 @@ absl::StatusOr<MeshAnswer> with_reruns_hint(absl::StatusOr<MeshAnswer> answer, i
   if (answer.ok() || max_reruns >= kMaxLocalRefinements ||
       answer.status().code() != absl::StatusCode::kFailedPrecondition ||
       !absl::StrContains(answer.status().message(),
-                         absl::StrFormat("after meshing again %d times", max_reruns)))
+                         meshed_again_times(max_reruns)))
     return answer;
   return absl::FailedPreconditionError(absl::StrCat(
       answer.status().message(),
@@ -129,7 +130,7 @@ int run_volume(const VolumeCommandOptions& options) {
                                       : options.envs == "auto" ? EnvironmentSource::kAuto
                                                                : EnvironmentSource::kNone;
   command.call_options.remesh_surface = options.remesh_surface;
-  if (options.max_reruns_given) command.call_options.max_reruns = options.max_reruns;
+  command.call_options.max_reruns = options.max_reruns;
   command.call = [](const std::string& address, const Mesh& front,
                     const VolumeCallOptions& call_options, const ProgressCallback& on_progress,
                     const WarningCallback& on_warning) -> absl::StatusOr<MeshAnswer> {
@@ -163,11 +164,12 @@ void add_volume_command(CLI::App& app, Action& action) {
       "re-triangulate IN at the size first (as `afmesh surface`), then fill the new surface, in "
       "one server job; OUT's boundary is the new surface");
   command
-      ->add_option("--max-reruns", options->max_reruns,
-                   "how many times a front that stops is meshed again with the size halved "
-                   "where it stopped, each run taking up to as long as a whole run (default 8; "
-                   "0: fail where it first stops)")
-      ->check(CLI::Range(0, 32));
+      ->add_option("--max-reruns", options->max_reruns_flag,
+                   absl::StrFormat("how many times a front that stops is meshed again with the "
+                                   "size halved where it stopped, each run taking up to as long "
+                                   "as a whole run (default %d; 0: fail where it first stops)",
+                                   VolumeParams{}.local_refinements))
+      ->check(CLI::Range(0, kMaxLocalRefinements));
   add_surface_angle_flags(*command, options->mesh);
   command->get_option("--ridge-angle")->needs(remesh);
   command->get_option("--corner-angle")->needs(remesh);
@@ -176,7 +178,7 @@ void add_volume_command(CLI::App& app, Action& action) {
   command->get_option("--wall-sizes")->needs(remesh);
   command->callback([options, command, &action] {
     note_given_flags(*command, options->mesh);
-    options->max_reruns_given = command->count("--max-reruns") > 0;
+    if (command->count("--max-reruns") > 0) options->max_reruns = options->max_reruns_flag;
     action = [options] { return run_volume(*options); };
   });
 }

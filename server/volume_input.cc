@@ -37,8 +37,9 @@ absl::Status params_from_options(const v1::VolumeOptions& options, bool grid_str
   params.growth = growth;
   if (options.has_max_reruns()) {
     if (options.max_reruns() < 0 || options.max_reruns() > kMaxLocalRefinements) {
-      return absl::InvalidArgumentError(absl::StrFormat(
-          "options.max_reruns must be in [0, %d], got %d", kMaxLocalRefinements, options.max_reruns()));
+      return absl::InvalidArgumentError(
+          absl::StrFormat("options.max_reruns must be in [0, %d], got %d", kMaxLocalRefinements,
+                          options.max_reruns()));
     }
     params.local_refinements = options.max_reruns();
   }

@@ -580,6 +580,10 @@ absl::StatusOr<std::unique_ptr<SizeField>> make_size_field(const VolumeParams& p
   return make_size_field(params.spec, params.size, front.points);
 }
 
+std::string meshed_again_times(std::int64_t times) {
+  return absl::StrFormat("after meshing again %d times", times);
+}
+
 absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const VolumeParams& params,
                                                   Progress& progress) {
   VolumeResult result;
@@ -637,10 +641,10 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
   if (!mesh.ok()) {
     if (result.warnings.empty()) return mesh.status();
     return absl::Status(mesh.status().code(),
-                        absl::StrCat(mesh.status().message(),
-                                     absl::StrFormat("; after meshing again %d times with the "
-                                                     "size halved where it stopped before: %s",
-                                                     result.warnings.size(), where)));
+                        absl::StrCat(mesh.status().message(), "; ",
+                                     meshed_again_times(
+                                         static_cast<std::int64_t>(result.warnings.size())),
+                                     " with the size halved where it stopped before: ", where));
   }
   result.mesh = *std::move(mesh);
   progress.report("front", 1.0);

@@ -37,6 +37,10 @@ inline constexpr char kRetriangulatedSurfaceAdvice[] = "a surface re-triangulate
 // run may do a whole VolumeBudget's work.
 inline constexpr int kMaxLocalRefinements = 32;
 
+// "after meshing again N times": how the message of a job that failed after N runs meshed again
+// (VolumeParams::local_refinements) says so, so that a client can tell that more were possible.
+std::string meshed_again_times(std::int64_t times);
+
 struct VolumeParams {
   // Target edge length h of the uniform size field (> 0, in the units of the points).
   double size = 0.0;
