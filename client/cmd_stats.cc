@@ -80,6 +80,13 @@ void print_stats(const StatsOptions& o, const Mesh& m, const QualitySummary& q,
                                  q.tet_max_dihedral_deg.max, q.tet_max_dihedral_deg.mean);
     std::cout << absl::StrFormat("  radius ratio  min %.4f  mean %.4f\n", q.tet_radius_ratio.min,
                                  q.tet_radius_ratio.mean);
+    if (q.boundary_slivers > 0)
+      std::cout << absl::StrFormat(
+          "  away from the %lld boundary slivers (angle < 20°): %lld tets, min dihedral %.2f°  "
+          "(%.3f%% < 20°)\n",
+          static_cast<long long>(q.boundary_slivers),
+          static_cast<long long>(q.tets_away_from_slivers), q.away_min_dihedral_deg.min,
+          100 * q.share_away_below_20);
     print_histogram(std::cout, "  min dihedral angle histogram", q.tet_min_dihedral_hist, "°");
     print_histogram(std::cout, "  radius ratio histogram", q.tet_radius_ratio_hist, "");
   }
@@ -150,6 +157,10 @@ void print_json(const StatsOptions& o, const Mesh& m, const QualitySummary& q,
     add_measure(j, "radius_ratio", q.tet_radius_ratio);
     j.field("share_min_dihedral_below_10", q.share_min_dihedral_below_10);
     j.field("share_min_dihedral_below_20", q.share_min_dihedral_below_20);
+    j.field("boundary_slivers", q.boundary_slivers);
+    j.field("tets_away_from_slivers", q.tets_away_from_slivers);
+    add_measure(j, "away_from_slivers_min_dihedral_deg", q.away_min_dihedral_deg);
+    j.field("away_from_slivers_share_below_20", q.share_away_below_20);
     add_histogram(j, "min_dihedral_histogram", q.tet_min_dihedral_hist);
     add_histogram(j, "radius_ratio_histogram", q.tet_radius_ratio_hist);
     j.end_object();

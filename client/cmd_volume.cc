@@ -79,6 +79,20 @@ void print_summary(const std::string& output, const VolumeSummary& summary) {
   std::printf("  dihedral angles  min %.2f°  max %.2f°  (%.3f%% of tets < 10°, %.3f%% < 20°)\n",
               summary.min_dihedral_deg, summary.max_dihedral_deg, 100 * summary.share_below_10_deg,
               100 * summary.share_below_20_deg);
+  // Boundary slivers make the tets round them as flat (QualityFigures): the figures away from
+  // them say what the mesher made where the input leaves it free.
+  if (summary.boundary_sliver_count > 0) {
+    std::printf(
+        "  input slivers    %llu boundary triangles with an angle under 20° (down to %.2f°); "
+        "the tets round them are about as flat\n",
+        static_cast<unsigned long long>(summary.boundary_sliver_count),
+        summary.boundary_min_angle_deg);
+    if (summary.tets_away_from_slivers > 0)
+      std::printf("  away from them   min dihedral %.2f°  (%.3f%% of %llu tets < 20°)\n",
+                  summary.min_dihedral_away_from_slivers_deg,
+                  100 * summary.share_away_from_slivers_below_20_deg,
+                  static_cast<unsigned long long>(summary.tets_away_from_slivers));
+  }
   std::printf("  radius ratio     min %.4f  mean %.4f\n", summary.min_radius_ratio,
               summary.mean_radius_ratio);
   std::printf("  validation       %s\n", summary.validation_passed ? "passed" : "FAILED");

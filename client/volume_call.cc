@@ -221,6 +221,13 @@ VolumeSummary plain_summary(const v1::Summary& summary) {
   plain.share_below_20_deg = summary.quality().share_below_20_deg();
   plain.min_radius_ratio = summary.quality().min_radius_ratio();
   plain.mean_radius_ratio = summary.quality().mean_radius_ratio();
+  plain.boundary_min_angle_deg = summary.quality().boundary_min_angle_deg();
+  plain.boundary_sliver_count = summary.quality().boundary_sliver_count();
+  plain.tets_away_from_slivers = summary.quality().tets_away_from_slivers();
+  plain.min_dihedral_away_from_slivers_deg =
+      summary.quality().min_dihedral_away_from_slivers_deg();
+  plain.share_away_from_slivers_below_20_deg =
+      summary.quality().share_away_from_slivers_below_20_deg();
   plain.validation_passed = summary.validation().passed();
   plain.validation_messages.assign(summary.validation().messages().begin(),
                                    summary.validation().messages().end());

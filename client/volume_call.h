@@ -92,6 +92,12 @@ struct VolumeSummary {
   double share_below_20_deg = 0.0;
   double min_radius_ratio = 0.0;
   double mean_radius_ratio = 0.0;
+  // The boundary's slivers and the tets away from them (QualityFigures in mesher.proto).
+  double boundary_min_angle_deg = 0.0;
+  std::uint64_t boundary_sliver_count = 0;
+  std::uint64_t tets_away_from_slivers = 0;
+  double min_dihedral_away_from_slivers_deg = 0.0;
+  double share_away_from_slivers_below_20_deg = 0.0;
   bool validation_passed = false;
   std::vector<std::string> validation_messages;
   std::vector<std::pair<std::string, double>> timings;  // stage, seconds

@@ -64,6 +64,11 @@ VolumeQuality volume_quality(const QualitySummary& summary) {
       .share_below_20_deg = summary.share_min_dihedral_below_20,
       .min_radius_ratio = summary.tet_radius_ratio.min,
       .mean_radius_ratio = summary.tet_radius_ratio.mean,
+      .boundary_min_angle_deg = summary.triangle_min_angle_deg.min,
+      .boundary_slivers = summary.boundary_slivers,
+      .tets_away_from_slivers = summary.tets_away_from_slivers,
+      .away_min_dihedral_deg = summary.away_min_dihedral_deg.min,
+      .away_share_below_20_deg = summary.share_away_below_20,
   };
 }
 

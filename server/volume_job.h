@@ -27,6 +27,13 @@ struct VolumeQuality {
   double share_below_20_deg = 0.0;  // likewise < 20°
   double min_radius_ratio = 0.0;    // 3 r_in / r_circ
   double mean_radius_ratio = 0.0;
+  // The boundary's smallest corner angle and its slivers, and the tets away from them
+  // (QualitySummary::tets_away_from_slivers).
+  double boundary_min_angle_deg = 0.0;
+  std::int64_t boundary_slivers = 0;
+  std::int64_t tets_away_from_slivers = 0;
+  double away_min_dihedral_deg = 0.0;
+  double away_share_below_20_deg = 0.0;
 };
 
 // The validator's verdict on the result.

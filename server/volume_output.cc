@@ -138,6 +138,11 @@ void VolumeOutputStream::fill_summary(v1::Summary& summary) const {
   figures.set_share_below_20_deg(quality.share_below_20_deg);
   figures.set_min_radius_ratio(quality.min_radius_ratio);
   figures.set_mean_radius_ratio(quality.mean_radius_ratio);
+  figures.set_boundary_min_angle_deg(quality.boundary_min_angle_deg);
+  figures.set_boundary_sliver_count(static_cast<std::uint64_t>(quality.boundary_slivers));
+  figures.set_tets_away_from_slivers(static_cast<std::uint64_t>(quality.tets_away_from_slivers));
+  figures.set_min_dihedral_away_from_slivers_deg(quality.away_min_dihedral_deg);
+  figures.set_share_away_from_slivers_below_20_deg(quality.away_share_below_20_deg);
 
   v1::Validation& validation = *summary.mutable_validation();
   validation.set_passed(output_.validation.passed);

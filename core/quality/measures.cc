@@ -134,12 +134,38 @@ class StatsAccumulator {
   CompensatedSum sum_;
 };
 
+// Per point: whether it is a corner of a tet near a boundary sliver (QualitySummary's
+// tets_away_from_slivers; a tet with such a corner is near one). Counts the slivers. O(M + T).
+std::vector<bool> near_slivers(const Mesh& mesh, std::int64_t& slivers) {
+  std::vector<bool> on_sliver(mesh.points.size(), false);
+  for (const Triangle& t : mesh.triangles) {
+    if (triangle_min_angle_deg(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]) >=
+        kSliverTriangleDeg)
+      continue;
+    ++slivers;
+    for (const Index v : t) on_sliver[v] = true;
+  }
+  std::vector<bool> near(mesh.points.size(), false);
+  if (slivers == 0) return near;
+  for (const Tet& tet : mesh.tets) {
+    if (!(on_sliver[tet[0]] || on_sliver[tet[1]] || on_sliver[tet[2]] || on_sliver[tet[3]]))
+      continue;
+    for (const Index v : tet) near[v] = true;
+  }
+  return near;
+}
+
 void summarize_tets(const Mesh& mesh, QualitySummary& summary, CancelCheck& stop) {
-  StatsAccumulator min_dihedral, max_dihedral, ratio, volume;
-  std::int64_t below_10 = 0, below_20 = 0;
+  StatsAccumulator min_dihedral, max_dihedral, ratio, volume, away;
+  std::int64_t below_10 = 0, below_20 = 0, away_below_20 = 0;
+  const std::vector<bool> near = near_slivers(mesh, summary.boundary_slivers);
   for (const Tet& tet : mesh.tets) {
     if (stop.due()) return;
     const TetQuality q = tet_quality(mesh.points, tet);
+    if (!(near[tet[0]] || near[tet[1]] || near[tet[2]] || near[tet[3]])) {
+      away.add(q.min_dihedral_deg);
+      if (q.min_dihedral_deg < 20.0) ++away_below_20;
+    }
     min_dihedral.add(q.min_dihedral_deg);
     max_dihedral.add(q.max_dihedral_deg);
     ratio.add(q.radius_ratio);
@@ -160,6 +186,11 @@ void summarize_tets(const Mesh& mesh, QualitySummary& summary, CancelCheck& stop
     summary.share_min_dihedral_below_10 = static_cast<double>(below_10) / summary.tet_count;
     summary.share_min_dihedral_below_20 = static_cast<double>(below_20) / summary.tet_count;
   }
+  summary.away_min_dihedral_deg = away.result();
+  summary.tets_away_from_slivers = summary.away_min_dihedral_deg.count;
+  if (summary.tets_away_from_slivers > 0)
+    summary.share_away_below_20 =
+        static_cast<double>(away_below_20) / summary.tets_away_from_slivers;
 }
 
 void summarize_triangles(const Mesh& mesh, QualitySummary& summary) {

@@ -237,6 +237,44 @@ TEST(QualitySummary, ShareBelowThresholdsCountsSlivers) {
   EXPECT_NEAR(s->share_min_dihedral_below_20, 2.0 / 3.0, 1e-15);
 }
 
+TEST(QualitySummary, TetsAwayFromBoundarySliversAreMeasuredApart) {
+  Mesh mesh = testing::tet_mesh(
+      {// 0-3: a flat tet on the boundary sliver (0, 1, 2), whose angles at 0 and 1 are 0.57°
+       {0, 0, 0}, {1, 0, 0}, {0.5, 0.005, 0}, {0.5, 0, 1},
+       // 4-6 and 3: a tet that shares a corner with it: near the sliver
+       {0.5, 1, 1}, {1.5, 0, 1}, {1, 0.5, 2},
+       // 7-10: a regular tet far away; 11-14: a flat one (between 10° and 20°) far away
+       {10, 0, 0}, {11, 0, 0}, {10.5, std::sqrt(0.75), 0}, {10.5, std::sqrt(0.75) / 3, std::sqrt(2.0 / 3.0)},
+       {20, 0, 0}, {21, 0, 0}, {20, 1, 0}, {21, 1, 0.25}},
+      {{0, 1, 2, 3}, {3, 4, 5, 6}, {7, 8, 9, 10}, {11, 12, 13, 14}});
+  for (Tet& t : mesh.tets)  // positive, whatever the corners' order above
+    if (tet_quality(mesh.points, t).volume < 0) std::swap(t[0], t[1]);
+  mesh.triangles = {{0, 2, 1}, {7, 9, 8}};
+  mesh.triangle_tags.assign(mesh.triangles.size(), 0);
+  const absl::StatusOr<QualitySummary> s = summarize_quality(mesh);
+  ASSERT_TRUE(s.ok()) << s.status();
+  const double flat = tet_quality(mesh.points, mesh.tets[3]).min_dihedral_deg;
+  ASSERT_GE(flat, 10.0);
+  ASSERT_LT(flat, 20.0);
+  EXPECT_LT(s->tet_min_dihedral_deg.min, 2.0);  // the tet on the sliver
+  EXPECT_EQ(s->boundary_slivers, 1);
+  EXPECT_NEAR(s->triangle_min_angle_deg.min, deg(std::atan(0.01)), 1e-9);
+  EXPECT_EQ(s->tets_away_from_slivers, 2);  // the far ones: not the sliver's nor its neighbour
+  EXPECT_NEAR(s->away_min_dihedral_deg.min, flat, 1e-12);
+  EXPECT_NEAR(s->away_min_dihedral_deg.max, deg(std::acos(1.0 / 3.0)), 1e-9);
+  EXPECT_EQ(s->share_away_below_20, 0.5);
+
+  // Without the sliver every tet is away from one, and the figures are the whole mesh's.
+  mesh.triangles = {{7, 9, 8}};
+  mesh.triangle_tags = {0};
+  const absl::StatusOr<QualitySummary> clean = summarize_quality(mesh);
+  ASSERT_TRUE(clean.ok()) << clean.status();
+  EXPECT_EQ(clean->boundary_slivers, 0);
+  EXPECT_EQ(clean->tets_away_from_slivers, 4);
+  EXPECT_EQ(clean->away_min_dihedral_deg.min, clean->tet_min_dihedral_deg.min);
+  EXPECT_EQ(clean->share_away_below_20, clean->share_min_dihedral_below_20);
+}
+
 TEST(QualitySummary, IsDeterministic) {
   const Mesh mesh = testing::six_tet_cube();
   const QualitySummary a = *summarize_quality(mesh);

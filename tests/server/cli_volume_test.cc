@@ -199,6 +199,24 @@ TEST_F(CliVolumeTest, MaxRerunsLetsAFrontBeMeshedAgainMoreTimes) {
   EXPECT_THAT(stdout_text(), HasSubstr("\"passed\": true"));
 }
 
+// A CAD tessellation's slivers make the tets round them flat; the summary says so and gives the
+// quality away from them (QualityFigures' boundary and away-from-slivers figures).
+TEST_F(CliVolumeTest, SummarySaysWhatTheInputsSliversForceAndTheQualityAwayFromThem) {
+  const std::string in = std::string(AFMESH_SOURCE_DIR) + "/../shared/corpus/netgen_part1.stl";
+  ASSERT_TRUE(fs::exists(in)) << in;
+  const fs::path out = dir_ / "part1.msh";
+  ASSERT_EQ(run_volume(shell_quoted(in) + " -o " + shell_quoted(out)), 0) << stderr_text();
+  EXPECT_THAT(stdout_text(), ::testing::MatchesRegex(
+                                 "(.|\n)*input slivers +[1-9][0-9]* boundary triangles with an "
+                                 "angle under 20° \\(down to [0-9.]+°\\)(.|\n)*"));
+  EXPECT_THAT(stdout_text(), HasSubstr("away from them   min dihedral"));
+
+  ASSERT_EQ(run_volume(shell_quoted(in) + " -o " + shell_quoted(out) + " --json"), 0)
+      << stderr_text();
+  EXPECT_THAT(stdout_text(), HasSubstr("\"boundarySliverCount\""));
+  EXPECT_THAT(stdout_text(), HasSubstr("\"minDihedralAwayFromSliversDeg\""));
+}
+
 TEST_F(CliVolumeTest, MaxRerunsOutOfRangeIsAUsageError) {
   EXPECT_EQ(run_volume(shell_quoted(dir_ / "front.mesh") + " -o " + shell_quoted(dir_ / "v.msh") +
                        " --max-reruns 33"),

@@ -139,7 +139,12 @@ VolumeJobOutput output_with(Mesh mesh) {
                     .share_below_10_deg = 0.0,
                     .share_below_20_deg = 0.015,
                     .min_radius_ratio = 0.3,
-                    .mean_radius_ratio = 0.8};
+                    .mean_radius_ratio = 0.8,
+                    .boundary_min_angle_deg = 4.5,
+                    .boundary_slivers = 3,
+                    .tets_away_from_slivers = 40,
+                    .away_min_dihedral_deg = 19.5,
+                    .away_share_below_20_deg = 0.025};
   output.validation = {.passed = true, .messages = {"unused_points: none"}};
   output.warnings = {"fake warning"};
   return output;
@@ -352,6 +357,11 @@ TEST_F(MesherServiceTest, SummaryComesLastWithCountsQualityAndTimings) {
   EXPECT_EQ(summary.quality().min_dihedral_deg(), 12.5);
   EXPECT_EQ(summary.quality().share_below_20_deg(), 0.015);
   EXPECT_EQ(summary.quality().mean_radius_ratio(), 0.8);
+  EXPECT_EQ(summary.quality().boundary_min_angle_deg(), 4.5);
+  EXPECT_EQ(summary.quality().boundary_sliver_count(), 3u);
+  EXPECT_EQ(summary.quality().tets_away_from_slivers(), 40u);
+  EXPECT_EQ(summary.quality().min_dihedral_away_from_slivers_deg(), 19.5);
+  EXPECT_EQ(summary.quality().share_away_from_slivers_below_20_deg(), 0.025);
   EXPECT_TRUE(summary.validation().passed());
   ASSERT_EQ(summary.validation().messages_size(), 1);
 
