@@ -106,6 +106,11 @@ def judge(args, group, name, stl, label, size, timeout, extra=None):
         val = s.get("validation", {})
         rec.update({"tets": int(s.get("tetCount", 0)), "points": int(s.get("pointCount", 0)),
                     "min_dihedral": q.get("minDihedralDeg"), "server_valid": val.get("passed"),
+                    # Away from the boundary's slivers (QualityFigures): what the mesher made
+                    # where the input leaves it free; unset fields are 0 in protobuf's JSON.
+                    "boundary_slivers": int(q.get("boundarySliverCount", 0)),
+                    "tets_away": int(q.get("tetsAwayFromSlivers", 0)),
+                    "away_min_dihedral": q.get("minDihedralAwayFromSliversDeg", 0.0),
                     "server_messages": val.get("messages", [])[:3],
                     "repair": s.get("repair", {}),
                     "timings": {t.get("stage"): t.get("seconds") for t in s.get("timings", [])}})
@@ -184,7 +189,9 @@ def line_of(r):
         rel = r.get("rel_time")
         return (f"{r['group']:11s} {r['name']:28s} {r['label']:>7s} H={r['size'] or 0:<8.4g} rc=0 "
                 f"{r['wall']:7.2f}s tets={r.get('tets', 0):<7d} mindih={md if md is None else round(md, 2)} "
-                f"{'VALID' if r['valid'] else 'INVALID ' + ','.join(r.get('check_fail', []))}"
+                + (f"away={round(r['away_min_dihedral'], 2)}/{r['tets_away']} "
+                   if r.get("boundary_slivers") and r.get("tets_away") else "")
+                + f"{'VALID' if r['valid'] else 'INVALID ' + ','.join(r.get('check_fail', []))}"
                 + (f" t/sphere={rel:.2f}" if rel else ""))
     return (f"{r['group']:11s} {r['name']:28s} {r['label']:>7s} H={r['size'] or 0:<8.4g} rc={r['rc']} "
             f"{r['wall']:7.2f}s {'TIMEOUT ' if r['timeout'] else ''}{r.get('message', '')[:160]}")
@@ -332,6 +339,14 @@ def summarise(results, t_of):
             lines.append(f"  wall: max {max(r['wall'] for r in rs):.1f} s, sum {sum(r['wall'] for r in rs):.0f} s; "
                          f"min dihedral over valid runs: min {min(md):.2f}°, median {sorted(md)[len(md) // 2]:.2f}°"
                          if md else "")
+            # The same away from the boundary's slivers (every tet of a run without any).
+            away = [r["away_min_dihedral"] if r.get("boundary_slivers") else r["check_min_dihedral"]
+                    for r in ok if r.get("valid") and r.get("check_min_dihedral") is not None
+                    and (r.get("tets_away") or not r.get("boundary_slivers"))]
+            if away:
+                lines.append(f"  away from the input's slivers (angle < 20°): min dihedral min {min(away):.2f}°, "
+                             f"median {sorted(away)[len(away) // 2]:.2f}°, {sum(a < 18 for a in away)} of "
+                             f"{len(away)} runs under 18°")
     return "\n".join(lines)
 
 
