@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "absl/container/flat_hash_map.h"
@@ -24,7 +25,17 @@ class ExactPointMerger {
   Index insert(double x, double y, double z);
 
  private:
-  using Key = std::array<std::uint64_t, 3>;  // bit patterns of x, y, z
+  // The bit patterns of x, y, z. A struct, not an array: its equality is three compares inline
+  // and its hash combines three words, where std::array's went through memcmp and a hash of
+  // bytes (a fifth of the read of a 1M-triangle STL).
+  struct Key {
+    std::uint64_t x, y, z;
+    bool operator==(const Key&) const = default;
+    template <typename H>
+    friend H AbslHashValue(H h, const Key& k) {
+      return H::combine(std::move(h), k.x, k.y, k.z);
+    }
+  };
 
   std::vector<Point>& points_;
   absl::flat_hash_map<Key, Index> index_of_;
