@@ -4,7 +4,6 @@
 // collapse. A hash table makes each insertion O(1) expected.
 #pragma once
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -27,7 +26,7 @@ class ExactPointMerger {
  private:
   // The bit patterns of x, y, z. A struct, not an array: its equality is three compares inline
   // and its hash combines three words, where std::array's went through memcmp and a hash of
-  // bytes (a fifth of the read of a 1M-triangle STL).
+  // bytes (reading a 1M-triangle binary STL: 0.62-0.66 s with it, 0.58-0.62 s now).
   struct Key {
     std::uint64_t x, y, z;
     bool operator==(const Key&) const = default;
