@@ -135,18 +135,10 @@ class StatsAccumulator {
 };
 
 // Per point: whether it is a corner of a tet near a boundary sliver (QualitySummary's
-// tets_away_from_slivers; a tet with such a corner is near one). Counts the slivers. O(M + T).
-std::vector<bool> near_slivers(const Mesh& mesh, std::int64_t& slivers) {
-  std::vector<bool> on_sliver(mesh.points.size(), false);
-  for (const Triangle& t : mesh.triangles) {
-    if (triangle_min_angle_deg(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]) >=
-        kSliverTriangleDeg)
-      continue;
-    ++slivers;
-    for (const Index v : t) on_sliver[v] = true;
-  }
+// tets_away_from_slivers; a tet with such a corner is near one), from the points on slivers
+// (summarize_triangles). O(T).
+std::vector<bool> near_slivers(const Mesh& mesh, const std::vector<bool>& on_sliver) {
   std::vector<bool> near(mesh.points.size(), false);
-  if (slivers == 0) return near;
   for (const Tet& tet : mesh.tets) {
     if (!(on_sliver[tet[0]] || on_sliver[tet[1]] || on_sliver[tet[2]] || on_sliver[tet[3]]))
       continue;
@@ -155,10 +147,12 @@ std::vector<bool> near_slivers(const Mesh& mesh, std::int64_t& slivers) {
   return near;
 }
 
-void summarize_tets(const Mesh& mesh, QualitySummary& summary, CancelCheck& stop) {
+// `on_sliver`: the points of the boundary's slivers (summarize_triangles).
+void summarize_tets(const Mesh& mesh, const std::vector<bool>& on_sliver, QualitySummary& summary,
+                    CancelCheck& stop) {
   StatsAccumulator min_dihedral, max_dihedral, ratio, volume, away;
   std::int64_t below_10 = 0, below_20 = 0, away_below_20 = 0;
-  const std::vector<bool> near = near_slivers(mesh, summary.boundary_slivers);
+  const std::vector<bool> near = near_slivers(mesh, on_sliver);
   for (const Tet& tet : mesh.tets) {
     if (stop.due()) return;
     const TetQuality q = tet_quality(mesh.points, tet);
@@ -193,10 +187,16 @@ void summarize_tets(const Mesh& mesh, QualitySummary& summary, CancelCheck& stop
         static_cast<double>(away_below_20) / summary.tets_away_from_slivers;
 }
 
-void summarize_triangles(const Mesh& mesh, QualitySummary& summary) {
+// Also counts the boundary's slivers and returns their points (per point: on a sliver).
+std::vector<bool> summarize_triangles(const Mesh& mesh, QualitySummary& summary) {
   StatsAccumulator min_angle, ratio;
+  std::vector<bool> on_sliver(mesh.points.size(), false);
   for (const Triangle& t : mesh.triangles) {
     const TriangleQuality q = triangle_quality(mesh.points, t);
+    if (q.min_angle_deg < kSliverTriangleDeg) {
+      ++summary.boundary_slivers;
+      for (const Index v : t) on_sliver[v] = true;
+    }
     min_angle.add(q.min_angle_deg);
     ratio.add(q.radius_ratio);
     summary.triangle_min_angle_hist.add(q.min_angle_deg);
@@ -205,6 +205,7 @@ void summarize_triangles(const Mesh& mesh, QualitySummary& summary) {
   summary.triangle_count = static_cast<std::int64_t>(mesh.triangles.size());
   summary.triangle_min_angle_deg = min_angle.result();
   summary.triangle_radius_ratio = ratio.result();
+  return on_sliver;
 }
 
 }  // namespace
@@ -326,9 +327,9 @@ absl::StatusOr<QualitySummary> summarize_quality(const Mesh& mesh, Progress& pro
   }
   QualitySummary summary;
   CancelCheck stop(progress);
-  summarize_tets(mesh, summary, stop);
+  const std::vector<bool> on_sliver = summarize_triangles(mesh, summary);
+  summarize_tets(mesh, on_sliver, summary, stop);
   if (stop.stopped()) return absl::CancelledError("the quality summary was cancelled");
-  summarize_triangles(mesh, summary);
   return summary;
 }
 
