@@ -82,9 +82,9 @@ void print_stats(const StatsOptions& o, const Mesh& m, const QualitySummary& q,
                                  q.tet_radius_ratio.mean);
     if (q.boundary_slivers > 0)
       std::cout << absl::StrFormat(
-          "  away from the %lld boundary slivers (angle < 20°): %lld tets, min dihedral %.2f°  "
+          "  away from the %lld boundary slivers (angle < %g°): %lld tets, min dihedral %.2f°  "
           "(%.3f%% < 20°)\n",
-          static_cast<long long>(q.boundary_slivers),
+          static_cast<long long>(q.boundary_slivers), kSliverTriangleDeg,
           static_cast<long long>(q.tets_away_from_slivers), q.away_min_dihedral_deg.min,
           100 * q.share_away_below_20);
     print_histogram(std::cout, "  min dihedral angle histogram", q.tet_min_dihedral_hist, "°");

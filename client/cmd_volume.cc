@@ -34,6 +34,7 @@
 #include "client/volume_call.h"
 #include "core/environments/environments.h"
 #include "core/io/mesh_io.h"
+#include "core/quality/measures.h"
 #include "core/volume/generate_volume_mesh.h"
 
 namespace afmesh::cli {
@@ -83,9 +84,9 @@ void print_summary(const std::string& output, const VolumeSummary& summary) {
   // them say what the mesher made where the input leaves it free.
   if (summary.boundary_sliver_count > 0) {
     std::printf(
-        "  input slivers    %llu boundary triangles with an angle under 20° (down to %.2f°); "
+        "  input slivers    %llu boundary triangles with an angle under %g° (down to %.2f°); "
         "the tets round them are about as flat\n",
-        static_cast<unsigned long long>(summary.boundary_sliver_count),
+        static_cast<unsigned long long>(summary.boundary_sliver_count), kSliverTriangleDeg,
         summary.boundary_min_angle_deg);
     if (summary.tets_away_from_slivers > 0)
       std::printf("  away from them   min dihedral %.2f°  (%.3f%% of %llu tets < 20°)\n",
