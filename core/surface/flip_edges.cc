@@ -82,7 +82,8 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
                                         std::vector<Triangle>& triangles,
                                         const std::vector<Index>& patch,
                                         const absl::flat_hash_set<std::pair<Index, Index>>& fixed,
-                                        const FlipParams& params, Progress& progress) {
+                                        const FlipParams& params, Progress& progress,
+                                        std::vector<bool>* may_gain) {
   CancelCheck cancel(progress);
   const double min_cosine = std::cos(params.max_normal_turn_deg * std::numbers::pi / 180.0);
   // Built once, then kept by each flip (flip()).
@@ -137,7 +138,8 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
   };
   // After the first pass only the edges of triangles a flip changed can gain from a flip: the
   // others' quadrilaterals are as the pass before found them.
-  std::vector<bool> changed(triangles.size(), true);
+  std::vector<bool> changed =
+      may_gain != nullptr ? *may_gain : std::vector<bool>(triangles.size(), true);
   for (int pass = 0; pass < params.max_passes; ++pass) {
     if (cancel.look()) return absl::CancelledError("edge flips: cancelled");
     std::vector<bool> touched(triangles.size(), false);
@@ -197,9 +199,13 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
       }
     }
     flips += flipped;
-    if (flipped == 0) break;
+    if (flipped == 0) {
+      std::fill(changed.begin(), changed.end(), false);
+      break;
+    }
     changed.swap(touched);
   }
+  if (may_gain != nullptr) *may_gain = std::move(changed);
   return flips;
 }
 

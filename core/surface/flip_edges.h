@@ -32,12 +32,18 @@ struct FlipParams {
 // same `patch` (M values) that are not in `fixed` (edges as (min, max) point pairs). Returns the
 // number of flips, or CANCELLED soon after progress.cancelled() turns true (`triangles` then
 // hold the flips made so far: still a valid triangulation). O(passes · M log M), with bins of
-// the triangles' boxes for keep_uncrossed.
+// the triangles' boxes for keep_uncrossed. With `may_gain` (M flags), the first pass looks only
+// at the edges of the triangles flagged, as later passes look only at those a flip changed, and
+// on return the flags are those whose edges may still gain (none when the last pass flipped
+// nothing, else the triangles it changed): a caller that changes some triangles between two
+// calls flags them too, and the second call makes the flips of a call over all edges (but a
+// flip that the first refused because it crossed a triangle that has moved since).
 absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
                                         std::vector<Triangle>& triangles,
                                         const std::vector<Index>& patch,
                                         const absl::flat_hash_set<std::pair<Index, Index>>& fixed,
                                         const FlipParams& params = {},
-                                        Progress& progress = no_progress());
+                                        Progress& progress = no_progress(),
+                                        std::vector<bool>* may_gain = nullptr);
 
 }  // namespace afmesh
