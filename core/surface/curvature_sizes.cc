@@ -429,18 +429,28 @@ absl::Status grade_point_sizes(const DiscreteSurface& surface, double growth,
   // The smallest delta_i + (c_i - 1) |x_j - x_i| over the surface's edges (Dijkstra).
   const double c_i = std::max(growth, 1.0);
   using Item = std::pair<double, Index>;
-  // Every point with a size at once, heaped in O(N) (a push each cost O(log N): 0.5M points of a
-  // scan whose every point has a curvature size).
-  std::vector<Item> items;
+  // The points with a size, sorted, and a heap of the sizes lowered since: each step settles
+  // the smaller of the two fronts (Dijkstra's order over both). On a scan every point has a
+  // curvature size and few are lowered, and popping all 0.5M from one heap took 0.6 s, 5% of
+  // the job; the sizes are the same (each is the smallest over the paths to it, whatever the
+  // order of the steps).
+  std::vector<Item> sorted;
   for (Index v = 0; v < static_cast<Index>(size.size()); ++v)
-    if (std::isfinite(size[v])) items.push_back({size[v], v});
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> queue(std::greater<>{},
-                                                                     std::move(items));
-  for (std::int64_t popped = 0; !queue.empty(); ++popped) {
+    if (std::isfinite(size[v])) sorted.push_back({size[v], v});
+  std::sort(sorted.begin(), sorted.end());
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> lowered;
+  std::size_t next = 0;
+  for (std::int64_t popped = 0; next < sorted.size() || !lowered.empty(); ++popped) {
     if (popped % kPointsPerLook == 0 && progress.cancelled())
       return absl::CancelledError("grading the attached sizes: cancelled");
-    const auto [d, v] = queue.top();
-    queue.pop();
+    Item item;
+    if (lowered.empty() || (next < sorted.size() && sorted[next] < lowered.top())) {
+      item = sorted[next++];
+    } else {
+      item = lowered.top();
+      lowered.pop();
+    }
+    const auto [d, v] = item;
     if (d > size[v]) continue;
     for (const Index f : surface.faces_at(v)) {
       for (const Index w : t[f]) {
@@ -450,7 +460,7 @@ absl::Status grade_point_sizes(const DiscreteSurface& surface, double growth,
         const double through = size_grown_over(d, c_i, norm(sub(p[w], p[v])));
         if (through < size[w]) {
           size[w] = through;
-          queue.push({through, w});
+          lowered.push({through, w});
         }
       }
     }
