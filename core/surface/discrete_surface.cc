@@ -82,7 +82,8 @@ constexpr double kBallShape = 0.02;
 
 absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
                                                        const DiscreteSurfaceParams& params,
-                                                       Progress& progress) {
+                                                       Progress& progress,
+                                                       EdgeNeighbours neighbours) {
   CancelCheck cancel(progress);
   const auto cancelled = [] { return absl::CancelledError("surface model: cancelled"); };
   if (absl::Status status = check_input(mesh); !status.ok()) return status;
@@ -121,8 +122,13 @@ absl::StatusOr<DiscreteSurface> DiscreteSurface::build(const Mesh& mesh,
     s.balls_.push_back({c, radius});
   }
   if (cancel.look()) return cancelled();
-  s.neighbours_ = triangle_edge_neighbours(s.triangles_, &cancel);
-  if (cancel.stopped()) return cancelled();
+  if (neighbours.across.size() == s.triangles_.size() &&
+      neighbours.same_way.size() == s.triangles_.size() && !s.triangles_.empty()) {
+    s.neighbours_ = std::move(neighbours);
+  } else {
+    s.neighbours_ = triangle_edge_neighbours(s.triangles_, &cancel);
+    if (cancel.stopped()) return cancelled();
+  }
 
   if (cancel.look()) return cancelled();
   // Faces by vertex (a counting sort: ascending face ids in each bucket).

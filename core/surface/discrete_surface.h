@@ -86,9 +86,12 @@ class DiscreteSurface {
   // is the zero vector.
   // CANCELLED soon after progress.cancelled() turns true (looked at between the steps, while the
   // edges are sorted and while the AABB tree is built).
+  // `neighbours`: the edge neighbours of mesh.triangles when the caller has them
+  // (triangle_edge_neighbours' answer; repair_front gives them), else empty: found here.
   static absl::StatusOr<DiscreteSurface> build(const Mesh& mesh,
                                                const DiscreteSurfaceParams& params = {},
-                                               Progress& progress = no_progress());
+                                               Progress& progress = no_progress(),
+                                               EdgeNeighbours neighbours = {});
 
   Index point_count() const { return static_cast<Index>(points_.size()); }
   Index face_count() const { return static_cast<Index>(triangles_.size()); }

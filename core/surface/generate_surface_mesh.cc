@@ -69,8 +69,10 @@ absl::Status check_params(const SurfaceParams& params) {
 // surface (triangles repeating a point or of zero area, repeats of a triangle, points on no
 // triangle) and orients closed components consistently and outward (repair_front). Every
 // change is counted in `report`. CANCELLED soon after progress.cancelled() turns true.
+// `neighbours`: the edge neighbours of the cleaned triangles when repair_front found them (its
+// steps 2-3 ran), else empty.
 absl::StatusOr<Mesh> clean_surface_input(const Mesh& input, SurfaceReport& report,
-                                          Progress& progress) {
+                                          Progress& progress, EdgeNeighbours& neighbours) {
   const Index n = static_cast<Index>(input.points.size());
   report.input_points = n;
   report.input_triangles = static_cast<std::int64_t>(input.triangles.size());
@@ -120,7 +122,7 @@ absl::StatusOr<Mesh> clean_surface_input(const Mesh& input, SurfaceReport& repor
         "the surface has no triangle with an area: every triangle repeats a point or has its "
         "corners on a line");
   report.unused_points_dropped = n - static_cast<Index>(out.points.size());
-  const FrontRepairReport repair = repair_front(out);
+  const FrontRepairReport repair = repair_front(out, &neighbours);
   report.triangles_reoriented = repair.triangles_reoriented;
   return out;
 }
@@ -808,18 +810,22 @@ absl::StatusOr<SurfaceResult> mesh_surface(const Mesh& input, const SurfaceParam
   SurfaceResult result;
   StageClock clock(result.timings);
   if (absl::Status st = check_params(params); !st.ok()) return st;
-  absl::StatusOr<Mesh> clean = clean_surface_input(input, result.report, progress);
+  EdgeNeighbours clean_neighbours;
+  absl::StatusOr<Mesh> clean =
+      clean_surface_input(input, result.report, progress, clean_neighbours);
   if (!clean.ok()) return clean.status();
   absl::StatusOr<std::unique_ptr<SizeField>> field =
       make_size_field(params.spec, params.size, clean->points);
   if (!field.ok()) return field.status();
   const StepRepairs steps = repair_sliver_steps(*clean, **field, params.ridge_angle_deg);
+  if (steps.count > 0) clean_neighbours = {};  // other triangles now
   result.report.sliver_steps_removed = steps.count;
   result.report.highest_sliver_step = steps.highest;
   clock.lap("input");
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
   // S2, S3
-  absl::StatusOr<DiscreteSurface> surface = DiscreteSurface::build(*clean, {}, progress);
+  absl::StatusOr<DiscreteSurface> surface =
+      DiscreteSurface::build(*clean, {}, progress, std::move(clean_neighbours));
   if (!surface.ok()) return surface.status();
   if (const std::vector<FaceId> folded = folded_faces(*surface); !folded.empty()) {
     const FoldedCollapses collapsed = collapse_folded_slivers(*clean, folded);

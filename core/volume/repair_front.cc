@@ -24,6 +24,24 @@ constexpr double kVolumeSignTolerance = 1e-9;
 
 void flip(Triangle& t) { std::swap(t[1], t[2]); }
 
+// The edge neighbours of the triangles after the ones marked in `turn` were flipped (flip):
+// (a, c, b) has (a, b, c)'s edges in slots 2, 1, 0, each reversed, so a turned triangle's slots
+// 0 and 2 swap, and an edge between a turned triangle and one that is not changes its same_way
+// flag (seen from both sides). The same as triangle_edge_neighbours of the flipped triangles.
+EdgeNeighbours turned_neighbours(EdgeNeighbours n, const std::vector<char>& turn) {
+  for (std::size_t t = 0; t < turn.size(); ++t) {
+    if (!turn[t]) continue;
+    std::swap(n.across[t][0], n.across[t][2]);
+    std::swap(n.same_way[t][0], n.same_way[t][2]);
+  }
+  for (std::size_t t = 0; t < turn.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const Index g = n.across[t][k];
+      if (g != kInvalidIndex && turn[t] != turn[g]) n.same_way[t][k] = !n.same_way[t][k];
+    }
+  return n;
+}
+
 // Step 1: the triangles that do not repeat a point, with their tags, into `triangles` and `tags`
 // (filled only when some triangle repeats a point). Returns how many repeat one.
 std::int64_t without_repeated_points(const Mesh& front, std::vector<Triangle>& triangles,
@@ -175,8 +193,9 @@ std::vector<std::string> FrontRepairReport::notes() const {
   return out;
 }
 
-FrontRepairReport repair_front(Mesh& front) {
+FrontRepairReport repair_front(Mesh& front, EdgeNeighbours* neighbours) {
   FrontRepairReport report;
+  if (neighbours != nullptr) *neighbours = {};
   front.triangle_tags.resize(front.triangles.size(), 0);
   // Step 1, kept only when the rest is closed and manifold: then one edge adjacency serves the
   // check and steps 2-3.
@@ -184,7 +203,7 @@ FrontRepairReport repair_front(Mesh& front) {
   std::vector<Index> kept_tags;
   const std::int64_t repeated = without_repeated_points(front, kept, kept_tags);
   const std::vector<Triangle>& triangles = repeated > 0 ? kept : front.triangles;
-  const EdgeNeighbours adjacency = triangle_edge_neighbours(triangles);
+  EdgeNeighbours adjacency = triangle_edge_neighbours(triangles);
   if ((repeated > 0 && kept.empty()) || !closed_and_manifold(adjacency)) {
     report.skipped_because = repeated > 0 ? "a triangle repeats a point"
                                           : "the surface has open or non-manifold edges";
@@ -229,6 +248,7 @@ FrontRepairReport repair_front(Mesh& front) {
     flip(front.triangles[t]);
     ++report.triangles_reoriented;
   }
+  if (neighbours != nullptr) *neighbours = turned_neighbours(std::move(adjacency), turn);
   return report;
 }
 

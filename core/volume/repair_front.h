@@ -41,7 +41,11 @@ struct FrontRepairReport {
 
 // Repairs `front` in place (points unchanged; triangles and triangle_tags dropped or re-oriented
 // together, in their order). Indices must be in range and coordinates finite (the caller's
-// input check); anything else is not looked at.
-FrontRepairReport repair_front(Mesh& front);
+// input check); anything else is not looked at. With `neighbours`, it is set to the edge
+// neighbours of the repaired triangles (triangle_edge_neighbours' answer, from the adjacency the
+// repair built, its re-oriented triangles' slots turned) when steps 2-3 ran, and left empty when
+// they were skipped: a caller that needs them too does not group the edges again.
+struct EdgeNeighbours;  // core/quality/mesh_topology.h
+FrontRepairReport repair_front(Mesh& front, EdgeNeighbours* neighbours = nullptr);
 
 }  // namespace afmesh

@@ -3,8 +3,10 @@
 #include "core/volume/repair_front.h"
 
 #include <algorithm>
+#include <array>
 #include <random>
 
+#include "core/quality/mesh_topology.h"
 #include "core/quality/validate.h"
 #include "core/quality/validate_common.h"
 #include "core/shapes/shapes.h"
@@ -109,6 +111,33 @@ TEST(RepairFront, RandomWindingIsMadeConsistentAndOutward) {
   EXPECT_EQ(report.triangles_reoriented, flipped);
   EXPECT_EQ(front.triangles, good.triangles);
   EXPECT_TRUE(valid_front(front));
+}
+
+// The edge neighbours repair_front gives back are those of the triangles it leaves: the slots of
+// each triangle it turned swapped, and the same_way flags of the edges between a turned triangle
+// and one left as it was changed (the surface mesher uses them in lieu of grouping the edges
+// again). With random winding and a cavity the whole sphere: not a flag changes the other way.
+TEST(RepairFront, EdgeNeighboursAreThoseOfTheRepairedTriangles) {
+  Mesh front = sphere_with_cavity();
+  std::mt19937 random(777);
+  for (Triangle& t : front.triangles)
+    if (random() % 3 == 0) flip(t);
+  EdgeNeighbours neighbours;
+  const FrontRepairReport report = repair_front(front, &neighbours);
+  ASSERT_GT(report.triangles_reoriented, 0);
+  const EdgeNeighbours expected = triangle_edge_neighbours(front.triangles);
+  EXPECT_EQ(neighbours.across, expected.across);
+  EXPECT_EQ(neighbours.same_way, expected.same_way);
+  // A consistent front: no two neighbours traverse an edge the same way.
+  for (const auto& flags : neighbours.same_way)
+    EXPECT_EQ(flags, (std::array<bool, 3>{false, false, false}));
+
+  // Skipped (an open surface): none given back.
+  Mesh open = box_surface({0, 0, 0}, {1, 1, 1}, 0.5);
+  open.triangles.pop_back();
+  EdgeNeighbours none;
+  repair_front(open, &none);
+  EXPECT_TRUE(none.across.empty());
 }
 
 TEST(RepairFront, RepeatedPointTrianglesAreDroppedWithTheirTags) {
