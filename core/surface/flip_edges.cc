@@ -200,7 +200,8 @@ absl::StatusOr<std::int64_t> flip_edges(const std::vector<Point>& points,
     }
     flips += flipped;
     if (flipped == 0) {
-      std::fill(changed.begin(), changed.end(), false);
+      // Only a caller that reads the flags back (may_gain) needs them cleared.
+      if (may_gain != nullptr) std::fill(changed.begin(), changed.end(), false);
       break;
     }
     changed.swap(touched);
