@@ -280,6 +280,12 @@ bool grow_part_about_face(MesherState& s, Index face, const std::vector<Index>& 
     if (!deepest_point(s, part, box, s.points[x], depth)) return false;
     const Triangle& v = s.front.item(face).v;
     if (orient3d(s.points[v[0]], s.points[v[1]], s.points[v[2]], s.points[x]) <= 0) return false;
+    // The face the element meets as the bins' walk finds it, not the one F7.3 tests first
+    // (MesherState::last_crossed_face): that is the face the last refused candidate of any face
+    // met, which may lie far from `face`. On OCCT's sh2.stl the first stop was a needle face
+    // under a lens 0.02 thick; grown by the last crossed face (a wall 60 away) the part had no
+    // point, grown by the walk's it took three faces of the lens and closed it with 4 elements.
+    s.last_crossed_face = kInvalidIndex;
     Index crossed = kInvalidIndex;
     if (!element_crosses_front(s, face, x, &crossed)) return true;
     if (crossed == kInvalidIndex) return false;  // a front point inside, or a meshed face
