@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 
 
+#include "absl/cleanup/cleanup.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "core/environments/environments.h"
@@ -63,6 +65,9 @@ constexpr int kMaxGrownPartFills = 8;
 // kept budget overruns out before: it stops somewhere else each time). VolumeParams::
 // local_refinements sets how many times a front is meshed again in all.
 constexpr int kMaxRefinementsOverBudget = 2;
+// The reruns of a job stop once its runs have made this many times the first run's budget of
+// crossing tests (generate_volume_mesh).
+constexpr double kJobBudgets = 3.0;
 constexpr double kLocalRefinementShare = 0.5;
 constexpr double kLocalRefinementRadius = 3.0;
 constexpr int kCancelCheckInterval = 256;  // faces between cancellation checks
@@ -310,10 +315,12 @@ struct BackOffCounts {
 // one ring more each time the same region needs it again. When the region has been re-opened
 // kMaxCavityRings times, the part grown from `face` (fill_grown_part_of_pocket, at most
 // kMaxGrownPartFills times per region) is the last resort: only a job that would stop here tries
-// it, so every job that closes without it is unchanged. Stops the job when that fails too, or
-// when the front has re-opened `max_reopenings` times in a row without progress (ReopeningWatch).
+// it, so every job that closes without it is unchanged. Fails when that fails too (`may_park`
+// set: the front loop sets the face aside and goes on, StuckFaces), or when the front has
+// re-opened `max_reopenings` times in a row without progress (ReopeningWatch).
 absl::Status back_off(MesherState& s, const Mesh& input, Index face, BackOffCounts& counts,
-                      ReopeningWatch& watch, std::int64_t max_reopenings) {
+                      ReopeningWatch& watch, std::int64_t max_reopenings, bool& may_park) {
+  may_park = false;
   const Triangle v = s.front.item(face).v;
   const std::uint32_t stamp = s.front.item(face).stamp;
   const Point centroid =
@@ -341,9 +348,11 @@ absl::Status back_off(MesherState& s, const Mesh& input, Index face, BackOffCoun
   if (rings > kMaxCavityRings) {
     if (fill_part(counts.grown_part_fills, kMaxGrownPartFills, volume::fill_grown_part_of_pocket))
       return requeue();
+    may_park = true;
     return stuck_report(
         s, input, v, x,
-        absl::StrFormat("after re-opening its surroundings %d times", kMaxCavityRings));
+        absl::StrFormat("after its region had been re-opened %d times (the most per region)",
+                        kMaxCavityRings));
   }
   if (watch.reopened() > max_reopenings)
     return stuck_report(
@@ -455,8 +464,101 @@ absl::StatusOr<Mesh> compact_result(const MesherState& s, const Mesh& input, Pro
 
 // Where a run of the front loop stopped for refine_where_stuck to mesh again, and why.
 struct Stop {
-  Point at;
+  std::vector<Point> at;     // the places, the first where it stopped first
   bool over_budget = false;  // a sliver front over its VolumeBudget (otherwise stuck)
+  std::int64_t face_tests = 0;         // the crossing tests the run made (MesherState)
+  std::int64_t budget_face_tests = 0;  // and those its VolumeBudget allowed
+};
+
+// Not in the paper: the faces a run of the front loop set aside where the back-off failed
+// (back_off's may_park), so that one run finds the places that need a smaller size
+// (refine_where_stuck), not only the first. A parked face stays on the front, out of the
+// queue: the crossing checks still see it, and an element of a neighbour may close it yet (or a
+// re-opening remove it), after which it no longer counts. Before, a run stopped at the first
+// such face and the next run, meshed again from the start with the size halved there, found
+// the next place, one place per run: netgen_hinge at a 25th of its diagonal stopped at nine
+// places and failed with the default eight reruns. Going on costs work (the faces round a
+// parked one fail in turn), so a run goes on past its first parked face for at most as many
+// crossing tests as it made before it (kGoOnShare); past that, or at kMaxParked faces, it stops.
+class ParkedFaces {
+ public:
+  // Whether a face that failed may be set aside.
+  bool may_park(const MesherState& s) const {
+    return parked_.size() < kMaxParked && !gone_on_long_enough(s);
+  }
+  // Sets aside `face` (its stamp when it failed), which failed at `at` with `why`.
+  void park(const MesherState& s, Index face, const Point& at, absl::Status why) {
+    if (parked_.empty()) tests_before_ = s.face_tests;
+    parked_.push_back({face, s.front.item(face).stamp, at, std::move(why)});
+  }
+  // Whether the run has gone on past its first parked face for long enough.
+  bool gone_on_long_enough(const MesherState& s) const {
+    return !parked_.empty() && static_cast<double>(s.face_tests - tests_before_) >
+                                   kGoOnShare * static_cast<double>(tests_before_);
+  }
+  // The places of the faces still parked, then `also` (where the run stopped, if it did):
+  // the first of each cluster, a place within kClusterSizes sizes (`field`) of one kept being
+  // left out, at most kMaxPlaces.
+  std::vector<Point> places(const MesherState& s, const SizeField& field,
+                            std::optional<Point> also = std::nullopt) const {
+    std::vector<Point> all;
+    for (const std::size_t i : left(s)) all.push_back(parked_[i].at);
+    if (also) all.push_back(*also);
+    std::vector<Point> kept;
+    for (const Point& x : all) {
+      if (kept.size() >= kMaxPlaces) break;
+      const double reach = kClusterSizes * field.size_at(x);
+      if (std::none_of(kept.begin(), kept.end(),
+                       [&](const Point& y) { return distance(x, y) < reach; }))
+        kept.push_back(x);
+    }
+    return kept;
+  }
+  // With faces still parked: `stopped_near` set to their places, and the first one's failure,
+  // which says at how many places the run got stuck. Nullopt when none is left.
+  std::optional<absl::Status> stop(const MesherState& s, const SizeField& field,
+                                   std::optional<Stop>& stopped_near) const {
+    const std::vector<std::size_t> still = left(s);
+    if (still.empty()) return std::nullopt;
+    stopped_near = Stop{places(s, field), false};
+    const absl::Status& first = parked_[still[0]].why;
+    if (stopped_near->at.size() < 2) return first;
+    return absl::Status(
+        first.code(),
+        absl::StrCat(first.message(),
+                     absl::StrFormat("; the run went on past it and got stuck at %d places in all",
+                                     stopped_near->at.size())));
+  }
+  // How many parked faces are still on the front.
+  std::int64_t count_left(const MesherState& s) const {
+    return static_cast<std::int64_t>(left(s).size());
+  }
+
+ private:
+  // The parked faces still on the front, in the order they were parked.
+  std::vector<std::size_t> left(const MesherState& s) const {
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i < parked_.size(); ++i) {
+      const FrontItem<3>& f = s.front.item(parked_[i].face);
+      if (f.alive && f.stamp == parked_[i].stamp) out.push_back(i);
+    }
+    return out;
+  }
+  // Bounds on the faces parked in one run, on the work after the first (a share of the
+  // crossing tests before it), and on the places a run gives (each a point source, which every
+  // size query evaluates).
+  static constexpr std::size_t kMaxParked = 4096;
+  static constexpr double kGoOnShare = 4.0;
+  static constexpr std::size_t kMaxPlaces = 16;
+  static constexpr double kClusterSizes = 3.0;  // kLocalRefinementRadius
+  struct Parked {
+    Index face;
+    std::uint32_t stamp;
+    Point at;
+    absl::Status why;
+  };
+  std::vector<Parked> parked_;
+  std::int64_t tests_before_ = 0;  // MesherState::face_tests at the first park
 };
 
 // `share` of the work `budget` allows (VolumeParams::budget_share).
@@ -471,10 +573,12 @@ VolumeBudget share_of(VolumeBudget budget, double share) {
 }
 
 // F1–F11: the front loop itself. Returns the compacted mesh; the mesher's state (front, bins,
-// incidence lists) is freed on return, before the optimiser builds its own structures.
+// incidence lists) is freed on return, before the optimiser builds its own structures. At most
+// `max_face_tests` crossing tests (what the job's reruns have left), or its VolumeBudget's.
 absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params,
                                    const SizeField& size_field, double growth, StageClock& clock,
-                                   Progress& progress, std::optional<Stop>& stopped_near) {
+                                   Progress& progress, std::optional<Stop>& stopped_near,
+                                   std::int64_t max_face_tests) {
   const double boundary_edge = mean_edge_length(front);
   const double domain_volume = enclosed_volume(front.points, front.triangles, nullptr);
   const double max_size = params.spec ? params.spec->max_size : params.size;
@@ -486,17 +590,24 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
                 padded_bounds(front.points), h);
   const double expected_tets =
       std::max(1.0, estimate_volume_mesh(front, size_field, max_size, growth).tets);
-  const VolumeBudget budget = share_of(
+  VolumeBudget budget = share_of(
       volume_budget(expected_tets, static_cast<std::int64_t>(front.triangles.size())),
       params.budget_share);
+  budget.face_tests = std::min(budget.face_tests, max_face_tests);
   const std::int64_t max_tets = params.max_tets;
   s.tets.reserve(static_cast<std::size_t>(
       std::min({expected_tets * 1.3, 1.0 * max_tets, 1.0 * budget.tets_built})));
   s.points.reserve(front.points.size() + static_cast<std::size_t>(expected_tets / 4));
   if (absl::Status st = load_initial_front(s, front, params.face_environments); !st.ok())
     return st;
+  const absl::Cleanup count_work = [&] {
+    if (!stopped_near) return;
+    stopped_near->face_tests = s.face_tests;
+    stopped_near->budget_face_tests = budget.face_tests;
+  };
 
   BackOffCounts back_off_counts;
+  ParkedFaces parked;
   volume::EndGameWatch end_game;
   ReopeningWatch reopenings(domain_volume);
   std::int64_t steps = 0;
@@ -504,7 +615,11 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
     ++steps;
     reopenings.step(s);
     if (std::string overrun = budget_overrun(s, budget, expected_tets); !overrun.empty()) {
-      if (s.sliver_front()) stopped_near = Stop{s.points[s.front.item(*face).v[0]], true};
+      const Point at = s.points[s.front.item(*face).v[0]];
+      if (s.sliver_front())
+        stopped_near = Stop{parked.places(s, size_field, at), true};
+      else if (parked.count_left(s) > 0)
+        stopped_near = Stop{parked.places(s, size_field), false};
       return failure_at_face(s, front, *face, overrun);
     }
     if (end_game.stalled(s.meshed_volume, domain_volume, s.front.size(), steps))
@@ -518,6 +633,8 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
       if (s.meshed_volume > domain_volume * (1.0 + 1e-6))
         return overlap_report(s, *face, domain_volume);
       progress.report("front", std::min(0.99, static_cast<double>(s.live_tets) / expected_tets));
+      if (parked.gone_on_long_enough(s))
+        if (std::optional<absl::Status> st = parked.stop(s, size_field, stopped_near)) return *st;
     }
     if (delete_face(s, *face, s.front.item(*face).attempts)) continue;
     if ((volume::touches_input_sliver(s, s.front.item(*face).v) || is_coarse_face(s, *face)) &&
@@ -529,16 +646,24 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
       continue;
     }
     const Point at = s.points[f.v[0]];  // where refine_where_stuck halves the size
+    bool may_park = false;
     if (absl::Status st = back_off(s, front, *face, back_off_counts, reopenings,
-                                   budget.reopenings_without_progress);
+                                   budget.reopenings_without_progress, may_park);
         !st.ok()) {
-      if (st.code() == absl::StatusCode::kFailedPrecondition) stopped_near = Stop{at, false};
+      if (may_park && parked.may_park(s)) {
+        parked.park(s, *face, at, std::move(st));
+        continue;
+      }
+      if (st.code() == absl::StatusCode::kFailedPrecondition)
+        stopped_near = Stop{parked.places(s, size_field, at), false};
       return st;
     }
   }
-  if (s.front.size() != 0)  // every live face is queued; an empty queue means an empty front
+  // Every live face is queued but those parked: an empty queue means a front of parked faces.
+  if (s.front.size() != parked.count_left(s))
     return absl::InternalError(absl::StrFormat(
         "the front queue ran empty with %d faces left on the front", s.front.size()));
+  if (std::optional<absl::Status> st = parked.stop(s, size_field, stopped_near)) return *st;
   clock.lap("front");
 
   absl::StatusOr<Mesh> mesh = compact_result(s, front, progress);
@@ -623,18 +748,37 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
   absl::StatusOr<Mesh> mesh = absl::UnknownError("not run");
   std::string where;  // the places the size was halved, for the last failure
   int over_budget = 0;  // runs that stopped over their budget
+  // The crossing tests of the runs so far, and the first run's budget of them: the runs of a job
+  // make at most kJobBudgets times that, each rerun given what is left (not in the paper). Runs that go on past
+  // the faces they parked (ParkedFaces) may each use a whole budget; a front that cannot close
+  // (OCCT's sh2.stl at half its mean edge) then took over 140 s to say so.
+  std::int64_t tests_used = 0, first_budget = 0;
+  bool out_of_work = false;
   for (int refinement = 0;; ++refinement) {
     std::optional<Stop> stopped_near;
-    mesh = advance_front(front, run, **size_field, growth, clock, progress, stopped_near);
+    const std::int64_t left =
+        first_budget == 0 ? std::numeric_limits<std::int64_t>::max()
+                          : static_cast<std::int64_t>(kJobBudgets * static_cast<double>(first_budget)) -
+                                tests_used;
+    mesh = advance_front(front, run, **size_field, growth, clock, progress, stopped_near, left);
     if (mesh.ok() || !stopped_near || refinement >= params.local_refinements) break;
     if (stopped_near->over_budget && ++over_budget > kMaxRefinementsOverBudget) break;
-    const Point& x = stopped_near->at;
-    const std::string place = absl::StrFormat("(%g, %g, %g)", x[0], x[1], x[2]);
-    const double radius = refine_where_stuck(run, **size_field, x);
+    tests_used += stopped_near->face_tests;
+    if (first_budget == 0) first_budget = stopped_near->budget_face_tests;
+    if (static_cast<double>(tests_used) >= kJobBudgets * static_cast<double>(first_budget)) {
+      out_of_work = true;
+      break;
+    }
+    std::string within;  // each place with its radius, for the warning
+    for (const Point& x : stopped_near->at) {
+      const std::string place = absl::StrFormat("(%g, %g, %g)", x[0], x[1], x[2]);
+      const double radius = refine_where_stuck(run, **size_field, x);
+      absl::StrAppend(&within, within.empty() ? "" : ", ", absl::StrFormat("%g of ", radius),
+                      place);
+      absl::StrAppend(&where, where.empty() ? "" : ", ", place);
+    }
     result.warnings.push_back(absl::StrCat(
-        mesh.status().message(),
-        absl::StrFormat("; meshed again with the size halved within %g of %s", radius, place)));
-    absl::StrAppend(&where, where.empty() ? "" : ", ", place);
+        mesh.status().message(), "; meshed again with the size halved within ", within));
     size_field = make_size_field(run, front);
     if (!size_field.ok()) return size_field.status();
   }
@@ -644,7 +788,12 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
                         absl::StrCat(mesh.status().message(), "; ",
                                      meshed_again_times(
                                          static_cast<std::int64_t>(result.warnings.size())),
-                                     " with the size halved where it stopped before: ", where));
+                                     " with the size halved where it stopped before: ", where,
+                                     out_of_work
+                                         ? absl::StrFormat("; its runs made %d crossing tests, "
+                                                           "over %g times the first run's budget",
+                                                           tests_used, kJobBudgets)
+                                         : ""));
   }
   result.mesh = *std::move(mesh);
   progress.report("front", 1.0);

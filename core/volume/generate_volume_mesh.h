@@ -57,9 +57,10 @@ struct VolumeParams {
   bool optimise = true;
   std::vector<std::int32_t> face_environments;  // LFACR per input triangle (paper §2); empty = none
   // How many times a front that stops (stuck, or a sliver front over its VolumeBudget, this at
-  // most twice) is meshed again from the start with the size halved where it stopped (not in
-  // the paper; refine_where_stuck in generate_volume_mesh.cc); 0: it fails at once. The wire's
-  // VolumeOptions.max_reruns, at most kMaxLocalRefinements.
+  // most twice) is meshed again from the start with the size halved where it stopped: at every
+  // face its run got stuck at, each set aside as the run went on (not in the paper;
+  // refine_where_stuck and ParkedFaces in generate_volume_mesh.cc); 0: it fails at once. The
+  // wire's VolumeOptions.max_reruns, at most kMaxLocalRefinements.
   int local_refinements = 8;
   // The front stops with FAILED_PRECONDITION once it holds more tets than this (> 0; the
   // server's --max-elements), or once it has used up its VolumeBudget.
