@@ -771,13 +771,13 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
                   tests_used;
     mesh = advance_front(front, run, **size_field, growth, clock, progress, stopped_near, left);
     if (mesh.ok() || !stopped_near || refinement >= params.local_refinements) break;
-    if (stopped_near->over_budget && ++over_budget > kMaxRefinementsOverBudget) break;
     tests_used += stopped_near->face_tests;
     if (first_budget == 0) first_budget = stopped_near->budget_face_tests;
     if (static_cast<double>(tests_used) >= kJobBudgets * static_cast<double>(first_budget)) {
       out_of_work = true;
       break;
     }
+    if (stopped_near->over_budget && ++over_budget > kMaxRefinementsOverBudget) break;
     std::string within;  // each place with its radius, for the warning
     for (const Point& x : stopped_near->at) {
       const std::string place = absl::StrFormat("(%g, %g, %g)", x[0], x[1], x[2]);

@@ -290,5 +290,27 @@ TEST(Regression, Issue10SliverFrontOverItsBudgetMeshesAgain) {
   EXPECT_NE(first.find("meshed again with the size halved within"), std::string::npos) << first;
 }
 
+// Issue 10, part 2 (never hang): the runs of one job make at most 3 times the first run's
+// budget of crossing tests in all, each rerun given what is left (kJobBudgets in
+// generate_volume_mesh.cc). A run goes on past the faces it gets stuck at (ParkedFaces), so each
+// rerun could use a whole budget: OCCT's sh2.stl at half its mean edge, which does not close,
+// took over 140 s to say so (48 s with the bound). netgen_hinge at a 25th of its diagonal with a
+// fifth of its budget runs over it in each of its first runs; its third is given only what the
+// job has left, and the message says that the job's work is used up (with 3/10 it closes).
+TEST(Regression, Issue10RunsOfAJobShareThreeBudgets) {
+  const Mesh front = corpus_front("netgen_hinge.stl");
+  ASSERT_FALSE(front.triangles.empty());
+  VolumeParams params;
+  params.size = 2.36643;
+  params.optimise = false;
+  params.budget_share = 0.2;
+  absl::StatusOr<VolumeResult> result = generate_volume_mesh(front, params, no_progress());
+  ASSERT_FALSE(result.ok()) << "closes within the share: give it less";
+  EXPECT_EQ(result.status().code(), absl::StatusCode::kFailedPrecondition);
+  const std::string message(result.status().message());
+  EXPECT_NE(message.find("did not close within its budget"), std::string::npos) << message;
+  EXPECT_NE(message.find("over 3 times the first run's budget"), std::string::npos) << message;
+}
+
 }  // namespace
 }  // namespace afmesh
