@@ -551,7 +551,8 @@ class ParkedFaces {
   static constexpr std::size_t kMaxParked = 4096;
   static constexpr double kGoOnShare = 4.0;
   static constexpr std::size_t kMaxPlaces = 16;
-  static constexpr double kClusterSizes = 3.0;  // kLocalRefinementRadius
+  // A place within one refinement radius of a kept one is inside its refined ball already.
+  static constexpr double kClusterSizes = kLocalRefinementRadius;
   struct Parked {
     Index face;
     std::uint32_t stamp;
