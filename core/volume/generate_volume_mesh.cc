@@ -686,7 +686,9 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
 // triangles (CAD tessellations) leave the front pockets no element of their sizes fits; smaller
 // elements there do.
 double refine_where_stuck(VolumeParams& run, const SizeField& field, const Point& x) {
-  if (!run.spec) run.spec = SizeSpec{.max_size = run.size, .growth = run.growth};
+  if (!run.spec)
+    run.spec = SizeSpec{
+        .max_size = run.size, .growth = run.growth, .sources = {}, .background = std::nullopt};
   const double local = field.size_at(x);
   run.spec->sources.push_back({.points = {x},
                                .delta0 = kLocalRefinementShare * local,
