@@ -227,9 +227,8 @@ bool is_coarse_face(const MesherState& s, Index face) {
   return volume::element_size_for_target(s, v, target) > target;
 }
 
-// Not in the paper: what the input looks like where the front failed, so that the message names
-// a cause the user can act on. Looks at the input triangles that come within `radius` of x
-// (triangles_near: a scan of the input, made once, when the job has already failed).
+}  // namespace
+
 std::string describe_input_near(const Mesh& input, const Point& x, double radius, double size) {
   const TrianglesNear near = triangles_near(input.points, input.triangles, x, radius);
   const std::int64_t count = near.count;
@@ -251,11 +250,15 @@ std::string describe_input_near(const Mesh& input, const Point& x, double radius
                     "from in the gaps along them; a size nearer the input's edges, or ",
                     kRetriangulatedSurfaceAdvice, " at the size, avoids this");
   } else if (shortest < 0.2 * size) {
-    absl::StrAppend(&text, ": input edges far shorter than the size; a smaller size, or a larger "
-                           "--growth, gives the front room to grade");
+    absl::StrAppend(&text,
+                    ": input edges far shorter than the size; a smaller size or a larger --growth "
+                    "gives the front room to grade, ",
+                    kRetriangulatedSurfaceAdvice, " at the size avoids the short edges");
   }
   return text;
 }
+
+namespace {
 
 // describe_input_near for front face v, where the front failed at x: within three of its
 // element sizes (or target sizes, when larger) of x.
@@ -716,6 +719,7 @@ absl::StatusOr<std::unique_ptr<SizeField>> make_size_field(const VolumeParams& p
 }
 
 std::string meshed_again_times(std::int64_t times) {
+  if (times == 1) return "after meshing again once";
   return absl::StrFormat("after meshing again %d times", times);
 }
 

@@ -37,8 +37,19 @@ inline constexpr char kRetriangulatedSurfaceAdvice[] = "a surface re-triangulate
 // run may do a whole VolumeBudget's work.
 inline constexpr int kMaxLocalRefinements = 32;
 
-// "after meshing again N times": how the message of a job that failed after N runs meshed again
-// (VolumeParams::local_refinements) says so, so that a client can tell that more were possible.
+// Not in the paper: what the input looks like where the front failed, the end of a failure's
+// message, so that it names a cause the user can act on: how many input triangles come within
+// `radius` of x, their edge lengths against the size asked (`size`) and their smallest angle;
+// then, when the smallest angle is under 5 degrees (a sliver) or the edges are far longer
+// (over 4 x) or far shorter (under 0.2 x) than the size, that cause named with what avoids it
+// (kRetriangulatedSurfaceAdvice in each case: of_bullet.stl, stopped among fillet edges of 0.15 x
+// the size, meshes re-triangulated, and did not within 300 s with --growth 1.3 or 2). A scan of
+// the input (triangles_near), made once, when the job has already failed.
+std::string describe_input_near(const Mesh& input, const Point& x, double radius, double size);
+
+// "after meshing again N times" ("once" for 1): how the message of a job that failed after N
+// runs meshed again (VolumeParams::local_refinements) says so, so that a client can tell that
+// more were possible.
 std::string meshed_again_times(std::int64_t times);
 
 struct VolumeParams {

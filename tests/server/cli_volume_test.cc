@@ -175,7 +175,7 @@ TEST_F(CliVolumeTest, SliverFrontThatStopsIsToldOfRemeshSurface) {
                        " --size 2.36643 --max-reruns 1 --quiet"),
             6)
       << stderr_text();
-  EXPECT_THAT(stderr_text(), HasSubstr("after meshing again 1 times"));
+  EXPECT_THAT(stderr_text(), HasSubstr("after meshing again once"));
   EXPECT_THAT(stderr_text(), HasSubstr("--max-reruns N (up to 32) meshes it again more times"));
   EXPECT_THAT(stderr_text(), HasSubstr("sliver triangles"));
   EXPECT_THAT(stderr_text(), HasSubstr(kRetriangulatedSurfaceAdvice));

@@ -90,6 +90,45 @@ TEST(VolumeMesh, SameInputGivesIdenticalOutput) {
   EXPECT_EQ(a.mesh.tets, b.mesh.tets);
 }
 
+// describe_input_near: each cause it names comes with what avoids it, and the client's
+// --remesh-surface hint keys on kRetriangulatedSurfaceAdvice (client/cmd_volume.cc).
+TEST(VolumeMesh, FailureMessagesNameTheInputNearWhereTheFrontStopped) {
+  const auto one_triangle = [](const Point& a, const Point& b, const Point& c) {
+    Mesh m;
+    m.points = {a, b, c};
+    m.triangles = {{0, 1, 2}};
+    m.triangle_tags = {0};
+    return m;
+  };
+  const Point at{0.3, 0.1, 0.0};
+  const std::string sliver =
+      describe_input_near(one_triangle({0, 0, 0}, {1, 0, 0}, {0.5, 0.01, 0}), at, 1.0, 0.5);
+  EXPECT_NE(sliver.find("sliver triangles"), std::string::npos) << sliver;
+  EXPECT_NE(sliver.find(kRetriangulatedSurfaceAdvice), std::string::npos) << sliver;
+
+  const Mesh coarse = one_triangle({0, 0, 0}, {1, 0, 0}, {0.5, 0.8, 0});
+  const std::string longer = describe_input_near(coarse, at, 1.0, 0.1);
+  EXPECT_NE(longer.find("far longer than the size"), std::string::npos) << longer;
+  EXPECT_NE(longer.find(kRetriangulatedSurfaceAdvice), std::string::npos) << longer;
+
+  const std::string shorter = describe_input_near(coarse, at, 1.0, 10.0);
+  EXPECT_NE(shorter.find("far shorter than the size"), std::string::npos) << shorter;
+  EXPECT_NE(shorter.find("--growth"), std::string::npos) << shorter;
+  EXPECT_NE(shorter.find(kRetriangulatedSurfaceAdvice), std::string::npos) << shorter;
+
+  const std::string fits = describe_input_near(coarse, at, 1.0, 1.0);
+  EXPECT_EQ(fits.find(kRetriangulatedSurfaceAdvice), std::string::npos) << fits;
+  EXPECT_NE(fits.find("the 1 input triangles within 1 of there"), std::string::npos) << fits;
+
+  const std::string none = describe_input_near(coarse, {10, 10, 10}, 1.0, 1.0);
+  EXPECT_NE(none.find("no input triangle within 1 of there"), std::string::npos) << none;
+}
+
+TEST(VolumeMesh, MeshedAgainSaysOnceForOneRerun) {
+  EXPECT_EQ(meshed_again_times(1), "after meshing again once");
+  EXPECT_EQ(meshed_again_times(3), "after meshing again 3 times");
+}
+
 TEST(VolumeMesh, RejectsOpenFront) {
   Mesh front = box_surface({0, 0, 0}, {1, 1, 1}, 0.5);
   front.triangles.pop_back();
