@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 
 #include "core/geometry/vec.h"
 
@@ -111,6 +113,26 @@ ClosestPair closest_points_triangles(const Point& a0, const Point& a1, const Poi
     }
   }
   return best;
+}
+
+double ray_triangle_parameter(const Point& x, const Point& u, const Point& a, const Point& b,
+                              const Point& c) {
+  constexpr double kMiss = std::numeric_limits<double>::infinity();
+  const Point e1 = sub(b, a), e2 = sub(c, a);
+  const Point h = cross(u, e2);
+  const double det = dot(e1, h);
+  // The ray's direction against the triangle's plane, relative to their sizes: parallel (or a
+  // degenerate triangle) when the determinant is lost in rounding.
+  if (!(std::fabs(det) > 1e-14 * norm(u) * norm(e1) * norm(e2))) return kMiss;
+  const double inverse = 1.0 / det;
+  const Point s = sub(x, a);
+  const double beta = dot(s, h) * inverse;
+  if (beta < 0.0 || beta > 1.0) return kMiss;
+  const Point q = cross(s, e1);
+  const double gamma = dot(u, q) * inverse;
+  if (gamma < 0.0 || beta + gamma > 1.0) return kMiss;
+  const double t = dot(e2, q) * inverse;
+  return t > 0.0 ? t : kMiss;
 }
 
 }  // namespace afmesh

@@ -42,4 +42,11 @@ ClosestPair closest_points_segments(const Point& p0, const Point& q0, const Poin
 ClosestPair closest_points_triangles(const Point& a0, const Point& a1, const Point& a2,
                                      const Point& b0, const Point& b1, const Point& b2);
 
+// Where the ray x + t u (t > 0) first meets the closed triangle (a, b, c): t (in units of |u|),
+// or +infinity when it misses it, runs in its plane, or the triangle is degenerate (Moller and
+// Trumbore, "Fast, minimum storage ray-triangle intersection", 1997). A measure too: a ray
+// through an edge may be reported either way.
+double ray_triangle_parameter(const Point& x, const Point& u, const Point& a, const Point& b,
+                              const Point& c);
+
 }  // namespace afmesh

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "core/geometry/intersect.h"
@@ -79,6 +80,18 @@ TEST(ClosestPoints, TriangleDistanceMatchesSampling) {
     EXPECT_LE(sampled - d, 0.1);  // the grid is 1/24 of a triangle of size <= 3.5
   }
   EXPECT_GE(tested, 30);
+}
+
+TEST(ClosestPoints, RayMeetsTriangleAtItsParameterOrMisses) {
+  const Point a{0, 0, 1}, b{2, 0, 1}, c{0, 2, 1};
+  EXPECT_NEAR(ray_triangle_parameter({0.5, 0.5, 0}, {0, 0, 1}, a, b, c), 1.0, 1e-15);
+  EXPECT_NEAR(ray_triangle_parameter({0.5, 0.5, 0}, {0, 0, 4}, a, b, c), 0.25, 1e-15);
+  EXPECT_NEAR(ray_triangle_parameter({0.5, 0.5, 3}, {0, 0, -1}, c, b, a), 2.0, 1e-15);
+  const double miss = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(ray_triangle_parameter({0.5, 0.5, 2}, {0, 0, 1}, a, b, c), miss);   // behind
+  EXPECT_EQ(ray_triangle_parameter({1.5, 1.5, 0}, {0, 0, 1}, a, b, c), miss);   // beside
+  EXPECT_EQ(ray_triangle_parameter({0.5, 0.5, 1}, {1, 0, 0}, a, b, c), miss);   // in its plane
+  EXPECT_EQ(ray_triangle_parameter({0.5, 0.5, 0}, {0, 0, 1}, a, b, {1, 0, 1}), miss);  // flat
 }
 
 }  // namespace
