@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/geometry/closest_points.h"
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
 #include "core/front/front_sizes.h"
@@ -222,6 +223,34 @@ double target_size_for_face(const MesherState& s, const Triangle& v) {
 double element_size_for_target(const MesherState& s, const Triangle& v, double target) {
   return afmesh::element_size_for_target(target,
                                          mean_edge(s.points[v[0]], s.points[v[1]], s.points[v[2]]));
+}
+
+double element_size_in_room(const MesherState& s, Index face, double target, double d) {
+  const Triangle v = s.front.item(face).v;
+  const Index env = s.front.item(face).env;
+  const Point& a = s.points[v[0]];
+  const Point& b = s.points[v[1]];
+  const Point& c = s.points[v[2]];
+  const Point centroid = scale(add(a, add(b, c)), 1.0 / 3.0);
+  const Point n = cross(sub(b, a), sub(c, a));
+  const double length = norm(n);
+  if (!(length > 0)) return d;
+  const Point u = scale(n, 1.0 / length);
+  const Point end = add(centroid, scale(u, d));
+  Box box{centroid, centroid};
+  for (int k = 0; k < 3; ++k) {
+    box.lo[k] = std::min(centroid[k], end[k]);
+    box.hi[k] = std::max(centroid[k], end[k]);
+  }
+  double room = d;  // to the first front face the normal meets, up to d
+  s.front.bins().find_item_near(box, [&](Index g) {
+    if (g == face || !face_visible(s, env, g)) return false;
+    const Triangle& w = s.front.item(g).v;
+    room = std::min(room, ray_triangle_parameter(centroid, u, s.points[w[0]], s.points[w[1]],
+                                                 s.points[w[2]]));
+    return false;
+  });
+  return room < d ? std::max(target, kRoomShare * room) : d;
 }
 
 double element_size_for_face(const MesherState& s, const Triangle& v) {

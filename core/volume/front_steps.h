@@ -76,6 +76,21 @@ bool touches_input_sliver(const MesherState& s, const Triangle& v);
 // while the faces beside them are still on the front to be closed with them).
 double queue_size_for_face(const MesherState& s, const Triangle& v, Index env);
 
+// Not in the paper: the element of a coarse sliver face (is_sliver_face, its element clamped
+// above the size wanted by element_size_for_target) where the front before it leaves less room
+// than that size. The distance from the face's centroid along its normal to the first front face
+// it sees, when under d, gives an element of kRoomShare times that distance (never under
+// `target`), so that the best point lies within the room; else d itself. A sliver of a CAD
+// tessellation tens of sizes long over a wall a size or two thick asked for an element whose
+// best point lay beyond the wall: occt-misc's sh2.stl, a bore of strips 99.5 long in a wall 3
+// thick at size 3.1 (elements clamped to 24-37), built chords of the wall's facets with lenses
+// under them and failed at every size; fitted to their room, it meshes at every size (the
+// sweep: occt-misc 9 -> 12 of 12). Applied to every coarse face it meshed sh2 with no size
+// only, and a flat pocket far coarser than the size (Regression.Issue10PocketWithAThinKernel-
+// Meshes at size 3), which the pocket fill closes from its kernel, was meshed into and got stuck.
+inline constexpr double kRoomShare = 0.5;
+double element_size_in_room(const MesherState& s, Index face, double target, double d);
+
 // F7.1: the 'best point' for face v and element size d: above the centroid, along the face
 // normal, at the height that makes the edges to the face's corners about d long.
 Point ideal_point(const MesherState& s, const Triangle& v, double d);

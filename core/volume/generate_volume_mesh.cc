@@ -161,7 +161,10 @@ bool delete_face(MesherState& s, Index face, int attempts) {
   const Triangle v = s.front.item(face).v;
   const volume::Strictness rules = volume::strictness_for(attempts);
   const double target = volume::target_size_for_face(s, v);           // F5/F9, eq. 15
-  const double d = volume::element_size_for_target(s, v, target);
+  double d = volume::element_size_for_target(s, v, target);
+  if (d > target && volume::is_sliver_face(s, s.front.item(face).env, v,
+                                           volume::best_element_quality(s, v)))
+    d = volume::element_size_in_room(s, face, target, d);  // not in the paper (front_steps.h)
   // A face much smaller than the size wanted there (a sliver of front left between elements)
   // closes with points that exist: a new point may not come closer to the front's points than
   // this share of the wanted size. Else each tiny face spawns a tinier element next to it, for
