@@ -238,10 +238,7 @@ double element_size_in_room(const MesherState& s, Index face, double target, dou
   const Point u = scale(n, 1.0 / length);
   const Point end = add(centroid, scale(u, d));
   Box box{centroid, centroid};
-  for (int k = 0; k < 3; ++k) {
-    box.lo[k] = std::min(centroid[k], end[k]);
-    box.hi[k] = std::max(centroid[k], end[k]);
-  }
+  enclose(box, end);
   double room = d;  // to the first front face the normal meets, up to d
   s.front.bins().find_item_near(box, [&](Index g) {
     if (g == face || !face_visible(s, env, g)) return false;
