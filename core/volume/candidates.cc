@@ -21,38 +21,6 @@ constexpr double kNewEdgeHeight = 0.408;
 // opposite bound a thin wedge.
 constexpr double kWedgeAngleDeg = 20.0;
 
-// Squared distance from x to the closed triangle (a, b, c) (a measure, not a predicate).
-double squared_distance_to_triangle(const Point& x, const Point& a, const Point& b,
-                                    const Point& c) {
-  const Point ab = sub(b, a), ac = sub(c, a), ax = sub(x, a);
-  const double d1 = dot(ab, ax), d2 = dot(ac, ax);
-  if (d1 <= 0 && d2 <= 0) return squared_norm(ax);  // vertex region a
-  const Point bx = sub(x, b);
-  const double d3 = dot(ab, bx), d4 = dot(ac, bx);
-  if (d3 >= 0 && d4 <= d3) return squared_norm(bx);  // vertex region b
-  const Point cx = sub(x, c);
-  const double d5 = dot(ab, cx), d6 = dot(ac, cx);
-  if (d6 >= 0 && d5 <= d6) return squared_norm(cx);  // vertex region c
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {  // edge ab
-    const double t = d1 / (d1 - d3);
-    return squared_norm(sub(x, add(a, scale(ab, t))));
-  }
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {  // edge ac
-    const double t = d2 / (d2 - d6);
-    return squared_norm(sub(x, add(a, scale(ac, t))));
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {  // edge bc
-    const double t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return squared_norm(sub(x, add(b, scale(sub(c, b), t))));
-  }
-  const double denom = 1.0 / (va + vb + vc);  // interior: project onto the plane
-  const double v = vb * denom, w = vc * denom;
-  return squared_norm(sub(x, add(a, add(scale(ab, v), scale(ac, w)))));
-}
-
 double mean_edge(const Point& a, const Point& b, const Point& c) {
   return (norm(sub(b, a)) + norm(sub(c, b)) + norm(sub(a, c))) / 3.0;
 }
@@ -173,7 +141,8 @@ bool new_point_is_clear(MesherState& s, const Point& x, double spacing_size,
   const bool near_a_face = s.front.bins().find_item_near(cube_around(x, clearance), [&](Index g) {
     if (!face_visible(s, env, g)) return false;
     const Triangle& w = s.front.item(g).v;
-    return squared_distance_to_triangle(x, s.points[w[0]], s.points[w[1]], s.points[w[2]]) <
+    return squared_distance(
+               x, closest_point_on_triangle(x, s.points[w[0]], s.points[w[1]], s.points[w[2]])) <
            clearance * clearance;
   });
   return !near_a_face;
