@@ -104,7 +104,14 @@ absl::StatusOr<VolumeOutputStream> MeshVolumeRpc::run(VolumeInput input,
 
   absl::StatusOr<VolumeJobOutput> output =
       run_guarded("meshing this input", [&] { return job_(front, params, progress); });
-  if (!output.ok()) return output.status();
+  if (!output.ok()) {
+    // The validator names the repeated points first; the user also learns why they stayed.
+    if (output.status().code() == absl::StatusCode::kInvalidArgument &&
+        repair.repeated_points_kept > 0)
+      return absl::InvalidArgumentError(
+          absl::StrCat(output.status().message(), "; ", repair.why_repeated_points_kept()));
+    return output.status();
+  }
   if (absl::Status whole = check_job_output(*output); !whole.ok()) return whole;
   output->warnings.insert(output->warnings.begin(), notes.begin(), notes.end());
   output->repair = repair;

@@ -58,12 +58,13 @@ std::int64_t without_repeated_points(const Mesh& front, std::vector<Triangle>& t
   return repeated;
 }
 
-// True when every edge has exactly two triangles (closed, manifold along edges).
-bool closed_and_manifold(const EdgeNeighbours& adjacency) {
+// The triangle sides without exactly one neighbour across them (the sides of open and of
+// non-manifold edges); 0 when every edge has exactly two triangles (closed, manifold along edges).
+std::int64_t unpaired_sides(const EdgeNeighbours& adjacency) {
+  std::int64_t count = 0;
   for (const std::array<Index, 3>& across : adjacency.across)
-    for (const Index u : across)
-      if (u == kInvalidIndex) return false;
-  return true;
+    for (const Index u : across) count += u == kInvalidIndex;
+  return count;
 }
 
 // Step 2: labels the edge-connected components and, per triangle, whether it must turn to agree
@@ -193,6 +194,18 @@ std::vector<std::string> FrontRepairReport::notes() const {
   return out;
 }
 
+std::string FrontRepairReport::why_repeated_points_kept() const {
+  if (repeated_points_kept == 0) return "";
+  if (triangle_sides_unpaired == 0)
+    return absl::StrFormat("the %d triangle(s) that repeat a point are all there is",
+                           repeated_points_kept);
+  return absl::StrFormat(
+      "the %d triangle(s) that repeat a point were not dropped: without them %d triangle side(s) "
+      "still have no single neighbour across them (the surface is open or non-manifold there, "
+      "which a volume cannot be meshed from)",
+      repeated_points_kept, triangle_sides_unpaired);
+}
+
 FrontRepairReport repair_front(Mesh& front, EdgeNeighbours* neighbours) {
   FrontRepairReport report;
   if (neighbours != nullptr) *neighbours = {};
@@ -204,9 +217,12 @@ FrontRepairReport repair_front(Mesh& front, EdgeNeighbours* neighbours) {
   const std::int64_t repeated = without_repeated_points(front, kept, kept_tags);
   const std::vector<Triangle>& triangles = repeated > 0 ? kept : front.triangles;
   EdgeNeighbours adjacency = triangle_edge_neighbours(triangles);
-  if ((repeated > 0 && kept.empty()) || !closed_and_manifold(adjacency)) {
+  const std::int64_t unpaired = unpaired_sides(adjacency);
+  if ((repeated > 0 && kept.empty()) || unpaired > 0) {
     report.skipped_because = repeated > 0 ? "a triangle repeats a point"
                                           : "the surface has open or non-manifold edges";
+    report.repeated_points_kept = repeated;
+    report.triangle_sides_unpaired = repeated > 0 ? unpaired : 0;
     return report;
   }
   if (repeated > 0) {

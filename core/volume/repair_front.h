@@ -33,10 +33,18 @@ struct FrontRepairReport {
   // Steps 2-3 were skipped: the surface had open or non-manifold edges, or a component could
   // not be oriented; `skipped_because` says which.
   std::string skipped_because;
+  // Step 1 was skipped: triangles that repeat a point, kept because without them the surface
+  // would still not be closed and manifold (`triangle_sides_unpaired` triangle sides without
+  // exactly one neighbour across them). validate_front then refuses the repeated points first.
+  std::int64_t repeated_points_kept = 0;
+  std::int64_t triangle_sides_unpaired = 0;
 
   bool changed() const { return triangles_dropped > 0 || triangles_reoriented > 0; }
   // One line per change, for the user (empty when nothing changed).
   std::vector<std::string> notes() const;
+  // Why triangles that repeat a point were not dropped, for the refusal that follows (empty
+  // unless repeated_points_kept > 0).
+  std::string why_repeated_points_kept() const;
 };
 
 // Repairs `front` in place (points unchanged; triangles and triangle_tags dropped or re-oriented

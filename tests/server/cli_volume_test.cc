@@ -109,6 +109,24 @@ TEST_F(CliVolumeTest, OpenFrontExitsWithBadInputNamingTheProblem) {
   EXPECT_TRUE(private_folders_removed());
 }
 
+// A front with a triangle that repeats a point and a hole elsewhere (occt-misc's bearing.stl and
+// motor.stl): refused, naming the repeated point, and saying why that triangle was not dropped.
+TEST_F(CliVolumeTest, RepeatedPointsOnAnOpenFrontAreRefusedWithWhyTheyStayed) {
+  Mesh front = box_surface({0, 0, 0}, {1, 1, 1}, 0.5);
+  front.triangles.pop_back();
+  front.triangles.push_back({4, 4, 5});
+  front.triangle_tags.assign(front.triangles.size(), 0);
+  ASSERT_TRUE(write_mesh(front, (dir_ / "repeated.mesh").string()).ok());
+  EXPECT_EQ(run_volume(shell_quoted(dir_ / "repeated.mesh") + " -o " +
+                       shell_quoted(dir_ / "v.msh") + " --quiet"),
+            3);
+  EXPECT_THAT(stderr_text(), HasSubstr("repeats a point"));
+  EXPECT_THAT(stderr_text(),
+              HasSubstr("the 1 triangle(s) that repeat a point were not dropped: without them 3 "
+                        "triangle side(s) still have no single neighbour across them"));
+  EXPECT_FALSE(fs::exists(dir_ / "v.msh"));
+}
+
 // Regression for issue 10 (a gmsh-written STL of a sphere with a cavity was refused for a few
 // flipped facets): a sphere with a box cavity whose cavity faces the same way as the outer wall
 // and five of whose outer facets are flipped meshes valid, with warnings that count the changes,

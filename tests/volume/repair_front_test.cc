@@ -156,6 +156,31 @@ TEST(RepairFront, RepeatedPointTrianglesAreDroppedWithTheirTags) {
   EXPECT_NE(report.notes()[0].find("dropped 2 triangle(s)"), std::string::npos);
 }
 
+// occt-misc's bearing.stl has 16 triangles that repeat a point and, without them, 134 open edges:
+// the triangles stay, for the validator to refuse, and the report says why they stayed.
+TEST(RepairFront, RepeatedPointTrianglesStayWhenTheRestIsOpenAndTheReportSaysWhy) {
+  Mesh front = box_surface({0, 0, 0}, {1, 1, 1}, 0.5);
+  front.triangles.pop_back();  // three sides of it lose their neighbour
+  front.triangles.push_back({4, 4, 5});
+  front.triangles.push_back({1, 2, 1});
+  const Mesh before = front;
+  const FrontRepairReport report = repair_front(front);
+  EXPECT_FALSE(report.changed());
+  EXPECT_EQ(front.triangles, before.triangles);
+  EXPECT_EQ(report.repeated_points_kept, 2);
+  EXPECT_EQ(report.triangle_sides_unpaired, 3);
+  EXPECT_EQ(report.why_repeated_points_kept(),
+            "the 2 triangle(s) that repeat a point were not dropped: without them 3 triangle "
+            "side(s) still have no single neighbour across them (the surface is open or "
+            "non-manifold there, which a volume cannot be meshed from)");
+
+  Mesh clean = box_surface({0, 0, 0}, {1, 1, 1}, 0.5);
+  clean.triangles.pop_back();
+  const FrontRepairReport open = repair_front(clean);
+  EXPECT_EQ(open.repeated_points_kept, 0);
+  EXPECT_EQ(open.why_repeated_points_kept(), "");
+}
+
 TEST(RepairFront, OpenSurfaceIsLeftForTheValidatorToRefuse) {
   Mesh front = box_surface({0, 0, 0}, {1, 1, 1}, 0.5);
   front.triangles.pop_back();
