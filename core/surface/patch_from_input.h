@@ -36,8 +36,9 @@ namespace afmesh {
 
 // Appends to `s` the triangles of `patch` built as above from its input faces, conforming to its
 // initial `sides` (those of mesh_patch; empty for a patch without lines), with at most
-// `max_triangles` triangles at any step (a patch with more input triangles is refused before
-// any work: a bound on the work and memory, as the front's). FAILED_PRECONDITION when a step
+// `max_triangles` triangles in the end and kSplitPeakOverResult (patch_from_input.cc) times that
+// while its long edges are split (a patch with more input triangles is refused before any work: a
+// bound on the work and memory, as the front's). FAILED_PRECONDITION when a step
 // cannot be done without folding a triangle or when the result is not a closed cover of the
 // patch (check_patch_closed), naming where; `s` is then as before the call. CANCELLED once
 // progress is. O(T log T) for the T triangles made.
