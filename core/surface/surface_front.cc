@@ -326,13 +326,21 @@ class PatchFront {
   // The plane of face (v, p) itself, through the side's midpoint. S6 is checked in it too (not
   // in the paper): where the patch creases (a scan's fold, sharper than the ridge angle but
   // along a ridge that ends inside the patch) the face can rise far out of the host's plane,
-  // and a front side it covers there can pass beside it in the host's plane.
-  SidePlane face_plane(const Side& v, Index p) const {
+  // and a front side it covers there can pass beside it in the host's plane. None when the face
+  // has no area in floating point (p on the side's line): such a face is never built, and its
+  // plane's axes would be NaN, which the exact predicates cannot take (fuzz_surface_mesher found
+  // one in the last rule class, whose smallest angle allowed is 0).
+  std::optional<SidePlane> face_plane(const Side& v, Index p) const {
     const Point along = sub(s_.points[v[1]], s_.points[v[0]]);
-    Point n = cross(along, sub(s_.points[p], s_.points[v[0]]));
-    n = scale(n, 1.0 / norm(n));
-    const Point t = scale(along, 1.0 / norm(along));
-    return {midpoint(v), t, cross(n, t), n};
+    const Point n = cross(along, sub(s_.points[p], s_.points[v[0]]));
+    const double n_length = norm(n), along_length = norm(along);
+    if (!(n_length > 0) || !(along_length > 0)) return std::nullopt;
+    const Point unit_n = scale(n, 1.0 / n_length);
+    const Point t = scale(along, 1.0 / along_length);
+    const Point u = cross(unit_n, t);
+    if (!std::isfinite(squared_norm(unit_n)) || !std::isfinite(squared_norm(u)))
+      return std::nullopt;
+    return SidePlane{midpoint(v), t, u, unit_n};
   }
   // Whether face (v, x) lies within kMinFaceCosine of the plane (its normal near n).
   bool lies_along(const Side& v, const Point& x, const SidePlane& plane) const {
@@ -952,7 +960,8 @@ bool PatchFront::delete_side(Index f) {
                lengthens_the_front(v, p, std::max(length, kMaxNewSideOverTarget * target))) {
       continue;
     }
-    if (!face_crosses_front(f, v, p, {plane, face_plane(v, p)}, rules.side_clearance * d) &&  // S6
+    const std::optional<SidePlane> own = face_plane(v, p);
+    if (own && !face_crosses_front(f, v, p, {plane, *own}, rules.side_clearance * d) &&  // S6
         !lies_over_a_triangle(v, p) && fits_the_gaps(v, p) &&
         !folds_over_a_neighbour({v[0], v[1], p})) {
       add_face(f, v, p);

@@ -530,6 +530,41 @@ TEST(Regression, Issue12LoopShorterThanTheSizeGetsThreeSides) {
   EXPECT_GT(area, 0.0);
 }
 
+// fuzz_surface_mesher (input 36 2f 17 80): the fuzz cube of half-side 1 with a cube cavity of
+// half-side 0.5, its corner 0 moved by -0.5 along x, as one patch (ridge angle 150, corner angle
+// 180) at size 0.4529. In the last rule class (smallest angle 0) a candidate on the side's own
+// line gave a face of no area, whose plane's axes were NaN, and S6's exact orient2d got NaN
+// coordinates (UBSan: nan cast to an integer in big_integer.cc; in release an arbitrary sign).
+// Such a face is now refused before S6 (PatchFront::face_plane has none to give).
+TEST(Regression, Issue11AFaceOfNoAreaIsRefusedBeforeTheCrossingTest) {
+  Mesh input;
+  for (const double half : {1.0, 0.5}) {
+    const auto offset = static_cast<Index>(input.points.size());
+    for (int i = 0; i < 8; ++i)
+      input.points.push_back(
+          {(i & 1) ? half : -half, (i & 2) ? half : -half, (i & 4) ? half : -half});
+    const Triangle faces[12] = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                                {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+    for (const Triangle& t : faces)  // the cavity faces inward
+      input.triangles.push_back(half == 1.0 ? Triangle{t[0], t[1], t[2]}
+                                            : Triangle{t[0] + offset, t[2] + offset, t[1] + offset});
+  }
+  input.points[0][0] -= 0.5;
+  SurfaceParams params;
+  params.size = 2.5 * (0.1 + 0.9 * 23.0 / 255.0);
+  params.growth = 1.2;
+  params.ridge_angle_deg = 150.0;
+  params.corner_angle_deg = 180.0;
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
+  if (!r.ok()) {
+    EXPECT_EQ(r.status().code(), absl::StatusCode::kFailedPrecondition) << r.status();
+    return;
+  }
+  expect_closed_valid(r->mesh);
+  for (const Triangle& t : r->mesh.triangles)
+    EXPECT_GT(triangle_quality(r->mesh.points, t).area, 0.0);
+}
+
 double total_area(const Mesh& m) {
   double area = 0;
   for (const Triangle& t : m.triangles) area += triangle_quality(m.points, t).area;
