@@ -9,7 +9,8 @@
 //     inserted into the input edges they lie on, each splitting the triangles of that edge;
 //  2. remove_input_line_vertices: the input's vertices on the lines between them are removed,
 //     each hole triangulated for the largest smallest angle with no triangle turned by more than
-//     kMaxNormalTurnDeg, so that the patch meets its neighbours on exactly their points;
+//     kMaxNormalTurnDeg (kMaxLineVertexTurnDeg for those that cannot be so), so that the patch
+//     meets its neighbours on exactly their points;
 //  3. split_long_edges: edges off the lines longer than kSplitOver times the size wanted at their
 //     middle (eq. 15 over the distance from their ends) are split there, longest relative to the
 //     size first, the new point on the patch (S8): a triangle split inside one input face stays

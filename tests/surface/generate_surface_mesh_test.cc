@@ -705,6 +705,22 @@ TEST(Regression, Issue11APatchFromItsInputMayPeakAboveItsBoundWhileSplit) {
   }
 }
 
+// cgal_hand at 3 times its mean edge with no curvature bound: patch 0's front stops, and its
+// re-triangulation from the input failed ("an input vertex on a line cannot be removed without
+// folding a triangle": no triangulation of the vertex's hole kept every triangle within 30
+// degrees of the fan's). Such a vertex is now tried again within 60 (kMaxLineVertexTurnDeg).
+TEST(Regression, Issue11ALineVertexThatNoHoleWithin30DegreesRemovesGoesWithin60) {
+  const absl::StatusOr<SurfaceResult> r =
+      mesh_corpus_at_mean_edge("cgal_hand.stl", [](SurfaceParams& params) {
+        params.size *= 3.0;
+        params.curvature_angle_deg = 0.0;
+      });
+  ASSERT_TRUE(r.ok()) << r.status();
+  expect_closed_valid(r->mesh);
+  EXPECT_EQ(r->report.patches_from_input, 1);
+  EXPECT_LT(r->report.hausdorff, 0.02 * r->report.model_size);
+}
+
 // gmsh_t13_data with no curvature bound: one input face, ridges on all three edges, is a patch
 // of its own, and two of its ridges meet at a point that is not a corner. Its two lines run
 // between the same two corners; split into one side each they gave the same chord, so the
