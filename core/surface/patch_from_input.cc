@@ -234,11 +234,13 @@ absl::Status InputPatch::take_input_faces() {
         faces.push_back(g);
   }
   // A bound on the work and memory, as the front's: more input triangles than the patch may
-  // have are refused before anything is built.
-  if (static_cast<std::int64_t>(faces.size()) > max_triangles_)
+  // hold while it is split (kSplitPeakOverResult times what it may end with; the collapses merge
+  // an input finer than the size) are refused before anything is built.
+  if (static_cast<double>(faces.size()) > kSplitPeakOverResult * max_triangles_)
     return fault(surface.centroid(FaceId{faces[0]}),
-                 absl::StrFormat("its %d input triangles are more than the %d its size asks for",
-                                 faces.size(), max_triangles_));
+                 absl::StrFormat("its %d input triangles are more than %g times the %d its "
+                                 "size asks for",
+                                 faces.size(), kSplitPeakOverResult, max_triangles_));
   std::sort(faces.begin(), faces.end());
   for (const Index f : faces) {
     Triangle t;
