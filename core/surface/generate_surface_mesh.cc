@@ -653,7 +653,10 @@ absl::Status check_result_does_not_cross_itself(const Mesh& result,
   const Point& c = crossings->first;
   return absl::FailedPreconditionError(absl::StrFormat(
       "the re-triangulated surface crosses itself: %d pairs of its triangles within one "
-      "component cross, the first near (%g, %g, %g); it is not returned",
+      "component cross, the first near (%g, %g, %g); it is not returned. Where a wall is "
+      "thinner than the size, the triangles of its two sides can cross: a bound on the "
+      "triangles across a wall's thickness (--wall-sizes 1 or more), the curvature bound "
+      "(--curvature-angle) or a smaller size keeps them apart",
       crossings->pairs, c[0], c[1], c[2]));
 }
 

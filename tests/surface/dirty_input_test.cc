@@ -189,6 +189,7 @@ TEST(DirtyInput, AResultThatCrossesItselfWithinAComponentIsNotReturned) {
   EXPECT_THAT(std::string(crossed.message()),
               ::testing::MatchesRegex(".*crosses itself: [0-9]+ pairs of its triangles within "
                                       "one component cross, the first near \\(0\\.[678].*"));
+  EXPECT_THAT(std::string(crossed.message()), ::testing::HasSubstr("--wall-sizes"));
   EXPECT_EQ(check_result_does_not_cross_itself(sphere_surface({0, 0, 0}, 1.0, 0.3), {}).code(),
             absl::StatusCode::kOk);
 }

@@ -738,6 +738,28 @@ TEST(Regression, Issue11ALineVertexThatNoHoleWithin30DegreesRemovesGoesWithin60)
   EXPECT_LT(r->report.hausdorff, 0.02 * r->report.model_size);
 }
 
+// gmsh_t13_data (a curved plate 2 thick) at 1.4 times its mean edge (13.7) with no curvature
+// bound: the triangles of the plate's two sides cross (6 pairs) and the result is refused. The
+// refusal says what keeps them apart, and what it says works: with a bound of one triangle per
+// wall thickness the surface is valid.
+TEST(Regression, Issue11ASurfaceThatCrossesItselfAcrossAThinWallSaysWhatKeepsItApart) {
+  const auto at = [](double wall_sizes) {
+    return mesh_corpus_at_mean_edge("gmsh_t13_data.stl", [wall_sizes](SurfaceParams& params) {
+      params.size *= 1.4;
+      params.curvature_angle_deg = 0.0;
+      params.wall_sizes = wall_sizes;
+    });
+  };
+  const absl::StatusOr<SurfaceResult> bare = at(0.0);
+  if (!bare.ok()) {
+    EXPECT_EQ(bare.status().code(), absl::StatusCode::kFailedPrecondition) << bare.status();
+    EXPECT_NE(bare.status().message().find("--wall-sizes"), std::string::npos) << bare.status();
+  }
+  const absl::StatusOr<SurfaceResult> walled = at(1.0);
+  ASSERT_TRUE(walled.ok()) << walled.status();
+  expect_closed_valid(walled->mesh);
+}
+
 // gmsh_t13_data with no curvature bound: one input face, ridges on all three edges, is a patch
 // of its own, and two of its ridges meet at a point that is not a corner. Its two lines run
 // between the same two corners; split into one side each they gave the same chord, so the
