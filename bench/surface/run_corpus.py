@@ -25,15 +25,21 @@ files not filled show "-". --keep DIR keeps the files. Without --volume the outp
 --surface-flags passes options to afmesh-bench-surface (e.g. "--wall-sizes 1", the sizes a
 volume's front needs across thin walls, or "--curvature-deviation 0.001").
 
+--sizes runs each file at several sizes instead of its mean edge: a comma-separated list of
+meK (K times the file's mean edge, which a first run at the default size reports) and d/K (the
+bounding-box diagonal over K); each line's file column then reads FILE@SIZE. With
+--surface-flags "--curvature-angle 0" the sizes alone bind (the sweep of the 7 December note).
+
   bench/surface/run_corpus.py [--bench PATH] [--corpus DIR] [--timeout SEC] [--only a,b] [--json]
                               [--volume [--cli PATH] [--check PATH] [--keep DIR]]
-                              [--surface-flags "FLAGS"]
+                              [--surface-flags "FLAGS"] [--sizes me0.5,me2,d/20,...]
 """
 
 import argparse
 import json
 import os
 import resource
+import struct
 import subprocess
 import sys
 import tempfile
@@ -59,6 +65,54 @@ def closed_files(corpus):
             if len(cells) >= 4 and cells[0].endswith(".stl") and cells[3] == "yes":
                 closed.add(cells[0])
     return closed
+
+
+def stl_diagonal(path):
+    """The length of the bounding box's diagonal of an STL file's vertices (binary or ASCII)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    lo = [float("inf")] * 3
+    hi = [float("-inf")] * 3
+
+    def take(x):
+        for k in range(3):
+            lo[k] = min(lo[k], x[k])
+            hi[k] = max(hi[k], x[k])
+
+    count = struct.unpack_from("<I", data, 80)[0] if len(data) >= 84 else 0
+    if len(data) == 84 + 50 * count:
+        for t in range(count):
+            for v in range(3):
+                take(struct.unpack_from("<3f", data, 84 + 50 * t + 12 + 12 * v))
+    else:
+        for line in data.decode("ascii", "replace").splitlines():
+            words = line.split()
+            if len(words) == 4 and words[0] == "vertex":
+                take([float(w) for w in words[1:]])
+    return sum((h - l) ** 2 for l, h in zip(lo, hi)) ** 0.5
+
+
+def sizes_of(args, path):
+    """[(tag, size)] for --sizes (None: the bench's default size, the file's mean edge)."""
+    if not args.sizes:
+        return [("", None)]
+    out = []
+    mean_edge = None
+    for tag in args.sizes.split(","):
+        if tag.startswith("me"):
+            if mean_edge is None:
+                rc, text, _, _, _ = run_timed([args.bench, "--input", path, "--json",
+                                               "--curvature-angle", "0"], args.timeout)
+                lines = [l for l in text.splitlines() if l.startswith("{")]
+                if not lines:
+                    continue
+                mean_edge = json.loads(lines[0])["size"]
+            out.append((tag, float(tag[2:]) * mean_edge))
+        elif tag.startswith("d/"):
+            out.append((tag, stl_diagonal(path) / float(tag[2:])))
+        else:
+            raise SystemExit("--sizes: %s is neither meK nor d/K" % tag)
+    return out
 
 
 def run_timed(argv, timeout):
@@ -153,6 +207,9 @@ def main():
                     help="with --volume: keep the surfaces and volume meshes in DIR")
     ap.add_argument("--surface-flags", default="",
                     help="more options for afmesh-bench-surface, one string (e.g. \"--wall-sizes 1\")")
+    ap.add_argument("--sizes", default="",
+                    help="sizes per file instead of its mean edge: meK (K x mean edge), d/K "
+                         "(diagonal / K), comma-separated")
     args = ap.parse_args()
     if args.keep:
         os.makedirs(args.keep, exist_ok=True)
@@ -173,10 +230,15 @@ def main():
         print("%-24s %-8s %8s %7s %7s %6s %6s %9s %9s %s %s" % (
             "file", "outcome", "tris", "cpu s", "wall s", "min", "%>=30", "<15/thin", "H/diag",
             volume_header if args.volume else "", "message"))
-    for name in names:
+    runs = [(name, tag, size) for name in names
+            for tag, size in sizes_of(args, os.path.join(corpus, name))]
+    for name, tag, size in runs:
         argv = [args.bench, "--input", os.path.join(corpus, name), "--json",
                 *args.surface_flags.split()]
-        surface = os.path.join(work, name[:-4] + ".surface.mesh")
+        if size is not None:
+            argv += ["--size", "%.9g" % size]
+        label = name[:-4] + ("@" + tag if tag else "")
+        surface = os.path.join(work, label.replace("/", "_") + ".surface.mesh")
         if args.volume:
             argv += ["--out", surface]
         rc, out, err, cpu, wall = run_timed(argv, args.timeout)
@@ -186,10 +248,11 @@ def main():
         v = {}
         # Closed: the bench's checks all passed ("closed" is the one it lets an open output fail).
         if args.volume and outcome == "valid" and not r.get("failed_checks"):
-            v = volume_of(args, surface, os.path.join(work, name[:-4] + ".volume.msh"))
+            v = volume_of(args, surface,
+                          os.path.join(work, label.replace("/", "_") + ".volume.msh"))
             volume_counts[v["outcome"]] = volume_counts.get(v["outcome"], 0) + 1
         if args.json:
-            line = {"file": name, "outcome": outcome, "cpu_seconds": cpu,
+            line = {"file": name, "size_tag": tag, "outcome": outcome, "cpu_seconds": cpu,
                     "wall_seconds": wall, "message": message, "bench": r}
             if args.volume:
                 line["volume"] = v
@@ -209,13 +272,17 @@ def main():
             thin = ("%d/%d" % (r["under_15"], r["under_15_at_thinner_input"])
                     if "under_15_at_thinner_input" in r else "-")
             print("%-24s %-8s %8s %7.2f %7.2f %6s %6s %9s %9s %s %s" % (
-                name[:-4], outcome, cell("triangles", "%d"), cpu, wall,
+                label, outcome, cell("triangles", "%d"), cpu, wall,
                 cell("min_angle", "%.1f"), cell("share_at_least_30", "%.1f", 100.0), thin,
                 cell("hausdorff_over_diagonal", "%.2e"), volume_cells, short[:160]))
         sys.stdout.flush()
     summary = ", ".join("%s %d" % (k, counts.get(k, 0))
                         for k in ("valid", "open", "refused", "stopped", "timeout"))
-    print("summary: %d files: %s; %.1f cpu s" % (len(names), summary, total_cpu))
+    if args.sizes:
+        print("summary: %d runs of %d files: %s; %.1f cpu s" % (
+            len(runs), len(names), summary, total_cpu))
+    else:
+        print("summary: %d files: %s; %.1f cpu s" % (len(names), summary, total_cpu))
     if args.volume:
         meshed = ", ".join("%s %d" % kv for kv in sorted(volume_counts.items()))
         print("volume: %d valid closed surfaces filled: %s" % (
