@@ -137,6 +137,9 @@ struct SurfaceReport {
   // otherwise have failed with).
   std::int64_t patches_from_input = 0;
   std::vector<std::string> front_stops;
+  // Not 0 when the result crossed itself at the wall sizes asked (none by default) and was made
+  // again bounded by this many triangles per wall thickness (generate_surface_mesh).
+  double wall_sizes_after_crossing = 0.0;
   // Of the output's triangles under kThinTriangleDeg (15°), those on an input triangle or at a
   // corner between lines whose own angle is no larger (thin_triangles_at_thinner_input).
   std::int64_t thin_triangles_at_thinner_input = 0;

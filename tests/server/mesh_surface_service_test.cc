@@ -77,6 +77,7 @@ SurfaceResult result_with(Mesh mesh) {
                    .model_size = 1.75,
                    .patches_from_input = 1,
                    .front_stops = {"the surface front of patch 2 (input tag 0) got stuck"},
+                   .wall_sizes_after_crossing = 1.0,
                    .thin_triangles_at_thinner_input = 7};
   result.timings = {{"features", 0.5}, {"front", 0.25}};
   return result;
@@ -289,8 +290,8 @@ TEST_F(MeshSurfaceServiceTest, WarningsComeBeforeTheSlicesAndTheSummaryLast) {
       warnings.push_back(response.warning().message());
     }
   }
-  // The four repair counts of result_with, the short ridges, the front that stopped.
-  ASSERT_EQ(warnings.size(), 8u);
+  // The four repair counts of result_with, the short ridges, the front that stopped, the walls.
+  ASSERT_EQ(warnings.size(), 9u);
   EXPECT_THAT(warnings[0], HasSubstr("1 duplicate triangles"));
   EXPECT_THAT(warnings[3], HasSubstr("4 triangles of the input were turned"));
   EXPECT_THAT(warnings[4], HasSubstr("2 sliver triangles of the input folded back"));
@@ -300,6 +301,8 @@ TEST_F(MeshSurfaceServiceTest, WarningsComeBeforeTheSlicesAndTheSummaryLast) {
   EXPECT_THAT(warnings[6], HasSubstr("5 ridges of the input that end freely"));
   EXPECT_THAT(warnings[7], HasSubstr("the surface front of patch 2 (input tag 0) got stuck; the "
                                      "patch was re-triangulated from its own input triangles"));
+  EXPECT_THAT(warnings[8], HasSubstr("crossed itself across walls thinner than the size; it was "
+                                     "made again with at most 1 triangle(s) across a wall's"));
 }
 
 TEST_F(MeshSurfaceServiceTest, SummaryCarriesCountsQualityRepairFeaturesDistanceAndTimings) {
