@@ -67,8 +67,8 @@ void add_repair_notes(const SurfaceReport& report, std::vector<std::string>& not
   if (report.wall_sizes_after_crossing > 0)
     notes.push_back(absl::StrFormat(
         "the surface re-triangulated at the size asked crossed itself across walls thinner than "
-        "the size; it was made again with at most %g triangle(s) across a wall's thickness "
-        "(wall_sizes), so its triangles are smaller than the size asked on those walls",
+        "the size; it was made again with its triangles no longer than %g times a wall's thickness "
+        "(wall_sizes), so they are smaller than the size asked on those walls",
         report.wall_sizes_after_crossing));
   if (report.input_crossing_pairs > 0) {
     const Point& c = report.first_input_crossing;

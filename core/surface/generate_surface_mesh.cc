@@ -1088,11 +1088,12 @@ absl::StatusOr<SurfaceResult> generate_surface_mesh(const Mesh& input, const Sur
       mesh_surface(input, params, progress, /*flips_keep_uncrossed=*/false, crossed_itself);
   if (result.ok() || !crossed_itself) return result;
   result = mesh_surface(input, params, progress, /*flips_keep_uncrossed=*/true, crossed_itself);
-  if (result.ok() || !crossed_itself || !(params.wall_sizes < kVolumeFrontWallSizes))
-    return result;
+  // A bound as tight as kVolumeFrontWallSizes or tighter was asked already (0: none asked).
+  const bool walls_bounded = params.wall_sizes > 0 && params.wall_sizes <= kVolumeFrontWallSizes;
+  if (result.ok() || !crossed_itself || walls_bounded) return result;
   // Not in the paper: still crossing, the two sides of a wall thinner than the size cross each
-  // other (their chords pass through the wall); the job runs once more with the triangles
-  // bounded by the walls' thickness as a volume's front is (kVolumeFrontWallSizes), which is
+  // other (their chords pass through the wall); the job runs once more with its triangles no
+  // longer than the walls' thickness, as a volume's front is (kVolumeFrontWallSizes), which is
   // smaller than the size asked only there, and says so (SurfaceReport), where it refused
   // before. gmsh_t13_data, a curved plate 2 thick, at 1.4 times its mean edge (13.7) with no
   // curvature bound: 6 pairs of triangles crossed; made again, valid.

@@ -138,7 +138,8 @@ struct SurfaceReport {
   std::int64_t patches_from_input = 0;
   std::vector<std::string> front_stops;
   // Not 0 when the result crossed itself at the wall sizes asked (none by default) and was made
-  // again bounded by this many triangles per wall thickness (generate_surface_mesh).
+  // again with its triangles no longer than this many times the walls' thickness
+  // (SurfaceParams::wall_sizes; generate_surface_mesh).
   double wall_sizes_after_crossing = 0.0;
   // Of the output's triangles under kThinTriangleDeg (15°), those on an input triangle or at a
   // corner between lines whose own angle is no larger (thin_triangles_at_thinner_input).

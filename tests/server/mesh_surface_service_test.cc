@@ -302,7 +302,8 @@ TEST_F(MeshSurfaceServiceTest, WarningsComeBeforeTheSlicesAndTheSummaryLast) {
   EXPECT_THAT(warnings[7], HasSubstr("the surface front of patch 2 (input tag 0) got stuck; the "
                                      "patch was re-triangulated from its own input triangles"));
   EXPECT_THAT(warnings[8], HasSubstr("crossed itself across walls thinner than the size; it was "
-                                     "made again with at most 1 triangle(s) across a wall's"));
+                                     "made again with its triangles no longer than 1 times a "
+                                     "wall's thickness"));
 }
 
 TEST_F(MeshSurfaceServiceTest, SummaryCarriesCountsQualityRepairFeaturesDistanceAndTimings) {

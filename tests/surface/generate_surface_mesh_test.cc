@@ -740,8 +740,9 @@ TEST(Regression, Issue11ALineVertexThatNoHoleWithin30DegreesRemovesGoesWithin60)
 
 // gmsh_t13_data (a curved plate 2 thick) at 1.4 times its mean edge (13.7) with no curvature
 // bound: the triangles of the plate's two sides crossed (6 pairs) even with every flip tested,
-// and the result was refused. The job now runs once more with one triangle per wall thickness
-// (kVolumeFrontWallSizes) and says so; asked with that bound at once, the same surface.
+// and the result was refused. The job now runs once more with its triangles no longer than the
+// walls' thickness (kVolumeFrontWallSizes) and says so; asked with that bound at once, the same
+// surface.
 TEST(Regression, Issue11ASurfaceThatCrossesItselfAcrossAThinWallIsMadeAgainBoundByTheWall) {
   const auto at = [](double wall_sizes) {
     return mesh_corpus_at_mean_edge("gmsh_t13_data.stl", [wall_sizes](SurfaceParams& params) {
