@@ -57,11 +57,12 @@ constexpr double kCollapseUnder = 4.0 / 5.0;
 constexpr int kMaxCollapsePasses = 16;
 
 // Whether a triangle whose (unnormalised) normal was `before` may become one with `after`: it keeps
-// an area and turns by at most kMaxNormalTurnDeg.
-bool turns_little(const Point& before, const Point& after) {
+// an area and turns by at most `max_turn_deg`.
+bool turns_little(const Point& before, const Point& after,
+                  double max_turn_deg = kMaxNormalTurnDeg) {
   const double a = norm(after), b = norm(before);
   if (!(a > 0.0) || !(b > 0.0)) return false;
-  return dot(before, after) >= std::cos(kMaxNormalTurnDeg * std::numbers::pi / 180.0) * a * b;
+  return dot(before, after) >= std::cos(max_turn_deg * std::numbers::pi / 180.0) * a * b;
 }
 
 // The patch's triangles while they are built, over the points of s (their incidence kept).
@@ -329,7 +330,6 @@ absl::Status InputPatch::insert_line_points() {
 }
 
 bool InputPatch::remove_line_vertex(Index x, Index y1, Index y2, double max_turn_deg) {
-  const double min_cosine = std::cos(max_turn_deg * std::numbers::pi / 180.0);
   fan_x_.clear();
   incidence_.elements_of(tris_, x, fan_x_);
   // The link of x: a -> b for each triangle (x, a, b), with one way out of and into each point.
@@ -397,10 +397,8 @@ bool InputPatch::remove_line_vertex(Index x, Index y1, Index y2, double max_turn
           const double inner = std::min(best[i * n + k], best[k * n + j]);
           if (inner <= best[i * n + j]) continue;
           const Point nt = vector_area(s_.points, {c[i], c[k], c[j]});
-          if (std::none_of(old_normals.begin(), old_normals.end(), [&](const Point& o) {
-                const double a = norm(nt), b = norm(o);
-                return a > 0.0 && b > 0.0 && dot(o, nt) >= min_cosine * a * b;
-              }))
+          if (std::none_of(old_normals.begin(), old_normals.end(),
+                           [&](const Point& o) { return turns_little(o, nt, max_turn_deg); }))
             continue;
           const double q = std::min(
               inner, triangle_min_angle_deg(s_.points[c[i]], s_.points[c[k]], s_.points[c[j]]));
