@@ -15,6 +15,7 @@
 #include "core/geometry/vec.h"
 #include "core/sizing/attached_sizes.h"
 #include "core/spatial/box.h"
+#include "core/spatial/z_order.h"
 
 namespace afmesh {
 namespace {
@@ -194,20 +195,6 @@ class HalfDisks {
         if (neighbours.same_way[h][j]) face.reversed |= static_cast<std::uint8_t>(1u << j);
       }
     }
-  }
-
-  // The Z-order key of x in `box`: 21 bits per axis, interleaved.
-  static std::uint64_t z_order(const Point& x, const Box& box) {
-    std::uint32_t q[3];
-    for (int a = 0; a < 3; ++a) {
-      const double extent = box.hi[a] - box.lo[a];
-      const double u = extent > 0.0 ? (x[a] - box.lo[a]) / extent : 0.0;
-      q[a] = static_cast<std::uint32_t>(std::clamp(u, 0.0, 1.0) * 2097151.0);
-    }
-    std::uint64_t key = 0;
-    for (int bit = 20; bit >= 0; --bit)
-      for (int a = 0; a < 3; ++a) key = key << 1 | (q[a] >> bit & 1u);
-    return key;
   }
 
   const DiscreteSurface& surface_;
