@@ -18,7 +18,6 @@
 #include <vector>
 
 #include "core/common/progress.h"
-#include "core/geometry/closest_points.h"
 #include "core/geometry/vec.h"
 #include "core/io/mesh_io.h"
 #include "core/quality/measures.h"
@@ -103,29 +102,6 @@ TEST(GenerateSurfaceMesh, SphereIsClosedOnTheInputAndOfTheSizeAsked) {
   EXPECT_EQ(r->report.patches, 1);
 }
 
-// The largest distance from the samples of `from` (vertices, edge midpoints, centroids) to
-// `to`, by scanning every triangle of `to`: the reference for the report's Hausdorff distance.
-double scanned_distance(const Mesh& from, const Mesh& to) {
-  double worst = 0.0;
-  const auto nearest = [&](const Point& x) {
-    double best = std::numeric_limits<double>::infinity();
-    for (const Triangle& t : to.triangles)
-      best = std::min(best, distance(x, closest_point_on_triangle(x, to.points[t[0]],
-                                                                  to.points[t[1]],
-                                                                  to.points[t[2]])));
-    worst = std::max(worst, best);
-  };
-  for (const Point& p : from.points) nearest(p);
-  for (const Triangle& t : from.triangles) {
-    const Point &a = from.points[t[0]], &b = from.points[t[1]], &c = from.points[t[2]];
-    nearest(scale(add(a, add(b, c)), 1.0 / 3.0));
-    nearest(scale(add(a, b), 0.5));
-    nearest(scale(add(b, c), 0.5));
-    nearest(scale(add(c, a), 0.5));
-  }
-  return worst;
-}
-
 // The report's Hausdorff distance is the scan's, both ways. On a coarse sphere the output's
 // bounding box is not the input's, so the two surfaces' local frames differ: the distance from
 // the input to the output used to be measured with the output shifted by the difference.
@@ -136,7 +112,7 @@ TEST(GenerateSurfaceMesh, HausdorffIsTheScannedDistanceBothWays) {
   absl::StatusOr<SurfaceResult> r = generate_surface_mesh(input, params);
   ASSERT_TRUE(r.ok()) << r.status();
   const double scanned =
-      std::max(scanned_distance(r->mesh, input), scanned_distance(input, r->mesh));
+      std::max(testing::scanned_distance(r->mesh, input), testing::scanned_distance(input, r->mesh));
   EXPECT_NEAR(r->report.hausdorff, scanned, 1e-12 * r->report.model_size);
 }
 

@@ -6,11 +6,13 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <numbers>
 #include <numeric>
 #include <utility>
 #include <vector>
 
+#include "core/geometry/closest_points.h"
 #include "core/geometry/vec.h"
 #include "core/io/mesh_io.h"
 #include "core/quality/measures.h"
@@ -336,6 +338,27 @@ AngleCounts angle_counts(const Mesh& mesh) {
     counts.under_15 += smallest < 15.0;
   }
   return counts;
+}
+
+double scanned_distance(const Mesh& from, const Mesh& to) {
+  double worst = 0.0;
+  const auto nearest = [&](const Point& x) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const Triangle& t : to.triangles)
+      best = std::min(best, distance(x, closest_point_on_triangle(x, to.points[t[0]],
+                                                                  to.points[t[1]],
+                                                                  to.points[t[2]])));
+    worst = std::max(worst, best);
+  };
+  for (const Point& p : from.points) nearest(p);
+  for (const Triangle& t : from.triangles) {
+    const Point &a = from.points[t[0]], &b = from.points[t[1]], &c = from.points[t[2]];
+    nearest(scale(add(a, add(b, c)), 1.0 / 3.0));
+    nearest(scale(add(a, b), 0.5));
+    nearest(scale(add(b, c), 0.5));
+    nearest(scale(add(c, a), 0.5));
+  }
+  return worst;
 }
 
 }  // namespace afmesh::testing

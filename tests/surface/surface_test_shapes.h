@@ -105,4 +105,8 @@ struct AngleCounts {
 };
 AngleCounts angle_counts(const Mesh& mesh);
 
+// The largest distance from the samples of `from` (vertices, edge midpoints, centroids) to
+// `to`, by scanning every triangle of `to`: the reference for the report's Hausdorff distance.
+double scanned_distance(const Mesh& from, const Mesh& to);
+
 }  // namespace afmesh::testing
