@@ -171,7 +171,8 @@ absl::Status Delaunay3::fill_cavity(Index seed, Index x) {
       for (int m = 0; m < 4; ++m)
         if (m != j && m != face) ends[n++] = v[m];
       const Index a = std::min(ends[0], ends[1]), bb = std::max(ends[0], ends[1]);
-      const std::uint64_t key = static_cast<std::uint64_t>(a) << 32 | static_cast<std::uint32_t>(bb);
+      const std::uint64_t key =
+          static_cast<std::uint64_t>(a) << 32 | static_cast<std::uint32_t>(bb);
       const auto [slot, first] = open.try_emplace(key, Open{e, j});
       if (!first) {
         elements_[e].across[j] = slot->second.element;
