@@ -122,7 +122,9 @@ struct SurfaceReport {
   // (FeatureParams::short_ridge_sizes).
   std::int64_t short_ridges_dropped = 0;
   // Two-sided Hausdorff distance between output and input (sampled: vertices, edge midpoints
-  // and centroids of each), and the largest distance of an output vertex from the input.
+  // and centroids of each), to the input as sent (before the sliver repairs above moved it), and
+  // the largest distance of an output vertex from the input as repaired (the surface the points
+  // were projected onto).
   double hausdorff = 0.0;
   double max_vertex_distance = 0.0;
   double model_size = 0.0;  // the input's bounding-box diagonal

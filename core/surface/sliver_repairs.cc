@@ -195,7 +195,8 @@ bool turn_below(const Point& n1, const Point& n2, double cos_angle) {
 
 }  // namespace
 
-StepRepairs repair_sliver_steps(Mesh& clean, const SizeField& sizes, double ridge_angle_deg) {
+StepRepairs repair_sliver_steps(Mesh& clean, const SizeField& sizes, double ridge_angle_deg,
+                                double max_height) {
   SurfaceEdits edits(clean);
   const std::vector<Point>& p = clean.points;
   const std::vector<Triangle>& tris = clean.triangles;
@@ -287,7 +288,7 @@ StepRepairs repair_sliver_steps(Mesh& clean, const SizeField& sizes, double ridg
             }
         }
       }
-      if (highest < kStepHeightOfSize * smallest_size) {
+      if (highest < kStepHeightOfSize * smallest_size && highest <= max_height) {
         for (const Index f : strip) goes[f] = 1;
         any = true;
       }

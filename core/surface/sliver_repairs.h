@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 
 #include "core/mesh/mesh.h"
@@ -79,6 +80,10 @@ struct StepRepairs {
   double highest = 0.0;
 };
 
-StepRepairs repair_sliver_steps(Mesh& clean, const SizeField& sizes, double ridge_angle_deg);
+// `max_height`: no strip whose highest step is higher goes either (the user's bound on the
+// distance from the input, SurfaceParams::curvature_deviation; a step removed moves the surface
+// by its height).
+StepRepairs repair_sliver_steps(Mesh& clean, const SizeField& sizes, double ridge_angle_deg,
+                                double max_height = std::numeric_limits<double>::infinity());
 
 }  // namespace afmesh

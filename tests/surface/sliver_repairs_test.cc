@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -151,6 +152,22 @@ TEST(Regression, Issue11TheLeversSeamStripGoesAtTheBenchsSizeToo) {
   const testing::AngleCounts counts = testing::angle_counts(r->mesh);
   EXPECT_GE(static_cast<double>(counts.at_least_30), 0.99 * r->mesh.triangles.size());
   EXPECT_EQ(counts.under_15, r->report.thin_triangles_at_thinner_input);
+}
+
+// The sliver repairs move the input before it is meshed (the seam's strip, 0.06 high, goes at
+// size 1); the report's Hausdorff distance is still the scan's to the input as sent, both ways
+// (it was to the input as repaired).
+TEST(SliverSteps, TheDistanceReportedIsToTheInputAsSent) {
+  const Mesh sheets = two_sheets(Join::kSeam, 0.06);
+  SurfaceParams params;
+  params.size = 1.0;
+  params.curvature_angle_deg = 0;
+  const absl::StatusOr<SurfaceResult> r = generate_surface_mesh(sheets, params);
+  ASSERT_TRUE(r.ok()) << r.status();
+  ASSERT_GT(r->report.sliver_steps_removed, 0);
+  const double scanned = std::max(testing::scanned_distance(r->mesh, sheets),
+                                  testing::scanned_distance(sheets, r->mesh));
+  EXPECT_NEAR(r->report.hausdorff, scanned, 1e-12 * r->report.model_size);
 }
 
 }  // namespace
