@@ -4,8 +4,10 @@ summary line.
 
 Runs `afmesh-bench-surface --input F --json` (default size: the file's mean edge length) on each
 file of ../shared/corpus/ (beside the checkout; --corpus DIR), one after the other, each a fresh
-process with a timeout. Columns: outcome (valid = the bench's checks pass, open = the input is open
-per the corpus README's 'closed' column and the only checks that fail are closed and manifold_edges,
+process with a timeout. Columns: outcome (valid = the bench's checks pass, open = the output fails
+only checks its input fails too (afmesh-bench-surface's failed_checks_of_input: an open input, holes
+touching at a vertex), or the input is open per the corpus README's 'closed' column and the only
+checks that fail are closed and manifold_edges,
 refused = the input was refused before meshing (INVALID_ARGUMENT), stopped = the mesher stopped
 (FAILED_PRECONDITION or another error), timeout = killed after --timeout seconds), triangles, cpu s
 (user + system of the child, so a loaded machine does not inflate it), wall s, min angle, % of
@@ -141,9 +143,10 @@ def judge(name, closed, rc, out, err):
     for line in out.splitlines():
         if line.startswith("{"):
             r = json.loads(line)
-            if r.get("valid"):
-                return "valid", r, ""
             failed = set(filter(None, r.get("failed_checks", "").split(",")))
+            if r.get("valid"):
+                # The bench's valid: no check failed that the input passes.
+                return ("open" if failed else "valid"), r, ""
             if name not in closed and failed <= {"closed", "manifold_edges"}:
                 return "open", r, ""
             return "stopped", r, "checks failed: " + r.get("failed_checks", "")
