@@ -13,7 +13,7 @@ seconds="${1:-30}"
 shift || true
 targets=("$@")
 [[ ${#targets[@]} -eq 0 ]] && targets=(stl obj msh medit medit_sol size_spec volume_request
-  volume_mesher surface_request surface_mesher)
+  volume_mesher surface_request surface_mesher delaunay)
 
 scripts/install-deps.sh --fuzz
 cmake --preset fuzz >/dev/null
