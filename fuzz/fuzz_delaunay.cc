@@ -12,10 +12,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <numeric>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "core/delaunay/delaunay_3d.h"
 #include "core/geometry/predicates.h"
+#include "core/quality/mesh_topology.h"
 
 namespace {
 
@@ -44,7 +48,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         d->vertex_of_point[v] != v)
       fail("a point maps to no first copy of itself");
   }
-  std::map<std::array<Index, 3>, int> faces;  // sorted corners -> sum of orientations seen
   for (const afmesh::Tet& t : d->tets) {
     for (const Index v : t)
       if (v < 0 || v >= static_cast<Index>(points.size()) || d->vertex_of_point[v] != v)
@@ -55,32 +58,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (!afmesh::has_corner(t, static_cast<Index>(q)) &&
           afmesh::insphere(points[t[0]], points[t[1]], points[t[2]], points[t[3]], points[q]) > 0)
         fail("a point lies inside an element's circumsphere");
-    const int sides[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-    for (const auto& f : sides) {
-      std::array<Index, 3> key{t[f[0]], t[f[1]], t[f[2]]};
-      int parity = 1;  // the sort's parity is the face's orientation against the sorted key
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j + 1 < 3 - i; ++j)
-          if (key[j] > key[j + 1]) {
-            std::swap(key[j], key[j + 1]);
-            parity = -parity;
-          }
-      int& seen = faces[key];
-      if (seen == parity) fail("two elements lie on one side of a face");
-      seen += parity;
-    }
   }
-  // The faces of one element only (the boundary of the union) close up: each of their edges is
-  // in an even number of them (two, or four where the union pinches along an edge).
-  std::map<std::pair<Index, Index>, int> hull_edges;
-  for (const auto& [key, seen] : faces) {
-    if (seen == 0) continue;
-    for (int k = 0; k < 3; ++k) {
-      const Index a = key[k], b = key[(k + 1) % 3];
-      ++hull_edges[{std::min(a, b), std::max(a, b)}];
-    }
-  }
-  for (const auto& [edge, n] : hull_edges)
+  // Each face in one element or in two turned opposite ways; the faces in one only (the
+  // boundary of the union) close up: each of their edges is in an even number of them (two, or
+  // four where the union pinches along an edge).
+  std::vector<Index> all(d->tets.size());
+  std::iota(all.begin(), all.end(), 0);
+  std::map<std::pair<Index, Index>, int> boundary_edges;
+  afmesh::for_each_tet_face(d->tets, all, [&](std::span<const afmesh::FaceUse> uses) {
+    if (uses.size() > 2 || (uses.size() == 2 && uses[0].even == uses[1].even))
+      fail("two elements lie on one side of a face");
+    if (uses.size() == 1)
+      for (int k = 0; k < 3; ++k) {
+        const Index a = uses[0].key[k], b = uses[0].key[(k + 1) % 3];
+        ++boundary_edges[{std::min(a, b), std::max(a, b)}];
+      }
+  });
+  for (const auto& [edge, n] : boundary_edges)
     if (n % 2 != 0) fail("the boundary's faces do not close up");
   return 0;
 }

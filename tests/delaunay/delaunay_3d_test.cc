@@ -7,13 +7,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
+#include <numeric>
+#include <span>
 #include <random>
 #include <vector>
 
 #include "core/delaunay/delaunay_3d.h"
 #include "core/geometry/predicates.h"
 #include "core/quality/measures.h"
+#include "core/quality/mesh_topology.h"
 
 namespace afmesh {
 namespace {
@@ -40,32 +42,22 @@ std::vector<Point> random_points(int n, const Point& lo, double side, unsigned s
 std::int64_t expect_tiling(const std::vector<Point>& p, const std::vector<Tet>& tets,
                            double hull_volume) {
   double volume = 0;
-  std::map<std::array<Index, 3>, int> faces;  // sorted corners -> +1 / -1 orientations seen
   for (const Tet& t : tets) {
     EXPECT_GT(orient3d(p[t[0]], p[t[1]], p[t[2]], p[t[3]]), 0);
     // Measured from the first point: far from the origin, coordinates' rounding would swamp it.
     const auto local = [&](Index v) { return Point{p[v][0] - p[0][0], p[v][1] - p[0][1],
                                                    p[v][2] - p[0][2]}; };
     volume += tet_signed_volume(local(t[0]), local(t[1]), local(t[2]), local(t[3]));
-    const int sides[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-    for (const auto& f : sides) {
-      std::array<Index, 3> key{t[f[0]], t[f[1]], t[f[2]]};
-      // The parity of the sort tells the orientation.
-      int parity = 1;
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j + 1 < 3 - i; ++j)
-          if (key[j] > key[j + 1]) {
-            std::swap(key[j], key[j + 1]);
-            parity = -parity;
-          }
-      int& seen = faces[key];
-      EXPECT_NE(seen, parity) << "two elements on one side of a face";
-      seen += parity;
-    }
   }
   EXPECT_NEAR(volume, hull_volume, 1e-9 * hull_volume);
+  std::vector<Index> all(tets.size());
+  std::iota(all.begin(), all.end(), 0);
   std::int64_t hull_faces = 0;
-  for (const auto& [key, seen] : faces) hull_faces += seen != 0;
+  for_each_tet_face(tets, all, [&](std::span<const FaceUse> uses) {
+    EXPECT_LE(uses.size(), 2u);
+    if (uses.size() == 2) EXPECT_NE(uses[0].even, uses[1].even) << "two elements on one side";
+    hull_faces += uses.size() == 1;
+  });
   return hull_faces;
 }
 
