@@ -284,7 +284,18 @@ class PatchFront {
   Index next_side_of_loop(Index at, Index from) const;
   // S11, the end game: closes the small hole that side f bounds by ear clipping; false when
   // the hole is not a simple loop of at most kMaxHoleSides sides or cannot be cut into ears.
+  // Where the walk from f comes back to a corner it passed (two holes touching there, the walk
+  // having turned into the other), that other hole is closed instead; f's own, a loop then,
+  // on the next try.
   bool fill_hole(Index f);
+  // Ear clipping of the hole bounded by the front sides `loop` (loop[i] leaves corners[i]).
+  bool fill_loop(const std::vector<Index>& loop, const std::vector<Index>& corners);
+  // The points of the other holes that touch the hole bounded by `loop` at one of its corners:
+  // loops of front sides from a corner back to it, turning counter-clockwise in `plane` as a
+  // hole's do (an island's turn the other way).
+  std::vector<Index> points_of_touching_holes(const std::vector<Index>& loop,
+                                              const std::vector<Index>& corners,
+                                              const SidePlane& plane) const;
   // The back-off for side f, which failed in every class and bounds no small hole (not in the
   // paper; as the volume front's cavity re-meshing, open_cavity in core/volume/front_steps.h):
   // removes the triangles of the patch near the side, within a radius growing with each retry
@@ -774,15 +785,28 @@ bool PatchFront::fill_hole(Index f) {
   std::vector<Index> corners = {front_.item(f).v[0]};
   Index at = front_.item(f).v[1];
   while (at != corners[0]) {
+    // A loop through a point twice is two holes touching there, which ears cannot cut as one:
+    // the walk turned into the other hole at `at` (the way on is chosen by the angle about the
+    // patch's normal there, which at a point where two sheets of the patch meet, as on a wing's
+    // thin edge, can be either's), and has come round it; that hole is closed alone (not in the
+    // paper). Libcgal-demo's boeing: two holes of four sides touching at a point of the wing's
+    // edge stopped patch 1's front 8 sides short of closing.
+    if (const auto again = std::find(corners.begin(), corners.end(), at);
+        again != corners.end()) {
+      const auto first = static_cast<std::size_t>(again - corners.begin());
+      return fill_loop({loop.begin() + static_cast<std::ptrdiff_t>(first), loop.end()},
+                       {corners.begin() + static_cast<std::ptrdiff_t>(first), corners.end()});
+    }
     const Index leaving = next_side_of_loop(at, corners.back());
-    // A loop through a point twice is two holes touching there, which ears cannot cut.
-    if (leaving == kInvalidIndex || loop.size() >= kMaxHoleSides ||
-        std::find(corners.begin(), corners.end(), at) != corners.end())
-      return false;
+    if (leaving == kInvalidIndex || loop.size() >= kMaxHoleSides) return false;
     loop.push_back(leaving);
     corners.push_back(at);
     at = front_.item(leaving).v[1];
   }
+  return fill_loop(loop, corners);
+}
+
+bool PatchFront::fill_loop(const std::vector<Index>& loop, const std::vector<Index>& corners) {
   if (corners.size() < 3) return false;
   // The hole's plane: the mean of its corners' normals on the patch.
   Point n{0, 0, 0}, centre{0, 0, 0};
@@ -803,8 +827,15 @@ bool PatchFront::fill_hole(Index f) {
   Box box = empty_box();
   for (const Index q : corners) enclose(box, s_.points[q]);
   bool island = false;
+  // A hole touching this one at a corner is no island, though its points may fall inside this
+  // one in the plane (not in the paper): on a patch that bends where two of its lines run a
+  // hair apart, as along the strips of boeing's wing edges, the two holes on either side of
+  // the strip overlap in the mean plane of either.
+  const std::vector<Index> touching = points_of_touching_holes(loop, corners, plane);
   front_.bins().for_each_point_near(box, [&](Index q) {
-    if (island || std::find(corners.begin(), corners.end(), q) != corners.end()) return;
+    if (island || std::find(corners.begin(), corners.end(), q) != corners.end() ||
+        std::find(touching.begin(), touching.end(), q) != touching.end())
+      return;
     const std::array<double, 2> x = plane.at(s_.points[q]);
     int winding = 0;  // crossings of a ray along +x from q with the loop
     for (std::size_t i = 0; i < xy.size(); ++i) {
@@ -880,6 +911,44 @@ bool PatchFront::fill_hole(Index f) {
   for (const Index g : loop) front_.remove(g);
   for (const Triangle& ear : ears) add_triangle(ear);
   return true;
+}
+
+std::vector<Index> PatchFront::points_of_touching_holes(const std::vector<Index>& loop,
+                                                        const std::vector<Index>& corners,
+                                                        const SidePlane& plane) const {
+  std::vector<Index> points;
+  for (const Index c : corners) {
+    std::vector<Index> leaving;
+    front_.for_each_item_at(c, [&](Index g) {
+      if (front_.item(g).v[0] == c && std::find(loop.begin(), loop.end(), g) == loop.end())
+        leaving.push_back(g);
+    });
+    for (const Index g : leaving) {
+      std::vector<Index> other = {c};
+      Index at = front_.item(g).v[1];
+      bool closed = false;
+      while (other.size() < kMaxHoleSides) {
+        if (at == c) {
+          closed = true;
+          break;
+        }
+        if (std::find(other.begin(), other.end(), at) != other.end()) break;
+        const Index next = next_side_of_loop(at, other.back());
+        if (next == kInvalidIndex) break;
+        other.push_back(at);
+        at = front_.item(next).v[1];
+      }
+      if (!closed || other.size() < 3) continue;
+      double twice_area = 0.0;  // the shoelace sum in the plane: > 0 counter-clockwise
+      for (std::size_t i = 0; i < other.size(); ++i) {
+        const std::array<double, 2> a = plane.at(s_.points[other[i]]);
+        const std::array<double, 2> b = plane.at(s_.points[other[(i + 1) % other.size()]]);
+        twice_area += a[0] * b[1] - a[1] * b[0];
+      }
+      if (twice_area > 0) points.insert(points.end(), other.begin() + 1, other.end());
+    }
+  }
+  return points;
 }
 
 Index PatchFront::closing_point(const Side& v, const SidePlane& plane) {

@@ -1059,13 +1059,33 @@ TEST(PatchFromInput, ARidgeEndingInsideThePatchIsKept) {
 // the same way by two of its triangles) since the line points take the smaller size of their
 // two sides; at 11 it still closes it across the crease, and check_patch_fans finds it.
 // tests/data/`name` (a piece of an occt-misc file) re-triangulated at `size`.
-absl::StatusOr<SurfaceResult> mesh_test_data(const std::string& name, double size) {
+absl::StatusOr<SurfaceResult> mesh_test_data(const std::string& name, double size,
+                                             double wall_sizes = 0.0) {
   const absl::StatusOr<Mesh> input =
       read_mesh((std::filesystem::path(AFMESH_SOURCE_DIR) / "tests" / "data" / name).string());
   if (!input.ok()) return input.status();
   SurfaceParams params;
   params.size = size;
+  params.wall_sizes = wall_sizes;
   return generate_surface_mesh(*input, params);
+}
+
+// libcgal-demo's boeing with its walls bounded (as `afmesh volume --remesh-surface` asks): on a
+// wing's edge, where patch 1 bends between two of its lines a hair apart, its front left two
+// holes of four sides touching at a point. The walk round the one went on into the other, and
+// each hole's points fell inside the other in its mean plane, an island to the ear clipping:
+// the front stopped 8 sides short, the patch was re-triangulated from its input, with caps of
+// 0.1 degrees and edges up to 3.3 long (a volume front then made ~2,800 face tests per face).
+TEST(Regression, Issue11TwoHolesTouchingAtAPointAreClosedOneByOne) {
+  const absl::StatusOr<SurfaceResult> r =
+      mesh_test_data("cgal_boeing.stl", 1.1946783355056212, /*wall_sizes=*/1.0);
+  ASSERT_TRUE(r.ok()) << r.status();
+  for (const std::string& stop : r->report.front_stops)
+    std::printf("front stop: %s\n", stop.c_str());
+  EXPECT_EQ(r->report.patches_from_input, 0);
+  EXPECT_TRUE(validate_surface(r->mesh).valid()) << validate_surface(r->mesh).to_string();
+  const testing::AngleCounts counts = testing::angle_counts(r->mesh);
+  EXPECT_EQ(counts.under_15, r->report.thin_triangles_at_thinner_input);
 }
 
 TEST(Regression, Issue11AWedgeClosedOnTheFarSideOfItsLinesFallsBack) {
