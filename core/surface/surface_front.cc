@@ -290,6 +290,9 @@ class PatchFront {
   bool fill_hole(Index f);
   // Ear clipping of the hole bounded by the front sides `loop` (loop[i] leaves corners[i]).
   bool fill_loop(const std::vector<Index>& loop, const std::vector<Index>& corners);
+  // Whether point q lies on a loop of front sides that bounds a hole: from q back to q within
+  // kMaxHoleSides sides, turning counter-clockwise about the patch's normals at its corners.
+  bool on_a_hole(Index q) const;
   // The points of the other holes that touch the hole bounded by `loop` at one of its corners:
   // loops of front sides from a corner back to it, turning counter-clockwise in `plane` as a
   // hole's do (an island's turn the other way).
@@ -827,10 +830,6 @@ bool PatchFront::fill_loop(const std::vector<Index>& loop, const std::vector<Ind
   Box box = empty_box();
   for (const Index q : corners) enclose(box, s_.points[q]);
   bool island = false;
-  // A hole touching this one at a corner is no island, though its points may fall inside this
-  // one in the plane (not in the paper): on a patch that bends where two of its lines run a
-  // hair apart, as along the strips of boeing's wing edges, the two holes on either side of
-  // the strip overlap in the mean plane of either.
   const std::vector<Index> touching = points_of_touching_holes(loop, corners, plane);
   front_.bins().for_each_point_near(box, [&](Index q) {
     if (island || std::find(corners.begin(), corners.end(), q) != corners.end() ||
@@ -846,7 +845,12 @@ bool PatchFront::fill_loop(const std::vector<Index>& loop, const std::vector<Ind
         if ((b[1] > a[1]) == (o > 0)) ++winding;
       }
     }
-    island = winding % 2 == 1;
+    // Another hole is no island, though its points may fall inside this one in the plane (not
+    // in the paper): on a patch that bends where two of its lines run a hair apart, as along
+    // the strips of boeing's wing edges, the holes on either side of a strip overlap in the
+    // mean plane of either. An island inside a hole is bounded by a loop turning the other way
+    // (its meshed part on the loop's left), so a point on a hole's loop is not one.
+    island = winding % 2 == 1 && !on_a_hole(q);
   });
   if (island) return false;
   // Ear clipping.
@@ -949,6 +953,35 @@ std::vector<Index> PatchFront::points_of_touching_holes(const std::vector<Index>
     }
   }
   return points;
+}
+
+bool PatchFront::on_a_hole(Index q) const {
+  std::vector<Index> leaving;
+  front_.for_each_item_at(q, [&](Index g) {
+    if (front_.item(g).v[0] == q) leaving.push_back(g);
+  });
+  for (const Index g : leaving) {
+    std::vector<Index> loop = {q};
+    Index at = front_.item(g).v[1];
+    while (at != q && loop.size() < kMaxHoleSides &&
+           std::find(loop.begin(), loop.end(), at) == loop.end()) {
+      const Index next = next_side_of_loop(at, loop.back());
+      if (next == kInvalidIndex) break;
+      loop.push_back(at);
+      at = front_.item(next).v[1];
+    }
+    if (at != q || loop.size() < 3) continue;
+    // The loop's vector area against the patch's normals at its corners.
+    Point area{0, 0, 0}, normal{0, 0, 0};
+    const Point& origin = s_.points[loop[0]];
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      area = add(area, cross(sub(s_.points[loop[i]], origin),
+                             sub(s_.points[loop[(i + 1) % loop.size()]], origin)));
+      normal = add(normal, s_.surface.normal(patch_hint(s_, patch_, loop[i])));
+    }
+    if (dot(area, normal) > 0) return true;
+  }
+  return false;
 }
 
 Index PatchFront::closing_point(const Side& v, const SidePlane& plane) {
