@@ -680,14 +680,18 @@ TEST(Regression, Issue11ASideAcrossANarrowStripClosesToTheLinesAtItsEnds) {
 // times the bound (patch_from_input.cc); the result is held to it. Since the front closes holes
 // that touch each other, it closes the end face there: every patch is re-triangulated from its
 // input here (SurfaceParams::every_patch_from_input), so that the end face's still is.
+// gmsh_lever at `size` with no curvature bound, every patch from its input or not.
+absl::StatusOr<SurfaceResult> lever_without_curvature_bound(double size, bool from_input) {
+  return mesh_corpus_at_mean_edge("gmsh_lever.stl", [size, from_input](SurfaceParams& params) {
+    params.size = size;
+    params.curvature_angle_deg = 0.0;
+    params.every_patch_from_input = from_input;
+  });
+}
+
 TEST(Regression, Issue11APatchFromItsInputMayPeakAboveItsBoundWhileSplit) {
   for (const double size : {5.44, 7.0}) {
-    const absl::StatusOr<SurfaceResult> r =
-        mesh_corpus_at_mean_edge("gmsh_lever.stl", [size](SurfaceParams& params) {
-          params.size = size;
-          params.curvature_angle_deg = 0.0;
-          params.every_patch_from_input = true;
-        });
+    const absl::StatusOr<SurfaceResult> r = lever_without_curvature_bound(size, true);
     ASSERT_TRUE(r.ok()) << size << ": " << r.status();
     expect_closed_valid(r->mesh);
     EXPECT_EQ(r->report.patches_from_input, r->report.patches) << size;
@@ -700,11 +704,7 @@ TEST(Regression, Issue11APatchFromItsInputMayPeakAboveItsBoundWhileSplit) {
 // islands (fill_loop); they are holes, and the front closes them.
 TEST(Regression, Issue11TheLeversEndFaceIsClosedByItsFront) {
   for (const double size : {5.44, 7.0}) {
-    const absl::StatusOr<SurfaceResult> r =
-        mesh_corpus_at_mean_edge("gmsh_lever.stl", [size](SurfaceParams& params) {
-          params.size = size;
-          params.curvature_angle_deg = 0.0;
-        });
+    const absl::StatusOr<SurfaceResult> r = lever_without_curvature_bound(size, false);
     ASSERT_TRUE(r.ok()) << size << ": " << r.status();
     expect_closed_valid(r->mesh);
     EXPECT_EQ(r->report.patches_from_input, 0) << size;
