@@ -290,6 +290,11 @@ class PatchFront {
   bool fill_hole(Index f);
   // Ear clipping of the hole bounded by the front sides `loop` (loop[i] leaves corners[i]).
   bool fill_loop(const std::vector<Index>& loop, const std::vector<Index>& corners);
+  // The corners of the loop of front sides from `start` along its side g and on (the way on
+  // at each corner as fill_hole's walk takes it, next_side_of_loop) back to `start`, start
+  // first; empty when the walk meets a corner twice, finds no way on or passes kMaxHoleSides
+  // corners before it is back.
+  std::vector<Index> loop_from(Index start, Index g) const;
   // Whether point q lies on a loop of front sides that bounds a hole: from q back to q within
   // kMaxHoleSides sides, turning counter-clockwise about the patch's normals at its corners.
   bool on_a_hole(Index q) const;
@@ -928,21 +933,8 @@ std::vector<Index> PatchFront::points_of_touching_holes(const std::vector<Index>
         leaving.push_back(g);
     });
     for (const Index g : leaving) {
-      std::vector<Index> other = {c};
-      Index at = front_.item(g).v[1];
-      bool closed = false;
-      while (other.size() < kMaxHoleSides) {
-        if (at == c) {
-          closed = true;
-          break;
-        }
-        if (std::find(other.begin(), other.end(), at) != other.end()) break;
-        const Index next = next_side_of_loop(at, other.back());
-        if (next == kInvalidIndex) break;
-        other.push_back(at);
-        at = front_.item(next).v[1];
-      }
-      if (!closed || other.size() < 3) continue;
+      const std::vector<Index> other = loop_from(c, g);
+      if (other.size() < 3 || other.size() >= kMaxHoleSides) continue;
       double twice_area = 0.0;  // the shoelace sum in the plane: > 0 counter-clockwise
       for (std::size_t i = 0; i < other.size(); ++i) {
         const std::array<double, 2> a = plane.at(s_.points[other[i]]);
@@ -955,22 +947,28 @@ std::vector<Index> PatchFront::points_of_touching_holes(const std::vector<Index>
   return points;
 }
 
+std::vector<Index> PatchFront::loop_from(Index start, Index g) const {
+  std::vector<Index> loop = {start};
+  Index at = front_.item(g).v[1];
+  while (at != start) {
+    if (loop.size() >= kMaxHoleSides || std::find(loop.begin(), loop.end(), at) != loop.end())
+      return {};
+    const Index next = next_side_of_loop(at, loop.back());
+    if (next == kInvalidIndex) return {};
+    loop.push_back(at);
+    at = front_.item(next).v[1];
+  }
+  return loop;
+}
+
 bool PatchFront::on_a_hole(Index q) const {
   std::vector<Index> leaving;
   front_.for_each_item_at(q, [&](Index g) {
     if (front_.item(g).v[0] == q) leaving.push_back(g);
   });
   for (const Index g : leaving) {
-    std::vector<Index> loop = {q};
-    Index at = front_.item(g).v[1];
-    while (at != q && loop.size() < kMaxHoleSides &&
-           std::find(loop.begin(), loop.end(), at) == loop.end()) {
-      const Index next = next_side_of_loop(at, loop.back());
-      if (next == kInvalidIndex) break;
-      loop.push_back(at);
-      at = front_.item(next).v[1];
-    }
-    if (at != q || loop.size() < 3) continue;
+    const std::vector<Index> loop = loop_from(q, g);
+    if (loop.size() < 3) continue;
     // The loop's vector area against the patch's normals at its corners.
     Point area{0, 0, 0}, normal{0, 0, 0};
     const Point& origin = s_.points[loop[0]];
