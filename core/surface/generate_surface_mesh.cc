@@ -1081,14 +1081,6 @@ absl::StatusOr<SurfaceResult> mesh_surface(const Mesh& input, const SurfaceParam
   absl::StatusOr<DiscreteSurface> output = DiscreteSurface::build(local, output_params, progress);
   if (!output.ok()) return output.status();
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");
-  // The input in the output's frame: `output` keeps its points relative to its own origin, the
-  // centre of the output's bounding box, which is not the input's (1e-4 off on the bunny), and
-  // sampled_distance needs both surfaces in one frame.
-  Mesh input_in_output_frame;
-  input_in_output_frame.points.reserve(surface->local_points().size());
-  for (const Point& p : surface->local_points())
-    input_in_output_frame.points.push_back(output->to_local(p));
-  input_in_output_frame.triangles = surface->triangles();
   std::vector<FaceId> output_hosts = s.host;
   result.report.thin_triangles_at_thinner_input =
       thin_triangles_at_thinner_input(local, s.host, s.triangle_patch, *surface);
@@ -1096,19 +1088,29 @@ absl::StatusOr<SurfaceResult> mesh_surface(const Mesh& input, const SurfaceParam
       sampled_distance(local, output->neighbours(), *surface, &output_hosts, 0.0,
                        &result.report.max_vertex_distance, progress);
   if (!out_to_in.ok()) return out_to_in.status();
-  std::vector<FaceId> input_hints = output_faces_near_input_points(*surface, *output, s.host);
-  // Only the larger of the two directions is reported: input samples no farther than the output's
-  // largest distance need no exact distance of their own.
-  const absl::StatusOr<double> hausdorff =
-      sampled_distance(input_in_output_frame, surface->neighbours(), *output, &input_hints,
-                       *out_to_in, nullptr, progress);
-  if (!hausdorff.ok()) return hausdorff.status();
-  result.report.hausdorff = *hausdorff;
   if (as_given) {
+    // A sliver repair moved the input: the distance reported is to the input as sent.
     const absl::StatusOr<double> given =
         distance_to_input_as_given(local, *output, *surface, *as_given, progress);
     if (!given.ok()) return given.status();
     result.report.hausdorff = *given;
+  } else {
+    // The input in the output's frame: `output` keeps its points relative to its own origin, the
+    // centre of the output's bounding box, which is not the input's (1e-4 off on the bunny), and
+    // sampled_distance needs both surfaces in one frame.
+    Mesh input_in_output_frame;
+    input_in_output_frame.points.reserve(surface->local_points().size());
+    for (const Point& p : surface->local_points())
+      input_in_output_frame.points.push_back(output->to_local(p));
+    input_in_output_frame.triangles = surface->triangles();
+    std::vector<FaceId> input_hints = output_faces_near_input_points(*surface, *output, s.host);
+    // Only the larger of the two directions is reported: input samples no farther than the
+    // output's largest distance need no exact distance of their own.
+    const absl::StatusOr<double> hausdorff =
+        sampled_distance(input_in_output_frame, surface->neighbours(), *output, &input_hints,
+                         *out_to_in, nullptr, progress);
+    if (!hausdorff.ok()) return hausdorff.status();
+    result.report.hausdorff = *hausdorff;
   }
   clock.lap("distance");
   // Not in the paper: an assembly's components that cross each other are each re-triangulated
