@@ -61,25 +61,22 @@ int run(const std::string& input, SurfaceParams params, const std::string& out, 
   // output's edge-connected components are its environments then, so that only a crossing
   // within one component fails no_self_intersections.
   const SurfaceReport& r = result->report;
-  ValidationParams validation_params;
-  std::vector<std::int32_t> components;
-  if (r.input_crossing_pairs > 0) {
-    components = component_environments(m.triangles);
-    validation_params.face_environments = components;
-  }
-  const ValidationReport validation = validate_surface(m, validation_params);
+  const auto validate_by_component = [&](const Mesh& mesh) {
+    ValidationParams validation_params;
+    std::vector<std::int32_t> components;
+    if (r.input_crossing_pairs > 0) {
+      components = component_environments(mesh.triangles);
+      validation_params.face_environments = components;
+    }
+    return validate_surface(mesh, validation_params);
+  };
+  const ValidationReport validation = validate_by_component(m);
   // The output is as good as its input allows when it fails no check the input passes (issue 11:
   // closed and manifold wherever the input was): an open input gives an open output, and holes
   // that touch at a vertex stay non-manifold vertices (libcgal-demo's elephant-with-holes). The
   // input is checked after the timing, with the same environments rule for an assembly.
   // "closed" is no fault either way (the volume check it gates is the caller's).
-  std::vector<std::int32_t> input_components;
-  ValidationParams input_params;
-  if (r.input_crossing_pairs > 0) {
-    input_components = component_environments(surface->triangles);
-    input_params.face_environments = input_components;
-  }
-  const ValidationReport input_validation = validate_surface(*surface, input_params);
+  const ValidationReport input_validation = validate_by_component(*surface);
   std::string failed, failed_by_input;
   for (const Check& check : input_validation.checks)
     if (check.outcome == CheckOutcome::kFailed)
