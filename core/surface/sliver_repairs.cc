@@ -288,10 +288,11 @@ StepRepairs repair_sliver_steps(Mesh& clean, const SizeField& sizes, double ridg
             }
         }
       }
-      if (highest < kStepHeightOfSize * smallest_size && highest <= max_height) {
-        for (const Index f : strip) goes[f] = 1;
-        any = true;
-      }
+      if (!(highest < kStepHeightOfSize * smallest_size)) continue;
+      // With the user's distance bound, the steps higher than it stay and the rest go (see
+      // max_height in the header); without it, the whole strip goes.
+      for (const Index f : strip)
+        if (height[f] <= max_height) goes[f] = 1, any = true;
     }
     return any;
   };
