@@ -12,7 +12,9 @@
 //   options bits 0-1: the ridge angle (30, 10, 60, 150 degrees); bits 2-3: the corner angle
 //           (60, 20, 120, 180); bit 4: no curvature bound (else 30 degrees); bit 5, for the
 //           closed shapes: add a cube of half the size inside (a cavity, or a crossing second
-//           surface once moved);
+//           surface once moved); bit 6: a bound on the distance from the input of 0.001 of
+//           its diagonal (SurfaceParams::curvature_deviation: the chord and kink sizes, the
+//           sliver steps kept over the bound, the distance to the input as sent), else none;
 //   size    the element size: (0.1 + 0.9 b / 255) times the surface's largest extent, so a job
 //           makes at most a few thousand triangles (a cube at the smallest: about 1400);
 //   then, for the closed shapes: 3 bytes per corner (int8 / 256: a move of up to half a unit),
@@ -52,6 +54,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   params.ridge_angle_deg = kRidgeAngles[options & 3];
   params.corner_angle_deg = kCornerAngles[(options >> 2) & 3];
   params.curvature_angle_deg = (options & 16) ? 0.0 : 30.0;
+  params.curvature_deviation = (options & 64) ? 0.001 : 0.0;
 
   // As afmesh-server's job (server/main.cc).
   const afmesh::server::SurfaceJob job = [](const afmesh::Mesh& input,
