@@ -872,10 +872,10 @@ absl::StatusOr<SurfaceResult> mesh_surface(const Mesh& input, const SurfaceParam
     step_bound = params.curvature_deviation * norm(sub(box.hi, box.lo)) / kDeviationMargin;
   }
   // The input before the sliver repairs (here and below) change it: the distance reported is to
-  // it (distance_to_input_as_given). Kept only when they change something.
-  std::optional<Mesh> as_given = *clean;
+  // it (distance_to_input_as_given). Copied by the first repair made, if any.
+  std::optional<Mesh> as_given;
   const StepRepairs steps =
-      repair_sliver_steps(*clean, **field, params.ridge_angle_deg, step_bound);
+      repair_sliver_steps(*clean, **field, params.ridge_angle_deg, step_bound, &as_given);
   if (steps.count > 0) clean_neighbours = {};  // other triangles now
   result.report.sliver_steps_removed = steps.count;
   result.report.highest_sliver_step = steps.highest;
@@ -886,7 +886,7 @@ absl::StatusOr<SurfaceResult> mesh_surface(const Mesh& input, const SurfaceParam
       DiscreteSurface::build(*clean, {}, progress, std::move(clean_neighbours));
   if (!surface.ok()) return surface.status();
   if (const std::vector<FaceId> folded = folded_faces(*surface); !folded.empty()) {
-    const FoldedCollapses collapsed = collapse_folded_slivers(*clean, folded);
+    const FoldedCollapses collapsed = collapse_folded_slivers(*clean, folded, &as_given);
     result.report.folded_slivers_collapsed = collapsed.count;
     result.report.longest_folded_edge_collapsed = collapsed.longest_edge;
     if (collapsed.count > 0) {
@@ -894,7 +894,6 @@ absl::StatusOr<SurfaceResult> mesh_surface(const Mesh& input, const SurfaceParam
       if (!surface.ok()) return surface.status();
     }
   }
-  if (steps.count == 0 && result.report.folded_slivers_collapsed == 0) as_given.reset();
   if (absl::Status st = count_components(*surface, result.report, progress); !st.ok()) return st;
   clock.lap("surface");
   if (progress.cancelled()) return absl::CancelledError("surface meshing cancelled");

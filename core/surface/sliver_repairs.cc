@@ -19,8 +19,10 @@ namespace {
 // collapsed and the points left on no face.
 class SurfaceEdits {
  public:
-  explicit SurfaceEdits(Mesh& surface)
+  // `before`, when given and empty, takes a copy of the surface as it is before the first change.
+  explicit SurfaceEdits(Mesh& surface, std::optional<Mesh>* before = nullptr)
       : surface_(surface),
+        before_(before),
         incidence_(SimplexIncidence<3>::of(surface.triangles)),
         alive_(surface.triangles.size(), true) {}
 
@@ -60,6 +62,7 @@ class SurfaceEdits {
 
   // Face f becomes t (its tag kept).
   void replace(Index f, const Triangle& t) {
+    keep_before();
     incidence_.remove(surface_.triangles, f);
     surface_.triangles[f] = t;
     incidence_.add(surface_.triangles, f);
@@ -138,6 +141,7 @@ class SurfaceEdits {
 
   // The faces on the edge dropped; `gone` becomes `keep` in the other faces of `fan`.
   void move_corner(const std::vector<Index>& fan, Index gone, Index keep) {
+    keep_before();
     std::vector<Triangle>& tris = surface_.triangles;
     for (const Index g : on_edge_) {
       incidence_.remove(tris, g);
@@ -152,7 +156,12 @@ class SurfaceEdits {
     }
   }
 
+  void keep_before() {
+    if (before_ != nullptr && !before_->has_value()) *before_ = surface_;
+  }
+
   Mesh& surface_;
+  std::optional<Mesh>* before_;
   SimplexIncidence<3> incidence_;
   std::vector<bool> alive_;
   std::vector<Index> fan_a_, fan_b_, around_a_, around_b_, on_edge_;
@@ -160,8 +169,9 @@ class SurfaceEdits {
 
 }  // namespace
 
-FoldedCollapses collapse_folded_slivers(Mesh& clean, std::span<const FaceId> folded) {
-  SurfaceEdits edits(clean);
+FoldedCollapses collapse_folded_slivers(Mesh& clean, std::span<const FaceId> folded,
+                                        std::optional<Mesh>* before) {
+  SurfaceEdits edits(clean, before);
   FoldedCollapses done;
   for (const FaceId face : folded) {
     const Index f = index_of(face);
@@ -196,8 +206,8 @@ bool turn_below(const Point& n1, const Point& n2, double cos_angle) {
 }  // namespace
 
 StepRepairs repair_sliver_steps(Mesh& clean, const SizeField& sizes, double ridge_angle_deg,
-                                double max_height) {
-  SurfaceEdits edits(clean);
+                                double max_height, std::optional<Mesh>* before) {
+  SurfaceEdits edits(clean, before);
   const std::vector<Point>& p = clean.points;
   const std::vector<Triangle>& tris = clean.triangles;
   const auto tag = [&](Index f) {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <span>
 
 #include "core/mesh/mesh.h"
@@ -28,7 +29,11 @@ struct FoldedCollapses {
   double longest_edge = 0.0;
 };
 
-FoldedCollapses collapse_folded_slivers(Mesh& clean, std::span<const FaceId> folded);
+// `before` (both repairs), when given and empty, takes a copy of `clean` as it was before the
+// first change, and stays empty when nothing changes (the input as sent, for the distance
+// reported; no copy of a large input that needs no repair).
+FoldedCollapses collapse_folded_slivers(Mesh& clean, std::span<const FaceId> folded,
+                                        std::optional<Mesh>* before = nullptr);
 
 // Sliver steps. A CAD tessellation writes each face of the model on its own. Where a smooth
 // surface is split into two faces (a cylinder cut by a plane), each half's rim is a polygon with
@@ -93,6 +98,7 @@ struct StepRepairs {
 // kept lunes' short lines end), the distance to the input unchanged (0.0668% of the diagonal).
 // Without a bound, whole or nothing stays the rule (see the strips above).
 StepRepairs repair_sliver_steps(Mesh& clean, const SizeField& sizes, double ridge_angle_deg,
-                                double max_height = std::numeric_limits<double>::infinity());
+                                double max_height = std::numeric_limits<double>::infinity(),
+                                std::optional<Mesh>* before = nullptr);
 
 }  // namespace afmesh
