@@ -256,10 +256,11 @@ StepRepairs repair_sliver_steps(Mesh& clean, const SizeField& sizes, double ridg
   };
   // The steps, and which of them go: a strip of steps (joined through their corners) goes
   // whole when its highest is lower than kStepHeightOfSize of the smallest size asked along it,
-  // or not at all. A seam's strip is a chain of lunes, each as wide as the two polygons' chords
-  // are apart, meeting at points; removed in part, the lever's kept its wide lunes as patches
-  // with corners of 10 degrees at their ends, where the sizes ran down to 1/1000 of the size
-  // asked (50k triangles for 28k; at 5.44, a front stuck there).
+  // or not at all; only a distance bound (max_height) keeps its steps over the bound and lets
+  // the rest go. A seam's strip is a chain of lunes, each as wide as the two polygons' chords
+  // are apart, meeting at points; removed in part by the size alone, the lever's kept its wide
+  // lunes as patches with corners of 10 degrees at their ends, where the sizes ran down to
+  // 1/1000 of the size asked (50k triangles for 28k; at 5.44, a front stuck there).
   const std::size_t m = tris.size();
   std::vector<char> goes(m), is_step(m), seen(m);
   std::vector<double> height(m);

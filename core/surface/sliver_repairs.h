@@ -55,7 +55,8 @@ FoldedCollapses collapse_folded_slivers(Mesh& clean, std::span<const FaceId> fol
 // A strip of steps (joined through their corners) goes whole when its highest step is lower
 // than kStepHeightOfSize of the smallest size `sizes` asks along it, a step the elements cannot
 // see (a face spanning it tilts by under 4.3 degrees), or not at all: a seam's strip is a chain of
-// lunes meeting at points, and its wide lunes kept alone were patches with corners of 10 degrees.
+// lunes meeting at points, and its wide lunes kept alone were patches with corners of 10 degrees
+// (with a distance bound, the steps over it stay and the rest go: `max_height` below).
 // Each face of a strip that goes is
 //  - a cap (its shortest edge is no sliver's): (a, b, v) and (b, a, w) across ab are flipped to
 //    (v, a, w) and (v, w, b), which lie in w's face's plane to within the height, when both
