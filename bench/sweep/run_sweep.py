@@ -3,6 +3,7 @@
 
 usage: run_sweep.py [--afmesh BIN] [--out DIR] [--groups calibration,solids,corpus,special,occt,thin]
                     [--limit N] [--sizes 0.5,1,2,none] [--timeout SEC] [--fresh] [--report-only]
+                    [--corpus DIR]
 
 Groups (each run appended as one JSON line to DIR/results.jsonl; a run already there is skipped,
 so a sweep can be extended with a larger --limit; --fresh starts over):
@@ -11,6 +12,7 @@ so a sweep can be extended with a larger --limit; --fresh starts over):
   solids       the first --limit solids of make_solids.py, at --size f*h_s for every factor f of
                --sizes and once without --size (the CLI default: the mean edge of the input)
   corpus       every file of /work/shared/corpus, no --size and --size diag/25
+               (--corpus DIR: every .stl of DIR instead)
   special      the named cases of the issue: the torus shell at 0.06/0.05/0.045 (timeout 120 s)
                and the gmsh-written sphere with a bore and a box cavity, no --size and 0.1
   occt         /usr/share/opencascade/data/stl/{shape,sh1,sh2,TR12J_OCC}.stl at 1x and 0.5x
@@ -225,10 +227,10 @@ def plan(args):
                               "triangles": s["triangles"], "components": s["components"],
                               "cavities": s["cavities"], "params": s["params"]}))
     if "corpus" in groups:
-        for fn in sorted(os.listdir(CORPUS)):
+        for fn in sorted(os.listdir(args.corpus)):
             if not fn.endswith(".stl"):
                 continue
-            path = os.path.join(CORPUS, fn)
+            path = os.path.join(args.corpus, fn)
             pts, tris = stl_tools.read_stl(path)
             diag = float(math.dist(pts.min(0), pts.max(0)))
             for label, size in (("none", None), ("diag/25", diag / 25)):
@@ -363,6 +365,8 @@ def main():
     ap.add_argument("--report-only", action="store_true")
     ap.add_argument("--thin", default="/work/sweep-out/thin",
                     help="folder of make-thin-examples --variants (thin.jsonl and the fronts)")
+    ap.add_argument("--corpus", default=CORPUS,
+                    help="folder of the corpus group's .stl files (default: ../shared/corpus beside the checkout)")
     ap.add_argument("--fail-on-invalid", action="store_true",
                     help="exit 1 when a run of this invocation is not valid (for CI)")
     args = ap.parse_args()
