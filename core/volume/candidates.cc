@@ -20,6 +20,9 @@ constexpr double kNewEdgeHeight = 0.408;
 // wedge_apex_candidates: two front faces on one edge whose normals are within this angle of
 // opposite bound a thin wedge.
 constexpr double kWedgeAngleDeg = 20.0;
+// ... and, where that rule is not on, this angle: a pocket between them holds almost nothing
+// (wedge_apex_angle).
+constexpr double kFlatWedgeAngleDeg = 2.0;
 
 double mean_edge(const Point& a, const Point& b, const Point& c) {
   return (norm(sub(b, a)) + norm(sub(c, b)) + norm(sub(a, c))) / 3.0;
@@ -81,8 +84,8 @@ void neighbour_apex_candidates(MesherState& s, Index face, double best) {
 }
 
 // Not in the paper: on a sliver front (MesherState::sliver_front()), and on a front with crossing
-// environments at a face that has failed once (wedge_apex_first), the far corner of each
-// front face across an edge of `face` that looks back at it within kWedgeAngleDeg
+// environments at a face that has failed once (wedge_apex_angle), the far corner of each
+// front face across an edge of `face` that looks back at it within `wedge_deg`, kWedgeAngleDeg
 // (for_each_neighbour_apex; the two faces' normals within that angle of opposite) is ranked
 // before every other candidate: the element closes the thin wedge between the two faces at once.
 // At netgen_hinge's last stop, 195 of the 610 edges of the front faces within 15 of where it
@@ -91,11 +94,11 @@ void neighbour_apex_candidates(MesherState& s, Index face, double best) {
 // neighbour's corner, and in a wedge that thin no point fits later. The sweep's corpus runs went
 // from 29 to 35 of 60 valid with it, none lost, in less time (bench/sweep/README.md); the
 // element it makes is as flat as the wedge (TR12J_OCC's min dihedral 0.20 -> 0.00003 degrees).
-void wedge_apex_candidates(MesherState& s, Index face) {
+void wedge_apex_candidates(MesherState& s, Index face, double wedge_deg) {
   const Triangle v = s.front.item(face).v;
   const Point nf =
       cross(sub(s.points[v[1]], s.points[v[0]]), sub(s.points[v[2]], s.points[v[0]]));
-  const double cos_wedge = std::cos(kWedgeAngleDeg * std::numbers::pi / 180.0);
+  const double cos_wedge = std::cos(wedge_deg * std::numbers::pi / 180.0);
   for_each_neighbour_apex(s, face, [&](Index g, Index q) {
     const Triangle& w = s.front.item(g).v;
     const Point ng =
@@ -105,9 +108,11 @@ void wedge_apex_candidates(MesherState& s, Index face) {
   });
 }
 
-// Whether `face` ranks its neighbours' far corners across thin wedges first
-// (wedge_apex_candidates): on a sliver front (MesherState::sliver_front()) every face; on a front
-// with crossing environments (paper §2; not in the paper) a face that has failed once. The
+// The angle within which `face` ranks its neighbours' far corners across thin wedges first
+// (wedge_apex_candidates), or 0 where it does not: on a sliver front (MesherState::sliver_front())
+// every face, and on a front with crossing environments (paper §2; not in the paper) a face that
+// has failed once, at kWedgeAngleDeg; on any other front a face that has failed once, at
+// kFlatWedgeAngleDeg (below). The
 // issue's large sails (make-thin-examples' sails_t*_grid4_box3, ~14k sail triangles in a box
 // of some 20 chords) stopped on their cambered sides, where elements whose four corners are
 // input points had left flat lids over the input: a pocket of four faces and 5e-8 volume between
@@ -120,8 +125,22 @@ void wedge_apex_candidates(MesherState& s, Index face) {
 // camber 0.02, 1 mm: 20.01 -> 14.05 degrees; a dome with auto: 8.25 -> 17.05). From a face's
 // first try the rule also meshed the large sails, after more reruns (33-52 s); at 5 or 2 degrees
 // instead of 20 too, after more reruns (16-54 s).
-bool wedge_apex_first(const MesherState& s, Index face) {
-  return s.sliver_front() || (!s.point_env.empty() && s.front.item(face).attempts > 0);
+//
+// On any front, a face that has failed once takes the far corner across a wedge of under
+// kFlatWedgeAngleDeg first: a flat pocket, which nothing but that element closes. A latitude-
+// longitude sphere's bands are quads of four points coplanar but for rounding, split in two;
+// where an element's face took the quad's other diagonal (its fourth point a hair inside), the
+// two input triangles and the two faces over them enclose almost nothing, and no point but the
+// quad's own corners fits in there. Such spheres stopped at their mean edge, with and without
+// reruns (libcgal-demo's sphere966.stl, 44 around and 21 rings: 1,272 front faces left at the
+// first stop, 1,165 of them on input points; Regression.Issue10LatitudeLongitudeSpheresMeshAt-
+// TheirMeanEdge). The element is as flat as the pocket. At kWedgeAngleDeg instead, 6 of the
+// sweep's 240 runs of the first 60 solids lost over 0.5 degrees of min dihedral; at 2 degrees 4
+// (and 1 gained), all 240 valid either way.
+double wedge_apex_angle(const MesherState& s, Index face) {
+  const bool failed = s.front.item(face).attempts > 0;
+  if (s.sliver_front() || (!s.point_env.empty() && failed)) return kWedgeAngleDeg;
+  return failed ? kFlatWedgeAngleDeg : 0.0;
 }
 
 }  // namespace
@@ -280,8 +299,8 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
   const double min_quality = sliver ? rules.min_quality * best : rules.min_quality;
   if (sliver)
     neighbour_apex_candidates(s, face, best);
-  else if (wedge_apex_first(s, face))
-    wedge_apex_candidates(s, face);
+  else if (const double wedge_deg = wedge_apex_angle(s, face); wedge_deg > 0)
+    wedge_apex_candidates(s, face, wedge_deg);
 
   // Existing front points near the ideal point that form a positive, well-shaped element.
   const double reach = rules.reach * d;

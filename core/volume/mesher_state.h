@@ -52,7 +52,7 @@ struct MesherState {
   // The input front has sliver faces: new points closer to a face keep the best point's spacing
   // from front points, and a face takes first the far corner of a neighbour that looks back at
   // it across a thin wedge (gather_candidates, wedge_apex_candidates; on fronts with crossing
-  // environments only the faces that have failed once, wedge_apex_first).
+  // environments only the faces that have failed once, wedge_apex_angle).
   bool sliver_front() const { return !input_sliver_point.empty(); }
   std::vector<Tet> tets;           // a deleted tet has tet[0] == kInvalidIndex
   std::int64_t live_tets = 0;

@@ -179,7 +179,7 @@ TEST(ThinVolume, PlatesWithRimStripsMeshValid) {
 
 // The X of camber 0.02 with 6 cells across a half plate, 0.001 thick, stopped with tags and with
 // auto; it was meshed again where it stopped, and since a face with environments that has failed
-// takes the far corner across a thin wedge first (candidates.cc, wedge_apex_first), it meshes at
+// takes the far corner across a thin wedge first (candidates.cc, wedge_apex_angle), it meshes at
 // once.
 TEST(ThinVolume, CrossingPlatesThatStoppedMeshValid) {
   CrossingPlatesParams params;
@@ -199,7 +199,7 @@ TEST(ThinVolume, CrossingPlatesThatStoppedMeshValid) {
 // Issue 10, part 6: the issue's large sails (~14k sail triangles, the box some 20 chords wide),
 // 1 mm thick, with the tags and the sails' sizes. Every run stopped on the jib's cambered side,
 // among flat lids the front had left over the input, also after 8 reruns; with a face that has
-// failed taking the far corner across a thin wedge first (wedge_apex_first) the first run still
+// failed taking the far corner across a thin wedge first (wedge_apex_angle) the first run still
 // stops, and the front, meshed again with the size halved where it stopped (as fronts without
 // environments are, generate_volume_mesh.cc), closes: this is also the test of that rerun with
 // environments. (10 mm thick, they mesh at once: bench/sweep's thin group.)
