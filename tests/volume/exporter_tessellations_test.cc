@@ -2,9 +2,11 @@
 // front to): latitude-longitude spheres, whose bands are quads of four coplanar points split in
 // two and whose poles are fans of needles, and cylinders with fanned caps. Every STL writer of a
 // sphere makes the first; libcgal-demo's sphere966.stl is one (44 around, 21 rings).
+#include <cmath>
 #include <utility>
 #include <vector>
 
+#include "core/geometry/vec.h"
 #include "core/mesh/mesh.h"
 #include "core/quality/measures.h"
 #include "gtest/gtest.h"
@@ -32,6 +34,33 @@ TEST(Regression, Issue10LatitudeLongitudeSpheresMeshAtTheirMeanEdge) {
     params.size = mean_edge_length(front);
     params.local_refinements = 0;  // the first run closes
     mesh_and_check(front, params);
+  }
+}
+
+// Regression for issue 10: where the poles' needles are under 5 degrees (sliver fronts) the
+// spheres stopped at their mean edge on their first run (80 around and 19 rings after 3 reruns,
+// with tets of 0.00 degrees; 100 and 49 not at all), and so did a cylinder whose caps are fans
+// of 96 needles of 3.75 degrees (not after 8 reruns either): each needle took the far corner of
+// the next as a cap does (neighbour_apex_candidates), and the flat elements folded the fan into
+// faces reaching across it. A needle now takes points as other faces do.
+TEST(Regression, Issue10FansOfNeedlesMeshAtTheirMeanEdge) {
+  std::vector<Mesh> fronts = {testing::uv_sphere({0, 0, 0}, 10.0, 72, 19),
+                              testing::uv_sphere({0, 0, 0}, 10.0, 96, 23),
+                              testing::closed_cylinder(1.0, 1.0, 96, 4)};
+  for (const Mesh& front : fronts) {
+    SCOPED_TRACE(::testing::Message() << front.triangles.size() << " triangles");
+    VolumeParams params;
+    params.size = mean_edge_length(front);
+    params.local_refinements = 0;  // the first run closes
+    const VolumeResult result = mesh_and_check(front, params);
+    // Elements of about the size asked, not a few flat ones folded across the fans: at least
+    // half as many tets as regular tets of edge h fill the enclosed volume.
+    double enclosed = 0;
+    for (const Triangle& t : front.triangles)
+      enclosed += dot(front.points[t[0]], cross(front.points[t[1]], front.points[t[2]])) / 6;
+    const double h = params.size;
+    const double regular = h * h * h / (6 * std::sqrt(2.0));
+    EXPECT_GT(static_cast<double>(result.mesh.tets.size()), 0.5 * enclosed / regular);
   }
 }
 

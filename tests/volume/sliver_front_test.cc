@@ -207,12 +207,14 @@ TEST(Regression, Issue10PocketWithAThinKernelMeshes) {
 // 4 degrees around a thin bent ring) at its mean edge, 26.108: the front got stuck, wherever it
 // backed off, in the ring's pockets of sliver faces. Meshed again with the size halved where it
 // stopped (refine_where_stuck), it closes valid, the boundary exactly the input's, and each time
-// it was meshed again is said in a warning with why and where.
+// it was meshed again is said in a warning with why and where. Since sliver needles take points
+// as other faces do (candidates.cc) it closes on its first run at its mean edge; at 0.9 times it
+// still stops twice first.
 TEST(Regression, Issue10RawCadShapeMeshesWithTheSizeHalvedWhereItStuck) {
   absl::StatusOr<Mesh> shape =
       read_mesh(std::string(AFMESH_SOURCE_DIR) + "/tests/data/occt_shape.stl");
   ASSERT_TRUE(shape.ok()) << shape.status();
-  const VolumeResult result = mesh_and_check(*shape, mean_edge_length(*shape));
+  const VolumeResult result = mesh_and_check(*shape, 0.9 * mean_edge_length(*shape));
   ASSERT_FALSE(result.mesh.tets.empty());
   ASSERT_FALSE(result.warnings.empty());
   for (const std::string& warning : result.warnings) {
