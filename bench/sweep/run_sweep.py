@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Robustness sweep of `afmesh volume` (issue 10, part 1): runs, judges and tabulates.
 
-usage: run_sweep.py [--afmesh BIN] [--out DIR] [--groups calibration,solids,corpus,special,occt,thin]
+usage: run_sweep.py [--afmesh BIN] [--out DIR]
+                    [--groups calibration,solids,corpus,special,occt,thin,exporters]
                     [--limit N] [--sizes 0.5,1,2,none] [--timeout SEC] [--fresh] [--report-only]
                     [--corpus DIR]
 
@@ -17,6 +18,9 @@ so a sweep can be extended with a larger --limit; --fresh starts over):
                and the gmsh-written sphere with a bore and a box cavity, no --size and 0.1
   occt         /usr/share/opencascade/data/stl/{shape,sh1,sh2,TR12J_OCC}.stl at 1x and 0.5x
                their mean edge and with no --size
+  exporters    the primitives of make_exporter_shapes.py (exporters.jsonl beside the solids):
+               spheres, cylinders, cones and tori as STL exporters tessellate them, with no
+               --size and at 0.5x their mean edge
   thin         the thin fronts of `make-thin-examples --variants DIR` (--thin DIR): domes, sails
                and crossing X's of other shapes, each with its family's spec file, with
                --envs tags and --envs auto; judged with `stats --envs tags` and the checker's
@@ -255,6 +259,15 @@ def plan(args):
                 jobs.append(("thin", v["name"], v["file"], envs, None, args.timeout,
                              {"cli_args": ["--spec", spec, "--envs", envs], "envs_check": True,
                               "family": v["family"], "parameters": v["parameters"]}))
+    if "exporters" in groups:
+        # make_exporter_shapes.py: spheres, cylinders, cones and tori as STL exporters tessellate
+        # them (fans of needles, bands of coplanar quads), at their mean edge and half of it.
+        for s in load_jsonl(os.path.join(sdir, "exporters.jsonl")):
+            pts, tris = stl_tools.read_stl(s["stl"])
+            me = stl_tools.check_surface(pts, tris)["mean_edge"]
+            for label, size in (("none", None), ("0.5me", 0.5 * me)):
+                jobs.append(("exporters", s["name"], s["stl"], label, size, args.timeout,
+                             {"family": s["family"], "mean_edge": me, "parameters": s["parameters"]}))
     if "occt" in groups:
         for n in ("shape", "sh1", "sh2", "TR12J_OCC"):
             path = os.path.join(OCCT, n + ".stl")
