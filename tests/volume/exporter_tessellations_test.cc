@@ -6,9 +6,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/geometry/vec.h"
 #include "core/mesh/mesh.h"
 #include "core/quality/measures.h"
+#include "core/quality/validate_common.h"
 #include "gtest/gtest.h"
 #include "tests/surface/surface_test_shapes.h"
 #include "tests/volume/mesh_and_check.h"
@@ -55,9 +55,7 @@ TEST(Regression, Issue10FansOfNeedlesMeshAtTheirMeanEdge) {
     const VolumeResult result = mesh_and_check(front, params);
     // Elements of about the size asked, not a few flat ones folded across the fans: at least
     // half as many tets as regular tets of edge h fill the enclosed volume.
-    double enclosed = 0;
-    for (const Triangle& t : front.triangles)
-      enclosed += dot(front.points[t[0]], cross(front.points[t[1]], front.points[t[2]])) / 6;
+    const double enclosed = enclosed_volume(front.points, front.triangles, nullptr);
     const double h = params.size;
     const double regular = h * h * h / (6 * std::sqrt(2.0));
     EXPECT_GT(static_cast<double>(result.mesh.tets.size()), 0.5 * enclosed / regular);

@@ -238,7 +238,11 @@ TEST(Regression, Issue10LeverMeshesAsGiven) {
   VolumeParams params = front_only_at_mean_edge(front);
   params.local_refinements = 0;
   const VolumeResult result = mesh_and_check(front, params);
-  EXPECT_FALSE(result.mesh.tets.empty());
+  ASSERT_FALSE(result.mesh.tets.empty());
+  for (const std::string& warning : result.warnings) {
+    EXPECT_NE(warning.find("sliver triangles"), std::string::npos) << warning;
+    EXPECT_EQ(warning.find("give a size near"), std::string::npos) << warning;
+  }
 }
 
 // Issue 10, part 3: the pinion (libcgal-demo, a gear: 420 of its 1,300 triangles with angles
