@@ -8,12 +8,15 @@ parameters) into DIR (default /work/sweep-out/solids, beside the generated solid
   uv_sphere  latitude-longitude spheres of radius 10, `around` points per ring and `rings` rings
              between two poles: bands of quads whose four points are coplanar but for rounding,
              split in two, and poles that are fans of needles (under 5 degrees from 72 around);
-  cylinder   radius 1, caps fanned to their centres, `layers` bands of quads on the side;
+  cylinder   radius 1, height 1 (or `height`), caps fanned to their centres, `layers` bands
+             of quads on the side (in float, each side quad is exactly planar);
   cone       radius 1, height 2, a fan of needles at the tip, `rings` bands, the base fanned to
              its centre;
   uv_torus   radii 3 and `minor`, a grid of `around` x `across` quads.
 libcgal-demo's sphere966.stl (44 around, 21 rings) stopped at its mean edge until c42d0f7, and
-spheres of 72 or more around until 6549085 (bench/sweep/README.md). Deterministic; needs numpy.
+spheres of 72 or more around until 6549085; cylinders of 40-128 round, 2-6 layers, heights 1
+and 0.5 stopped under their mean edge more often than not (bench/sweep/README.md).
+Deterministic; needs numpy.
 """
 
 import argparse
@@ -99,6 +102,8 @@ SHAPES = (
      for a in (32, 44, 64, 72, 96, 128) for r in (15, 21, 31, 47)]
     + [(f"cylinder_{a}_{l}", "cylinder", cylinder, {"around": a, "layers": l})
        for a in (32, 48, 96) for l in (1, 4)]
+    + [(f"cylinder_{a}_{l}_h{h}", "cylinder", cylinder, {"around": a, "layers": l, "height": h})
+       for a in (40, 64, 80, 112, 128) for l in (2, 6) for h in (1.0, 0.5)]
     + [(f"cone_{a}_{r}", "cone", cone, {"around": a, "rings": r})
        for a in (32, 64, 96) for r in (1, 4)]
     + [(f"uv_torus_{a}_{c}", "uv_torus", uv_torus, {"around": a, "across": c, "minor": m})

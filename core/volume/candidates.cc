@@ -165,6 +165,67 @@ double wedge_apex_angle(const MesherState& s, Index face) {
   return failed ? kFlatWedgeAngleDeg : 0.0;
 }
 
+// gather_candidates' new points: at these shares of the best point's height above the face,
+// with these ranks.
+constexpr double kNewPointHeights[] = {1.0, 0.6, 0.35};
+constexpr double kNewPointRanks[] = {0.6, 2.0, 2.1};
+
+// The element size whose share a new point keeps from front points (gather_candidates says why).
+double new_point_spacing_size(const MesherState& s, double d, int i) {
+  return s.sliver_front() ? d : d * kNewPointHeights[i];
+}
+
+// Not in the paper: where the back-off asks for it (Strictness::cap_new_points), a cap (is_cap)
+// also takes the new points gather_candidates makes with their clearance from front faces a
+// share of the cap's own height (its corner's distance from its longest edge) instead of the
+// element size's, ranked after every other candidate. A cap can lie in a pocket thinner than any
+// such clearance, where only a new point fits: on a faceted cylinder whose side quads are exactly
+// planar (a binary STL writes one float x and y per angle on every ring), elements across the
+// side leave flat faces on chords of the wall from one point of a ring to the next but one, and
+// between a chord and the two quads it spans lies a lens 0.002 of the radius thick whose quads'
+// diagonals twist round it (a Schönhardt prism: no element on its own points fills it). The
+// front made a cap in there on three points of a ring, and every point above it lay within
+// 0.0015 of the walls, 0.007 being the clearance at the last try
+// (Regression.Issue10CylinderOfExactlyPlanarQuadsMeshesWithNoSize; it stopped with no size, also
+// after 16 reruns). The crossing check (F7.3) still decides whether the element fits; its spacing
+// from front points is as for the other new points.
+void cap_new_point_candidates(MesherState& s, Index face, const Point& ideal, double d,
+                              double min_quality) {
+  const Triangle v = s.front.item(face).v;
+  const Point& a = s.points[v[0]];
+  const Point& b = s.points[v[1]];
+  const Point& c = s.points[v[2]];
+  const double longest = std::sqrt(
+      std::max({squared_norm(sub(b, a)), squared_norm(sub(c, b)), squared_norm(sub(a, c))}));
+  const double height = norm(cross(sub(b, a), sub(c, a))) / longest;
+  const Point centroid = scale(add(a, add(b, c)), 1.0 / 3.0);
+  for (int i = 0; i < 3; ++i) {
+    const Point x = add(centroid, scale(sub(ideal, centroid), kNewPointHeights[i]));
+    if (tet_shape_quality(a, b, c, x) < min_quality) continue;
+    s.candidates.push_back({kInvalidIndex, x, 3.0 + i, height, new_point_spacing_size(s, d, i)});
+  }
+}
+
+// The smallest shape (tet_shape_quality) gather_candidates accepts: the rules' share of
+// `reference` (1, or a sliver's best element, best_element_quality), or, not in the paper, of
+// `ideal_quality`, the element on the best point of face v for element size d, where that element
+// is under the other threshold and d is larger than the size asked (the face is: d is kept within
+// kMinElementOverEdge of its mean edge). Such a face has its best point low above it (the height
+// is kept at half the size, ideal_point): a needle of a cap's fan, 1 long and 0.1 wide where the
+// size is 0.2, has its element clamped to 0.55 of its mean edge and its best point 0.19 above
+// it, an element of shape under 0.3, the first rules' threshold, for a needle that is not a
+// sliver (is_sliver_face). None of its new points was then a candidate; the first points that
+// fitted, under the third rules, were the wall's, half a radius away, and the fans' elements
+// reached round the cylinder from its axis to the wall, leaving thin layers between their faces
+// and the wall's facets where the front stopped (Regression.Issue10CylindersWithFannedCapsMesh-
+// UnderTheirMeanEdge).
+double min_quality_for_face(const MesherState& s, const Triangle& v, double d,
+                            const Strictness& rules, double reference, double ideal_quality) {
+  const double min_quality = rules.min_quality * reference;
+  if (ideal_quality >= min_quality || !(d > target_size_for_face(s, v))) return min_quality;
+  return rules.min_quality * std::max(ideal_quality, 0.0);
+}
+
 }  // namespace
 
 bool new_point_is_clear(MesherState& s, const Point& x, double spacing_size,
@@ -273,6 +334,10 @@ bool is_sliver_face(const MesherState& s, Index env, const Triangle& v, double b
          });
 }
 
+bool is_cap_face(const MesherState& s, const Triangle& v) {
+  return is_cap(s.points[v[0]], s.points[v[1]], s.points[v[2]]);
+}
+
 bool touches_input_sliver(const MesherState& s, const Triangle& v) {
   const auto marked = [&](Index p) {
     return p < static_cast<Index>(s.input_sliver_point.size()) && s.input_sliver_point[p];
@@ -318,7 +383,8 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
   // is asked the same share of the best it can have.
   const double best = best_element_quality(s, v);
   const bool sliver = is_sliver_face(s, env, v, best);
-  const double min_quality = sliver ? rules.min_quality * best : rules.min_quality;
+  const double min_quality =
+      min_quality_for_face(s, v, d, rules, sliver ? best : 1.0, tet_shape_quality(a, b, c, ideal));
   if (sliver && is_cap(a, b, c))
     neighbour_apex_candidates(s, face, best);
   else if (const double wedge_deg = wedge_apex_angle(s, face); wedge_deg > 0)
@@ -346,17 +412,17 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
   // shipped meshes for the worse (min dihedral: L-block 20.009 -> 20.003 degrees, dome with
   // tags 20.011 -> 19.747).
   const Point centroid = scale(add(a, add(b, c)), 1.0 / 3.0);
-  static constexpr double kHeights[] = {1.0, 0.6, 0.35};
-  static constexpr double kRanks[] = {0.6, 2.0, 2.1};
   for (int i = 0; i < 3; ++i) {
-    const Point x = add(centroid, scale(sub(ideal, centroid), kHeights[i]));
+    const Point x = add(centroid, scale(sub(ideal, centroid), kNewPointHeights[i]));
     if (tet_shape_quality(a, b, c, x) < min_quality) continue;
     // Its clearance from the front is checked only if the loop gets to it (most faces take
     // the first candidate).
-    s.candidates.push_back(
-        {kInvalidIndex, x, kRanks[i], d * kHeights[i], s.sliver_front() ? d : d * kHeights[i]});
+    s.candidates.push_back({kInvalidIndex, x, kNewPointRanks[i], d * kNewPointHeights[i],
+                            new_point_spacing_size(s, d, i)});
   }
 
+  if (rules.cap_new_points && is_cap(a, b, c))
+    cap_new_point_candidates(s, face, ideal, d, min_quality);
   std::sort(s.candidates.begin(), s.candidates.end(),
             [](const Candidate& l, const Candidate& r) {
               if (l.rank != r.rank) return l.rank < r.rank;

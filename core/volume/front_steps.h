@@ -29,6 +29,9 @@ struct Strictness {
   double point_spacing;   // a new point keeps this fraction of d from front points
   double face_clearance;  // ... and this fraction of d from front faces
   double reach;           // front points within reach·d of the ideal point are candidates
+  // Not in the paper: a cap (is_cap_face) also takes new points near the front's faces
+  // (gather_candidates), set by the back-off only.
+  bool cap_new_points = false;
 };
 Strictness strictness_for(int attempts);
 
@@ -68,6 +71,10 @@ bool is_sliver_face(const MesherState& s, Index env, const Triangle& v, double b
 // True when front face v has a corner of a poor face of an input with slivers
 // (MesherState::input_sliver_point).
 bool touches_input_sliver(const MesherState& s, const Triangle& v);
+
+// Not in the paper: face v has an angle over 120 degrees (a cap, its third corner near its
+// longest edge), not a needle.
+bool is_cap_face(const MesherState& s, const Triangle& v);
 
 // F6: the queue key of face v: queue_key_for_element (core/front/front_sizes.h) of its target
 // and element sizes; for a sliver face (is_sliver_face), that key scaled down by its best

@@ -3,9 +3,13 @@
 // two and whose poles are fans of needles, and cylinders with fanned caps. Every STL writer of a
 // sphere makes the first; libcgal-demo's sphere966.stl is one (44 around, 21 rings).
 #include <cmath>
+#include <numbers>
+#include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
+#include "core/io/mesh_io.h"
 #include "core/mesh/mesh.h"
 #include "core/quality/measures.h"
 #include "core/quality/validate_common.h"
@@ -15,6 +19,36 @@
 
 namespace afmesh {
 namespace {
+
+// A closed cylinder of radius 1 and height `height` as bench/sweep/make_exporter_shapes.py writes
+// it: the top centre, then `layers` + 1 circles of `around` points from the top down, the top a
+// fan to its centre, the side quads split on the diagonal from a point to the next one a layer
+// down, the bottom a fan to its centre (the last point).
+Mesh fanned_cylinder(int around, int layers, double height) {
+  Mesh mesh;
+  mesh.points.push_back({0, 0, height});
+  for (int k = 0; k <= layers; ++k) {
+    const double z = height * (1.0 - static_cast<double>(k) / layers);
+    for (int j = 0; j < around; ++j) {
+      const double phi = 2.0 * std::numbers::pi * j / around;
+      mesh.points.push_back({std::cos(phi), std::sin(phi), z});
+    }
+  }
+  const auto bottom = static_cast<Index>(mesh.points.size());
+  mesh.points.push_back({0, 0, 0});
+  const auto ring = [&](int k, int j) { return static_cast<Index>(1 + k * around + j % around); };
+  for (int j = 0; j < around; ++j) mesh.triangles.push_back({0, ring(0, j), ring(0, j + 1)});
+  for (int k = 0; k < layers; ++k)
+    for (int j = 0; j < around; ++j) {
+      const Index a = ring(k, j), b = ring(k + 1, j), c = ring(k + 1, j + 1), d = ring(k, j + 1);
+      mesh.triangles.push_back({a, b, c});
+      mesh.triangles.push_back({a, c, d});
+    }
+  for (int j = 0; j < around; ++j)
+    mesh.triangles.push_back({bottom, ring(layers, j + 1), ring(layers, j)});
+  mesh.triangle_tags.assign(mesh.triangles.size(), 0);
+  return mesh;
+}
 
 // Regression for issue 10: latitude-longitude spheres of radius 10 stopped at their mean edge,
 // with and without reruns ("the front stopped closing: the elements hold all but 0.00036 of the
@@ -60,6 +94,48 @@ TEST(Regression, Issue10FansOfNeedlesMeshAtTheirMeanEdge) {
     const double regular = h * h * h / (6 * std::sqrt(2.0));
     EXPECT_GT(static_cast<double>(result.mesh.tets.size()), 0.5 * enclosed / regular);
   }
+}
+
+// Regression for issue 10: cylinders whose caps are fans of needles stopped at and under their
+// mean edge (fanned_cylinder, 40-128 round, 2-6 layers, heights 1 and 0.5, at 0.5, 0.7 and 1
+// times their mean edge: 47 of 108 meshed through the CLI, reruns allowed). A needle 1 long
+// asked for elements of 0.2 had its best point so low above it that the element on it was under
+// the first rules' shape, and none of its new points was a candidate; under the third rules it
+// took a point of the wall half a radius away, and the fans' elements reached from the axis
+// round to the wall, leaving thin layers over the wall's facets (min_quality_for_face in
+// candidates.cc). Each of these three stopped on its first run before.
+TEST(Regression, Issue10CylindersWithFannedCapsMeshUnderTheirMeanEdge) {
+  for (const auto& [around, layers, share] :
+       std::vector<std::tuple<int, int, double>>{{64, 4, 0.7}, {80, 2, 0.7}, {96, 6, 0.5}}) {
+    SCOPED_TRACE(::testing::Message() << around << " round, " << layers << " layers, " << share
+                                      << " of the mean edge");
+    const Mesh front = fanned_cylinder(around, layers, 1.0);
+    VolumeParams params;
+    params.size = share * mean_edge_length(front);
+    params.local_refinements = 0;  // the first run closes
+    mesh_and_check(front, params);
+  }
+}
+
+// Regression for issue 10: a cylinder with fanned caps (96 round, 4 layers) written as binary
+// STL (tests/data/exporter_cylinder_96_4.stl: points in float, so the points of one angle have
+// the same x and y on every ring and each side quad is exactly planar) stopped with no size, also
+// with 16 reruns (the sweep's exporters group). Elements across the side had left flat faces on
+// chords of the wall, from a point of a ring to the next but one; between such a chord and the
+// two side quads it spans lies a lens 0.002 thick round whose quads the diagonals twist (a
+// Schönhardt prism), which no element on existing points fills. The front made a cap in the lens
+// on three points of a ring and got stuck at it: every new point in there lies nearer the walls
+// than the clearance new points keep from front faces (a share of the element size). A cap on its
+// last try now also takes new points that keep that share of its own height
+// (cap_new_point_candidates).
+TEST(Regression, Issue10CylinderOfExactlyPlanarQuadsMeshesWithNoSize) {
+  absl::StatusOr<Mesh> front =
+      read_mesh(std::string(AFMESH_SOURCE_DIR) + "/tests/data/exporter_cylinder_96_4.stl");
+  ASSERT_TRUE(front.ok()) << front.status();
+  VolumeParams params;
+  params.size = mean_edge_length(*front);
+  params.local_refinements = 0;  // the first run closes
+  mesh_and_check(*front, params);
 }
 
 }  // namespace
