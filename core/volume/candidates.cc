@@ -166,44 +166,30 @@ double wedge_apex_angle(const MesherState& s, Index face) {
 }
 
 // gather_candidates' new points: at these shares of the best point's height above the face,
-// with these ranks.
+// with these ranks; a cap's same points nearer the front (cap_clearance_size) from this rank on,
+// after every other candidate.
 constexpr double kNewPointHeights[] = {1.0, 0.6, 0.35};
 constexpr double kNewPointRanks[] = {0.6, 2.0, 2.1};
-
-// The element size whose share a new point keeps from front points (gather_candidates says why).
-double new_point_spacing_size(const MesherState& s, double d, int i) {
-  return s.sliver_front() ? d : d * kNewPointHeights[i];
-}
+constexpr double kCapPointRank = 3.0;
 
 // Not in the paper: where the back-off asks for it (Strictness::cap_new_points), a cap (is_cap)
 // also takes the new points gather_candidates makes with their clearance from front faces a
-// share of the cap's own height (its corner's distance from its longest edge) instead of the
-// element size's, ranked after every other candidate. A cap can lie in a pocket thinner than any
-// such clearance, where only a new point fits: on a faceted cylinder whose side quads are exactly
-// planar (a binary STL writes one float x and y per angle on every ring), elements across the
-// side leave flat faces on chords of the wall from one point of a ring to the next but one, and
-// between a chord and the two quads it spans lies a lens 0.002 of the radius thick whose quads'
-// diagonals twist round it (a Schönhardt prism: no element on its own points fills it). The
-// front made a cap in there on three points of a ring, and every point above it lay within
-// 0.0015 of the walls, 0.007 being the clearance at the last try
+// share of the cap's own height (its corner's distance from its longest edge, returned here)
+// instead of the element size's, ranked after every other candidate. A cap can lie in a pocket
+// thinner than any such clearance, where only a new point fits: on a faceted cylinder whose side
+// quads are exactly planar (a binary STL writes one float x and y per angle on every ring),
+// elements across the side leave flat faces on chords of the wall from one point of a ring to
+// the next but one, and between a chord and the two quads it spans lies a lens 0.002 of the
+// radius thick whose quads' diagonals twist round it (a Schönhardt prism: no element on its own
+// points fills it). The front made a cap in there on three points of a ring, and every point
+// above it lay within 0.0015 of the walls, 0.007 being the clearance at the last try
 // (Regression.Issue10CylinderOfExactlyPlanarQuadsMeshesWithNoSize; it stopped with no size, also
 // after 16 reruns). The crossing check (F7.3) still decides whether the element fits; its spacing
 // from front points is as for the other new points.
-void cap_new_point_candidates(MesherState& s, Index face, const Point& ideal, double d,
-                              double min_quality) {
-  const Triangle v = s.front.item(face).v;
-  const Point& a = s.points[v[0]];
-  const Point& b = s.points[v[1]];
-  const Point& c = s.points[v[2]];
+double cap_clearance_size(const Point& a, const Point& b, const Point& c) {
   const double longest = std::sqrt(
       std::max({squared_norm(sub(b, a)), squared_norm(sub(c, b)), squared_norm(sub(a, c))}));
-  const double height = norm(cross(sub(b, a), sub(c, a))) / longest;
-  const Point centroid = scale(add(a, add(b, c)), 1.0 / 3.0);
-  for (int i = 0; i < 3; ++i) {
-    const Point x = add(centroid, scale(sub(ideal, centroid), kNewPointHeights[i]));
-    if (tet_shape_quality(a, b, c, x) < min_quality) continue;
-    s.candidates.push_back({kInvalidIndex, x, 3.0 + i, height, new_point_spacing_size(s, d, i)});
-  }
+  return norm(cross(sub(b, a), sub(c, a))) / longest;
 }
 
 // The smallest shape (tet_shape_quality) gather_candidates accepts: the rules' share of
@@ -412,17 +398,19 @@ void gather_candidates(MesherState& s, Index face, const Point& ideal, double d,
   // shipped meshes for the worse (min dihedral: L-block 20.009 -> 20.003 degrees, dome with
   // tags 20.011 -> 19.747).
   const Point centroid = scale(add(a, add(b, c)), 1.0 / 3.0);
+  const bool cap_points = rules.cap_new_points && is_cap(a, b, c);
+  const double cap_clearance = cap_points ? cap_clearance_size(a, b, c) : 0.0;
   for (int i = 0; i < 3; ++i) {
     const Point x = add(centroid, scale(sub(ideal, centroid), kNewPointHeights[i]));
     if (tet_shape_quality(a, b, c, x) < min_quality) continue;
     // Its clearance from the front is checked only if the loop gets to it (most faces take
     // the first candidate).
-    s.candidates.push_back({kInvalidIndex, x, kNewPointRanks[i], d * kNewPointHeights[i],
-                            new_point_spacing_size(s, d, i)});
+    const double spacing_size = s.sliver_front() ? d : d * kNewPointHeights[i];
+    s.candidates.push_back(
+        {kInvalidIndex, x, kNewPointRanks[i], d * kNewPointHeights[i], spacing_size});
+    if (cap_points)  // the same point again, nearer the front's faces (cap_clearance_size)
+      s.candidates.push_back({kInvalidIndex, x, kCapPointRank + i, cap_clearance, spacing_size});
   }
-
-  if (rules.cap_new_points && is_cap(a, b, c))
-    cap_new_point_candidates(s, face, ideal, d, min_quality);
   std::sort(s.candidates.begin(), s.candidates.end(),
             [](const Candidate& l, const Candidate& r) {
               if (l.rank != r.rank) return l.rank < r.rank;

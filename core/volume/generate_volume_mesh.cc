@@ -351,7 +351,7 @@ absl::Status back_off(MesherState& s, const Mesh& input, Index face, BackOffCoun
     return requeue();
   int& count = counts.reopenings.at(centroid, d);
   // Not in the paper: a cap stuck again where the front has re-opened before takes a new point
-  // in the thin pocket it may lie in (cap_new_point_candidates in candidates.cc). Tried on a
+  // in the thin pocket it may lie in (cap_clearance_size in candidates.cc). Tried on a
   // cap's last try instead, before any back-off, it took flat elements where re-opening once
   // found better ones (a 48-round cylinder with fanned caps: min dihedral 17.9 -> 8.5 degrees).
   if (count > 0 && volume::is_cap_face(s, v) &&

@@ -125,9 +125,9 @@ TEST(Regression, Issue10CylindersWithFannedCapsMeshUnderTheirMeanEdge) {
 // two side quads it spans lies a lens 0.002 thick round whose quads the diagonals twist (a
 // Schönhardt prism), which no element on existing points fills. The front made a cap in the lens
 // on three points of a ring and got stuck at it: every new point in there lies nearer the walls
-// than the clearance new points keep from front faces (a share of the element size). A cap on its
-// last try now also takes new points that keep that share of its own height
-// (cap_new_point_candidates).
+// than the clearance new points keep from front faces (a share of the element size). A cap stuck
+// again where the front has re-opened before now also takes new points that keep that share of
+// its own height (cap_clearance_size in candidates.cc).
 TEST(Regression, Issue10CylinderOfExactlyPlanarQuadsMeshesWithNoSize) {
   absl::StatusOr<Mesh> front =
       read_mesh(std::string(AFMESH_SOURCE_DIR) + "/tests/data/exporter_cylinder_96_4.stl");

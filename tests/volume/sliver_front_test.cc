@@ -209,7 +209,7 @@ TEST(Regression, Issue10PocketWithAThinKernelMeshes) {
 // stopped (refine_where_stuck), it closes valid, the boundary exactly the input's, and each time
 // it was meshed again is said in a warning with why and where. Since sliver needles take points
 // as other faces do (candidates.cc) it closes on its first run at its mean edge, and since a
-// cap stuck again takes a new point in a thin pocket (cap_new_point_candidates) at 0.8 and 0.9
+// cap stuck again takes a new point in a thin pocket (cap_clearance_size) at 0.8 and 0.9
 // times too; at 0.75 times it still stops once first.
 TEST(Regression, Issue10RawCadShapeMeshesWithTheSizeHalvedWhereItStuck) {
   absl::StatusOr<Mesh> shape =
