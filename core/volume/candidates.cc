@@ -325,10 +325,7 @@ bool is_cap_face(const MesherState& s, const Triangle& v) {
 }
 
 bool touches_input_sliver(const MesherState& s, const Triangle& v) {
-  const auto marked = [&](Index p) {
-    return p < static_cast<Index>(s.input_sliver_point.size()) && s.input_sliver_point[p];
-  };
-  return std::any_of(v.begin(), v.end(), marked);
+  return std::any_of(v.begin(), v.end(), [&](Index p) { return s.is_input_sliver_point(p); });
 }
 
 double best_element_quality(const MesherState& s, const Triangle& v) {

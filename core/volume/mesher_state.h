@@ -54,6 +54,9 @@ struct MesherState {
   // it across a thin wedge (gather_candidates, wedge_apex_candidates; on fronts with crossing
   // environments only the faces that have failed once, wedge_apex_angle).
   bool sliver_front() const { return !input_sliver_point.empty(); }
+  bool is_input_sliver_point(Index p) const {
+    return p < static_cast<Index>(input_sliver_point.size()) && input_sliver_point[p];
+  }
   std::vector<Tet> tets;           // a deleted tet has tet[0] == kInvalidIndex
   std::int64_t live_tets = 0;
   // Sum of the live tets' volumes (a measure, for the guard against overlapping elements).
