@@ -199,11 +199,7 @@ absl::StatusOr<std::vector<ThinPair>> find_thin_pairs(const Mesh& front, const F
   const double fold_cosine = cosine_of_degrees(params.fold_angle_deg);
   std::vector<Box> boxes = triangle_boxes(front.points, front.triangles);
   for (std::size_t t = 0; t < boxes.size(); ++t) {
-    const double margin = params.closeness * frames.size[t];
-    for (int k = 0; k < 3; ++k) {
-      boxes[t].lo[k] -= margin;
-      boxes[t].hi[k] += margin;
-    }
+    boxes[t] = grown(boxes[t], params.closeness * frames.size[t]);
   }
   const std::vector<std::pair<Index, Index>> candidates = AabbTree(std::move(boxes)).overlapping_pairs();
   std::vector<ThinPair> pairs;

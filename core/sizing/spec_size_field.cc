@@ -29,12 +29,7 @@ Box padded(const Box& box, double fallback) {
   double largest = 0.0;
   for (int k = 0; k < 3; ++k) largest = std::max(largest, box.hi[k] - box.lo[k]);
   const double pad = largest > 0.0 ? 0.01 * largest : fallback;
-  Box out = box;
-  for (int k = 0; k < 3; ++k) {
-    out.lo[k] -= pad;
-    out.hi[k] += pad;
-  }
-  return out;
+  return grown(box, pad);
 }
 
 }  // namespace

@@ -49,6 +49,16 @@ inline void enclose(Box& box, const Box& b) {
   }
 }
 
+// `box` grown by `margin` on every side.
+inline Box grown(const Box& box, double margin) {
+  Box out = box;
+  for (int k = 0; k < 3; ++k) {
+    out.lo[k] -= margin;
+    out.hi[k] += margin;
+  }
+  return out;
+}
+
 // The smallest box containing triangle t of `points` (N×3). Indices must be in range.
 Box triangle_box(const std::vector<Point>& points, const Triangle& t);
 

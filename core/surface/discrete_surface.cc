@@ -212,9 +212,7 @@ double DiscreteSurface::squared_distance_to_face(const Point& x, FaceId f, Point
 
 Box DiscreteSurface::ball_box(FaceId f) const {
   const Ball& ball = balls_[index_of(f)];
-  Box box{ball.centroid, ball.centroid};
-  for (int k = 0; k < 3; ++k) box.lo[k] -= ball.radius, box.hi[k] += ball.radius;
-  return box;
+  return grown(Box{ball.centroid, ball.centroid}, ball.radius);
 }
 
 // cannot_be_nearer is false only where the gap from x to the ball is at most
@@ -223,9 +221,7 @@ Box DiscreteSurface::ball_box(FaceId f) const {
 // far more than the roundings of the gap's few operations.
 Box DiscreteSurface::reach_box(const Point& x, double squared_distance) const {
   const double reach = std::sqrt(squared_distance) * (1.0 + 1e-6) + 2.0 * ball_margin(x);
-  Box box{x, x};
-  for (int k = 0; k < 3; ++k) box.lo[k] -= reach, box.hi[k] += reach;
-  return box;
+  return grown(Box{x, x}, reach);
 }
 
 Located DiscreteSurface::nearest_face(const Point& x) const {

@@ -682,7 +682,7 @@ bool PatchFront::face_crosses_front(Index f, const Side& v, Index p,
   // nearer than `clearance` to a new side would leave a sliver gap (not in the paper: a front
   // point a rounding's width outside a new side, a line's middle point beside a face across
   // both its sides, passes the exact test).
-  for (int k = 0; k < 3; ++k) box.lo[k] -= clearance, box.hi[k] += clearance;
+  box = grown(box, clearance);
   const double clearance2 = clearance * clearance;
   bool covered = false;
   ++bins_watch_.queries;
@@ -1287,8 +1287,7 @@ std::vector<std::pair<std::size_t, std::size_t>> crossing_sides(const SurfaceMes
     const std::array<double, 2> p = in_plane(a), q = in_plane(b);
     // A side whose points lie within `length` of v's plane and that crosses v in that plane
     // passes within `length` of v: its box meets v's box grown by `length`.
-    Box reach = side_box(v);
-    for (int k = 0; k < 3; ++k) reach.lo[k] -= length, reach.hi[k] += length;
+    const Box reach = grown(side_box(v), length);
     near.clear();
     bins.items_near(reach, near);  // each side once
     for (const Index found : near) {
