@@ -1,9 +1,12 @@
 // F7.3 of the volume front: does the new element cross the front?
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
+#include "core/geometry/closest_points.h"
 #include "core/geometry/intersect.h"
 #include "core/geometry/predicates.h"
+#include "core/geometry/vec.h"
 #include "core/volume/front_steps.h"
 
 namespace afmesh::volume {
@@ -84,9 +87,45 @@ bool side_is_a_meshed_face(MesherState& s, const Triangle (&sides)[3], Index p) 
   return false;
 }
 
+// Not in the paper: whether a point lies within `gap` of one of the element's new faces `sides`
+// (element_crosses_front's `gap`). Most points are farther than that from each face's plane,
+// which their unit normals tell at once.
+class NearSides {
+ public:
+  NearSides(const std::vector<Point>& x, const Triangle (&sides)[3], double gap)
+      : x_(x), sides_(sides), gap_(gap) {
+    if (!(gap > 0)) return;
+    for (int i = 0; i < 3; ++i) {
+      const Point n = cross(sub(x[sides[i][1]], x[sides[i][0]]), sub(x[sides[i][2]], x[sides[i][0]]));
+      const double length = norm(n);
+      normals_[i] = length > 0 ? scale(n, 1.0 / length) : Point{0.0, 0.0, 0.0};
+      flat_[i] = !(length > 0);
+    }
+  }
+
+  bool near(const Point& q) const {
+    if (!(gap_ > 0)) return false;
+    for (int i = 0; i < 3; ++i) {
+      const Triangle& t = sides_[i];
+      // Farther than the gap from the face's plane: farther from the face too.
+      if (!flat_[i] && std::abs(dot(normals_[i], sub(q, x_[t[0]]))) >= gap_) continue;
+      const Point c = closest_point_on_triangle(q, x_[t[0]], x_[t[1]], x_[t[2]]);
+      if (squared_norm(sub(q, c)) < gap_ * gap_) return true;
+    }
+    return false;
+  }
+
+ private:
+  const std::vector<Point>& x_;
+  const Triangle (&sides_)[3];
+  double gap_;
+  Point normals_[3];
+  bool flat_[3] = {false, false, false};
+};
+
 }  // namespace
 
-bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed) {
+bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed, double gap) {
   if (crossed) *crossed = kInvalidIndex;
   const Triangle v = s.front.item(face).v;
   const Index env = s.front.item(face).env;
@@ -169,7 +208,8 @@ bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed) 
 
   const bool positive = planes.positive();
   bool contains_point = false;
-  s.front.bins().for_each_point_near(box, [&](Index q) {
+  const NearSides near_sides(x, sides, gap);
+  s.front.bins().for_each_point_near(grown(box, gap), [&](Index q) {
     ++s.face_tests;
     ++s.bins_watch.points;
     if (contains_point || has_corner(tet, q) || !point_visible(s, env, q)) return;
@@ -177,6 +217,7 @@ bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed) 
     // point_in_tet are the face planes' sides, negated).
     contains_point = positive ? (planes.code(q) & 0x0F) == 0
                               : point_in_tet(x[q], x[v[0]], x[v[1]], x[v[2]], x[p]) >= 0;
+    if (!contains_point && !s.is_input_sliver_point(q)) contains_point = near_sides.near(x[q]);
   });
   return contains_point;
 }

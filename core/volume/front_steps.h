@@ -32,6 +32,9 @@ struct Strictness {
   // Not in the paper: a cap (is_cap_face) also takes new points near the front's faces
   // (gather_candidates), set by the back-off only.
   bool cap_new_points = false;
+  // Not in the paper: a front point outside the element may come no nearer than this fraction
+  // of d to one of its new faces (element_crosses_front's `gap`; delete_face).
+  double graze = 0.0;
 };
 Strictness strictness_for(int attempts);
 
@@ -126,8 +129,16 @@ bool new_point_is_clear(MesherState& s, const Point& x, double spacing_size,
 // other than those it shares properly, or contains a front point. `p` is an index into
 // s.points (a new point is appended before the check). Exact predicates only. When it crosses
 // and `crossed` is given, *crossed is the front face it meets improperly, or kInvalidIndex when
-// it crosses for another reason (a front point inside it, a meshed face).
-bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed = nullptr);
+// it crosses for another reason (a front point inside it or within `gap`, a meshed face).
+// Not in the paper: with `gap` > 0 a visible front point that is no corner of the element also
+// counts when it lies within `gap` of one of the element's new faces: the element would leave a
+// gap that thin between that face and the point, which only a sliver fills (Strictness::graze;
+// the surface front keeps the same clearance from its new sides). A corner of a poor input face
+// (MesherState::is_input_sliver_point) does not count so: a CAD tessellation's slivers put such
+// points within any gap of the faces near them, and the rule stopped runs that close without it
+// (Regression.Issue10LeverMeshesAsGiven, Issue10HingeMeshesAsGiven).
+bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed = nullptr,
+                           double gap = 0.0);
 
 // Not in the paper: the front's bins become adaptive (an octree, FrontBins::Adaptive) when
 // element_crosses_front (F7.3) has looked at more than kCrowdedPointsPerSearch front points per

@@ -173,6 +173,9 @@ bool delete_face(MesherState& s, Index face, int attempts, bool cap_new_points =
   const double min_spacing = kMinNewPointSpacing * target;
   const Point ideal = volume::ideal_point(s, v, d);                    // F7.1
   volume::gather_candidates(s, face, ideal, d, rules);                 // F7.2
+  // With crossing environments (paper §2) the two sides of a thin region lie closer than any
+  // gap: they keep the rules they had (Strictness::graze is not asked there).
+  const double graze = s.point_env.empty() ? rules.graze * d : 0.0;
   for (const volume::Candidate& c : s.candidates) {
     Index p = c.point;
     if (p == kInvalidIndex) {  // a new point: eq. 15 sets its size
@@ -184,7 +187,7 @@ bool delete_face(MesherState& s, Index face, int attempts, bool cap_new_points =
       s.point_size.push_back(
           new_point_size(s.size_field.size_at(c.position), s.growth, s.point_size, v));
     }
-    if (!volume::element_crosses_front(s, face, p)) {                  // F7.3
+    if (!volume::element_crosses_front(s, face, p, nullptr, graze)) {  // F7.3
       volume::add_element(s, face, p);                                 // F8–F10
       return true;
     }
