@@ -96,7 +96,8 @@ class NearSides {
       : x_(x), sides_(sides), gap_(gap) {
     if (!(gap > 0)) return;
     for (int i = 0; i < 3; ++i) {
-      const Point n = cross(sub(x[sides[i][1]], x[sides[i][0]]), sub(x[sides[i][2]], x[sides[i][0]]));
+      const Point& a = x[sides[i][0]];
+      const Point n = cross(sub(x[sides[i][1]], a), sub(x[sides[i][2]], a));
       const double length = norm(n);
       normals_[i] = length > 0 ? scale(n, 1.0 / length) : Point{0.0, 0.0, 0.0};
       flat_[i] = !(length > 0);
