@@ -641,8 +641,12 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
         stopped_near = Stop{parked.places(s, size_field), false};
       return failure_at_face(s, front, *face, overrun);
     }
-    if (end_game.stalled(s.meshed_volume, domain_volume, s.front.size(), steps))
+    if (end_game.stalled(s.meshed_volume, domain_volume, s.front.size(), steps)) {
+      // Meshed again finer where it stalled, as where it got stuck (a latitude-longitude
+      // sphere's pole: Regression.Issue10EndGameStopIsMeshedAgainWhereItStopped).
+      stopped_near = Stop{{s.points[s.front.item(*face).v[0]]}, false};
       return end_game_report(s, front, *face, domain_volume, end_game.smallest_front());
+    }
     if (steps % kCancelCheckInterval == 0) {
       if (progress.cancelled()) return absl::CancelledError("volume meshing cancelled");
       if (s.live_tets > max_tets) return overbuilt_report(s, front, *face, expected_tets, max_tets);

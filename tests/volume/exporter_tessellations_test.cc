@@ -163,5 +163,20 @@ TEST(Regression, Issue10CylindersOfNearlyPlanarQuadsMeshWithNoSize) {
   }
 }
 
+// Regression for issue 10: a latitude-longitude sphere of 64 x 31 (the sweep's exporters group
+// has it as float STL) stops in the end game at its mean edge, its last faces by a pole only
+// making ever smaller elements (EndGameWatch). That stop named no place, so no rerun followed,
+// where every other stop is meshed again with the size halved where it stopped
+// (refine_where_stuck); it now names the face it stopped at, and the sphere closes on a rerun.
+TEST(Regression, Issue10EndGameStopIsMeshedAgainWhereItStopped) {
+  const Mesh front = testing::uv_sphere({0, 0, 0}, 10.0, 64, 31);
+  VolumeParams params;
+  params.size = mean_edge_length(front);
+  const VolumeResult result = mesh_and_check(front, params);
+  ASSERT_FALSE(result.warnings.empty());
+  EXPECT_NE(result.warnings.front().find("the front stopped closing"), std::string::npos)
+      << result.warnings.front();
+}
+
 }  // namespace
 }  // namespace afmesh
