@@ -89,7 +89,8 @@ bool side_is_a_meshed_face(MesherState& s, const Triangle (&sides)[3], Index p) 
 
 // Not in the paper: whether a point lies within `gap` of one of the element's new faces `sides`
 // (element_crosses_front's `gap`). Most points are farther than that from each face's plane,
-// which their unit normals tell at once.
+// which their unit normals tell at once (a degenerate face's normal is zero: every point is
+// then measured against the face itself).
 class NearSides {
  public:
   NearSides(const std::vector<Point>& x, const Triangle (&sides)[3], double gap)
@@ -100,7 +101,6 @@ class NearSides {
       const Point n = cross(sub(x[sides[i][1]], a), sub(x[sides[i][2]], a));
       const double length = norm(n);
       normals_[i] = length > 0 ? scale(n, 1.0 / length) : Point{0.0, 0.0, 0.0};
-      flat_[i] = !(length > 0);
     }
   }
 
@@ -109,7 +109,7 @@ class NearSides {
     for (int i = 0; i < 3; ++i) {
       const Triangle& t = sides_[i];
       // Farther than the gap from the face's plane: farther from the face too.
-      if (!flat_[i] && std::abs(dot(normals_[i], sub(q, x_[t[0]]))) >= gap_) continue;
+      if (std::abs(dot(normals_[i], sub(q, x_[t[0]]))) >= gap_) continue;
       const Point c = closest_point_on_triangle(q, x_[t[0]], x_[t[1]], x_[t[2]]);
       if (squared_norm(sub(q, c)) < gap_ * gap_) return true;
     }
@@ -121,7 +121,6 @@ class NearSides {
   const Triangle (&sides_)[3];
   double gap_;
   Point normals_[3];
-  bool flat_[3] = {false, false, false};
 };
 
 }  // namespace
@@ -218,7 +217,8 @@ bool element_crosses_front(MesherState& s, Index face, Index p, Index* crossed, 
     // point_in_tet are the face planes' sides, negated).
     contains_point = positive ? (planes.code(q) & 0x0F) == 0
                               : point_in_tet(x[q], x[v[0]], x[v[1]], x[v[2]], x[p]) >= 0;
-    if (!contains_point && !s.is_input_sliver_point(q)) contains_point = near_sides.near(x[q]);
+    if (!contains_point && gap > 0 && !s.is_input_sliver_point(q))
+      contains_point = near_sides.near(x[q]);
   });
   return contains_point;
 }
