@@ -449,17 +449,21 @@ std::string budget_overrun(const MesherState& s, const VolumeBudget& budget,
 }
 
 
-// Drops deleted tets and points no tet uses any more; input points keep their indices.
-// CANCELLED when the call is cancelled: a 2M-tet compaction takes ~100 ms, too long to finish
-// for a caller that no longer waits (issue 12, part 3).
-absl::StatusOr<Mesh> compact_result(const MesherState& s, const Mesh& input, Progress& progress) {
+// The mesh of `tets` (those with tet[0] == kInvalidIndex deleted) on `points`, of which the
+// first `input_points` are the input's and keep their indices; the other points no tet uses are
+// dropped. The triangles are the input's, with its tags. CANCELLED when the call is cancelled:
+// a 2M-tet compaction takes ~100 ms, too long to finish for a caller that no longer waits
+// (issue 12, part 3).
+absl::StatusOr<Mesh> compacted_mesh(const std::vector<Point>& points, Index input_points,
+                                    const std::vector<Tet>& tets, std::int64_t live_tets,
+                                    const Mesh& input, Progress& progress) {
   CancelCheck cancel(progress);
   Mesh out;
-  std::vector<Index> new_index(s.points.size(), kInvalidIndex);
-  for (Index p = 0; p < s.input_points; ++p) new_index[p] = p;
-  Index next = s.input_points;
-  out.tets.reserve(static_cast<std::size_t>(s.live_tets));
-  for (const Tet& t : s.tets) {
+  std::vector<Index> new_index(points.size(), kInvalidIndex);
+  for (Index p = 0; p < input_points; ++p) new_index[p] = p;
+  Index next = input_points;
+  out.tets.reserve(static_cast<std::size_t>(live_tets));
+  for (const Tet& t : tets) {
     if (cancel.due()) return absl::CancelledError("volume meshing cancelled");
     if (t[0] == kInvalidIndex) continue;
     Tet u;
@@ -470,13 +474,18 @@ absl::StatusOr<Mesh> compact_result(const MesherState& s, const Mesh& input, Pro
     out.tets.push_back(u);
   }
   out.points.resize(static_cast<std::size_t>(next));
-  for (std::size_t p = 0; p < s.points.size(); ++p)
-    if (new_index[p] != kInvalidIndex) out.points[new_index[p]] = s.points[p];
+  for (std::size_t p = 0; p < points.size(); ++p)
+    if (new_index[p] != kInvalidIndex) out.points[new_index[p]] = points[p];
   out.tet_tags.assign(out.tets.size(), 0);
   out.triangles = input.triangles;
   out.triangle_tags = input.triangle_tags;
   out.triangle_tags.resize(out.triangles.size(), 0);
   return out;
+}
+
+// The front's result: its live tets, the points they use.
+absl::StatusOr<Mesh> compact_result(const MesherState& s, const Mesh& input, Progress& progress) {
+  return compacted_mesh(s.points, s.input_points, s.tets, s.live_tets, input, progress);
 }
 
 // Where a run of the front loop stopped for refine_where_stuck to mesh again, and why.
