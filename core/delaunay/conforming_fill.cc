@@ -1,0 +1,224 @@
+// Delaunay tetrahedralisation, flip recovery of the front, and the inner side kept
+// (conforming_fill.h).
+#include "core/delaunay/conforming_fill.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "absl/container/flat_hash_map.h"
+#include "absl/strings/str_format.h"
+#include "core/delaunay/delaunay_3d.h"
+#include "core/delaunay/recover_faces.h"
+#include "core/geometry/predicates.h"
+#include "core/geometry/vec.h"
+
+namespace afmesh {
+namespace {
+
+using FaceKey = std::array<Index, 3>;
+
+FaceKey face_key(const Tet& t, int k) {
+  FaceKey f;
+  for (int i = 0, n = 0; i < 4; ++i)
+    if (i != k) f[n++] = t[i];
+  std::sort(f.begin(), f.end());
+  return f;
+}
+
+enum class Side : std::uint8_t { kUnknown, kInside, kOutside };
+
+// Rounds of conforming_fill: a first with every point, then again without the points inside
+// near the triangles still missing.
+constexpr int kDropRounds = 3;
+
+// The Delaunay tetrahedralisation of the points `kept` (the front's corners are always kept),
+// with the front's triangles recovered by flips; its elements in the numbering of `points`.
+// Returns the triangles (indices into `front`) that are still missing.
+absl::StatusOr<std::vector<Index>> recovered_delaunay(std::span<const Point> points,
+                                                      std::span<const Triangle> front,
+                                                      const std::vector<bool>& kept,
+                                                      std::int64_t max_tests,
+                                                      std::vector<Tet>& tets) {
+  std::vector<Point> x;
+  std::vector<Index> point_of, local(points.size(), kInvalidIndex);
+  for (std::size_t p = 0; p < points.size(); ++p)
+    if (kept[p]) {
+      local[p] = static_cast<Index>(x.size());
+      point_of.push_back(static_cast<Index>(p));
+      x.push_back(points[p]);
+    }
+  absl::StatusOr<DelaunayTets> delaunay = delaunay_tetrahedralise(x);
+  if (!delaunay.ok()) return delaunay.status();
+  std::vector<Triangle> faces;
+  for (const Triangle& f : front) {
+    Triangle g;
+    for (int i = 0; i < 3; ++i) {
+      g[i] = local[static_cast<std::size_t>(f[i])];
+      if (delaunay->vertex_of_point[static_cast<std::size_t>(g[i])] != g[i])
+        return absl::InvalidArgumentError(absl::StrFormat(
+            "front point %d coincides with point %d", f[i],
+            point_of[static_cast<std::size_t>(
+                delaunay->vertex_of_point[static_cast<std::size_t>(g[i])])]));
+    }
+    faces.push_back(g);
+  }
+  tets = std::move(delaunay->tets);
+  recover_faces_by_flips(x, tets, faces, max_tests);
+  absl::flat_hash_map<FaceKey, bool> present;
+  for (const Tet& t : tets)
+    for (int k = 0; k < 4; ++k) present[face_key(t, k)] = true;
+  std::vector<Index> missing;
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    FaceKey k = faces[i];
+    std::sort(k.begin(), k.end());
+    if (!present.contains(k)) missing.push_back(static_cast<Index>(i));
+  }
+  for (Tet& t : tets)
+    for (Index& q : t) q = point_of[static_cast<std::size_t>(q)];
+  return missing;
+}
+
+// Not kept any more: the points that are no front corner and lie in the ball about a missing
+// triangle's centroid through its farthest corner (they keep it from being a Delaunay face).
+// Returns how many were dropped.
+std::int64_t drop_points_near(std::span<const Point> points, std::span<const Triangle> front,
+                              const std::vector<Index>& missing,
+                              const std::vector<Index>& by_x, std::vector<bool>& kept,
+                              const std::vector<bool>& corner) {
+  std::int64_t dropped = 0;
+  for (const Index i : missing) {
+    const Triangle& f = front[static_cast<std::size_t>(i)];
+    const Point& a = points[static_cast<std::size_t>(f[0])];
+    const Point& b = points[static_cast<std::size_t>(f[1])];
+    const Point& c = points[static_cast<std::size_t>(f[2])];
+    const Point m = scale(add(a, add(b, c)), 1.0 / 3.0);
+    const double r2 = std::max({squared_norm(sub(a, m)), squared_norm(sub(b, m)),
+                                squared_norm(sub(c, m))});
+    const double r = std::sqrt(r2);
+    auto it = std::lower_bound(by_x.begin(), by_x.end(), m[0] - r, [&](Index p, double x) {
+      return points[static_cast<std::size_t>(p)][0] < x;
+    });
+    for (; it != by_x.end() && points[static_cast<std::size_t>(*it)][0] <= m[0] + r; ++it) {
+      const auto p = static_cast<std::size_t>(*it);
+      if (corner[p] || !kept[p] || squared_norm(sub(points[p], m)) >= r2) continue;
+      kept[p] = false;
+      ++dropped;
+    }
+  }
+  return dropped;
+}
+
+}  // namespace
+
+absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,
+                                                 std::span<const Triangle> front,
+                                                 std::int64_t max_tests) {
+  std::vector<bool> corner(points.size(), false), kept(points.size(), true);
+  for (const Triangle& f : front)
+    for (Index q : f) corner[static_cast<std::size_t>(q)] = true;
+  std::vector<Index> by_x;  // the points that are no corner, by x
+  for (std::size_t p = 0; p < points.size(); ++p)
+    if (!corner[p]) by_x.push_back(static_cast<Index>(p));
+  std::sort(by_x.begin(), by_x.end(), [&](Index p, Index q) {
+    return points[static_cast<std::size_t>(p)][0] < points[static_cast<std::size_t>(q)][0];
+  });
+  std::vector<Tet> tets;
+  for (int round = 0;; ++round) {
+    absl::StatusOr<std::vector<Index>> missing =
+        recovered_delaunay(points, front, kept, max_tests, tets);
+    if (!missing.ok()) return missing.status();
+    if (missing->empty()) break;
+    // Points inside near a missing triangle may be what keeps it out: tried again without them.
+    if (round + 1 == kDropRounds ||
+        drop_points_near(points, front, *missing, by_x, kept, corner) == 0)
+      return absl::FailedPreconditionError(absl::StrFormat(
+          "%d of the %d front triangles are not faces of the Delaunay tetrahedralisation of its "
+          "points and could not be recovered by flips",
+          missing->size(), front.size()));
+  }
+
+  // The front's triangles by their corners, and the two elements on each face.
+  absl::flat_hash_map<FaceKey, Index> front_faces;
+  for (std::size_t i = 0; i < front.size(); ++i) {
+    FaceKey k = front[i];
+    std::sort(k.begin(), k.end());
+    front_faces.emplace(k, static_cast<Index>(i));
+  }
+  absl::flat_hash_map<FaceKey, std::array<Index, 2>> on_face;
+  for (std::size_t t = 0; t < tets.size(); ++t)
+    for (int k = 0; k < 4; ++k) {
+      const std::array<Index, 2> one{static_cast<Index>(t), kInvalidIndex};
+      auto [it, fresh] = on_face.try_emplace(face_key(tets[t], k), one);
+      if (!fresh) it->second[1] = static_cast<Index>(t);
+    }
+
+  // Regions of elements joined through faces that are not the front's; each is inside (on the
+  // inner side of a front triangle) or outside (on its outer side, or on the hull).
+  std::vector<Index> region(tets.size(), kInvalidIndex);
+  std::vector<Side> side;
+  std::vector<Index> todo;
+  for (std::size_t seed = 0; seed < tets.size(); ++seed) {
+    if (region[seed] != kInvalidIndex) continue;
+    const Index r = static_cast<Index>(side.size());
+    side.push_back(Side::kUnknown);
+    region[seed] = r;
+    todo.assign(1, static_cast<Index>(seed));
+    const auto learn = [&](Side s) {
+      if (side[static_cast<std::size_t>(r)] != Side::kUnknown &&
+          side[static_cast<std::size_t>(r)] != s)
+        return false;
+      side[static_cast<std::size_t>(r)] = s;
+      return true;
+    };
+    while (!todo.empty()) {
+      const Index t = todo.back();
+      todo.pop_back();
+      const Tet& e = tets[static_cast<std::size_t>(t)];
+      for (int k = 0; k < 4; ++k) {
+        const FaceKey key = face_key(e, k);
+        if (const auto f = front_faces.find(key); f != front_faces.end()) {
+          const Triangle& v = front[static_cast<std::size_t>(f->second)];
+          const int o = orient3d(points[static_cast<std::size_t>(v[0])],
+                                 points[static_cast<std::size_t>(v[1])],
+                                 points[static_cast<std::size_t>(v[2])],
+                                 points[static_cast<std::size_t>(e[k])]);
+          if (!learn(o < 0 ? Side::kInside : Side::kOutside))
+            return absl::FailedPreconditionError(absl::StrFormat(
+                "the elements on both sides of front triangle %d are joined without crossing "
+                "the front",
+                f->second));
+          continue;
+        }
+        const std::array<Index, 2>& two = on_face.at(key);
+        const Index u = two[0] == t ? two[1] : two[0];
+        if (u == kInvalidIndex) {
+          if (!learn(Side::kOutside))
+            return absl::FailedPreconditionError(
+                "elements on the inner side of the front reach the hull of its points");
+          continue;
+        }
+        if (region[static_cast<std::size_t>(u)] != kInvalidIndex) continue;
+        region[static_cast<std::size_t>(u)] = r;
+        todo.push_back(u);
+      }
+    }
+  }
+
+  std::vector<Tet> inside;
+  for (std::size_t t = 0; t < tets.size(); ++t)
+    if (side[static_cast<std::size_t>(region[t])] == Side::kInside) inside.push_back(tets[t]);
+  // Each front triangle bounds exactly one element inside, on its inner side.
+  std::vector<int> bounded(front.size(), 0);
+  for (const Tet& e : inside)
+    for (int k = 0; k < 4; ++k)
+      if (const auto f = front_faces.find(face_key(e, k)); f != front_faces.end())
+        ++bounded[static_cast<std::size_t>(f->second)];
+  for (std::size_t i = 0; i < front.size(); ++i)
+    if (bounded[i] != 1)
+      return absl::FailedPreconditionError(absl::StrFormat(
+          "front triangle %d bounds %d elements of the fill, not one", i, bounded[i]));
+  return inside;
+}
+
+}  // namespace afmesh
