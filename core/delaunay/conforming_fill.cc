@@ -126,7 +126,7 @@ absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,
   std::vector<Tet> tets;
   for (int round = 0;; ++round) {
     absl::StatusOr<std::vector<Index>> missing =
-        recovered_delaunay(points, front, kept, max_tests, tets);
+        recovered_delaunay(points, front, kept, max_tests / kDropRounds, tets);
     if (!missing.ok()) return missing.status();
     if (missing->empty()) break;
     // Points inside near a missing triangle may be what keeps it out: tried again without them.

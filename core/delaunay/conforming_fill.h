@@ -26,7 +26,7 @@ namespace afmesh {
 // Points inside near a triangle the flips cannot recover are left out and the whole is tried
 // again (three tries in all): a point in the ball about a triangle keeps it from
 // being a Delaunay face. FAILED_PRECONDITION when a triangle cannot be recovered within
-// `max_tests` element-triangle tests per try (recover_faces_by_flips), or when the elements on
+// `max_tests` element-triangle tests in all (recover_faces_by_flips), or when the elements on
 // the two sides of the front cannot be told apart (a region reached from both sides);
 // INVALID_ARGUMENT when a point is not finite or two front corners coincide.
 absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,

@@ -12,6 +12,7 @@
 #include "absl/cleanup/cleanup.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "core/delaunay/conforming_fill.h"
 #include "core/environments/environments.h"
 #include "core/front/repair_counts.h"
 #include "core/geometry/vec.h"
@@ -33,6 +34,11 @@ constexpr int kAttemptsBeforeBackOff = 6;  // queue classes a face passes before
 constexpr int kMaxCavityRings = 4;
 constexpr double kMinNewPointSpacing = 0.04;  // of the wanted size; the last class allows 0.044
 constexpr std::size_t kMaxPocketFaces = 256;  // larger unmeshed regions are not pockets
+// fill_by_delaunay's work: at most this many element-triangle tests per front triangle, and
+// this many more (recover_faces_by_flips).
+constexpr std::int64_t kFillTestsPerFace = 200;
+constexpr std::int64_t kFillTests = 200000;
+
 // Part fills (fill_part_of_pocket) per region: uncounted, a region whose faces each part fill
 // leaves stuck again was filled part by part without end (OCCT sh1.stl at 0.5 x its mean edge:
 // 364 s, 135k tets, then stuck; with at most 2, stuck after 61 s, and sh1 at its mean edge
@@ -449,6 +455,19 @@ std::string budget_overrun(const MesherState& s, const VolumeBudget& budget,
 }
 
 
+// The points the front placed that its live elements use (a stopped run's, for
+// fill_by_delaunay).
+std::vector<Point> points_placed(const MesherState& s) {
+  std::vector<bool> used(s.points.size(), false);
+  for (const Tet& t : s.tets)
+    if (t[0] != kInvalidIndex)
+      for (Index q : t) used[q] = true;
+  std::vector<Point> out;
+  for (std::size_t p = static_cast<std::size_t>(s.input_points); p < s.points.size(); ++p)
+    if (used[p]) out.push_back(s.points[p]);
+  return out;
+}
+
 // The mesh of `tets` (those with tet[0] == kInvalidIndex deleted) on `points`, of which the
 // first `input_points` are the input's and keep their indices; the other points no tet uses are
 // dropped. The triangles are the input's, with its tags. CANCELLED when the call is cancelled:
@@ -606,7 +625,7 @@ VolumeBudget share_of(VolumeBudget budget, double share) {
 absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params,
                                    const SizeField& size_field, double growth, StageClock& clock,
                                    Progress& progress, std::optional<Stop>& stopped_near,
-                                   std::int64_t max_face_tests) {
+                                   std::int64_t max_face_tests, std::vector<Point>& placed) {
   const double boundary_edge = mean_edge_length(front);
   const double domain_volume = enclosed_volume(front.points, front.triangles, nullptr);
   const double max_size = params.spec ? params.spec->max_size : params.size;
@@ -628,7 +647,9 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
   s.points.reserve(front.points.size() + static_cast<std::size_t>(expected_tets / 4));
   if (absl::Status st = load_initial_front(s, front, params.face_environments); !st.ok())
     return st;
+  bool closed = false;
   const absl::Cleanup count_work = [&] {
+    if (!closed) placed = points_placed(s);
     if (!stopped_near) return;
     stopped_near->face_tests = s.face_tests;
     stopped_near->budget_face_tests = budget.face_tests;
@@ -702,6 +723,7 @@ absl::StatusOr<Mesh> advance_front(const Mesh& front, const VolumeParams& params
     return absl::InternalError(absl::StrFormat(
         "the front queue ran empty with %d faces left on the front", s.front.size()));
   if (std::optional<absl::Status> st = parked.stop(s, size_field, stopped_near)) return *st;
+  closed = true;
   clock.lap("front");
 
   absl::StatusOr<Mesh> mesh = compact_result(s, front, progress);
@@ -726,6 +748,27 @@ double refine_where_stuck(VolumeParams& run, const SizeField& field, const Point
                                .r1 = local,
                                .law = PowerLaw{.gamma = 1.0}});
   return kLocalRefinementRadius * local;
+}
+
+// Not in the paper (issue 10, part 3): the fill of a front the volume front could not close
+// however often it meshed it again: the Delaunay tetrahedralisation of its points and of the
+// interior points its last run placed, with the front's triangles recovered by flips
+// (conforming_fill, core/delaunay/conforming_fill.h), as TetGen's -pY meshes sliver fronts as
+// given. The optimiser then improves it as any other mesh. FAILED_PRECONDITION when a triangle
+// cannot be recovered, or the fill has more than `max_tets` elements.
+absl::StatusOr<Mesh> fill_by_delaunay(const Mesh& front, const std::vector<Point>& placed,
+                                      std::int64_t max_tets, Progress& progress) {
+  std::vector<Point> points = front.points;
+  points.insert(points.end(), placed.begin(), placed.end());
+  const auto faces = static_cast<std::int64_t>(front.triangles.size());
+  absl::StatusOr<std::vector<Tet>> tets =
+      conforming_fill(points, front.triangles, kFillTestsPerFace * faces + kFillTests);
+  if (!tets.ok()) return tets.status();
+  if (static_cast<std::int64_t>(tets->size()) > max_tets)
+    return absl::FailedPreconditionError(absl::StrFormat(
+        "the fill has %d tets, over the most allowed (%d)", tets->size(), max_tets));
+  return compacted_mesh(points, static_cast<Index>(front.points.size()), *tets,
+                        static_cast<std::int64_t>(tets->size()), front, progress);
 }
 
 }  // namespace
@@ -796,6 +839,7 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
   // so, 48 s with the bound.
   std::int64_t tests_used = 0, first_budget = 0;
   bool out_of_work = false;
+  std::vector<Point> placed;  // the points a run that stopped had placed
   for (int refinement = 0;; ++refinement) {
     std::optional<Stop> stopped_near;
     const std::int64_t left =
@@ -803,7 +847,8 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
             ? std::numeric_limits<std::int64_t>::max()
             : static_cast<std::int64_t>(kJobBudgets * static_cast<double>(first_budget)) -
                   tests_used;
-    mesh = advance_front(front, run, **size_field, growth, clock, progress, stopped_near, left);
+    mesh = advance_front(front, run, **size_field, growth, clock, progress, stopped_near, left,
+                         placed);
     if (mesh.ok() || !stopped_near || refinement >= params.local_refinements) break;
     tests_used += stopped_near->face_tests;
     if (first_budget == 0) first_budget = stopped_near->budget_face_tests;
@@ -826,17 +871,34 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
     if (!size_field.ok()) return size_field.status();
   }
   if (!mesh.ok()) {
-    if (result.warnings.empty()) return mesh.status();
-    return absl::Status(mesh.status().code(),
-                        absl::StrCat(mesh.status().message(), "; ",
-                                     meshed_again_times(
-                                         static_cast<std::int64_t>(result.warnings.size())),
-                                     " with the size halved where it stopped before: ", where,
-                                     out_of_work
-                                         ? absl::StrFormat("; its runs made %d crossing tests, "
-                                                           "over %g times the first run's budget",
-                                                           tests_used, kJobBudgets)
-                                         : ""));
+    absl::Status failed = mesh.status();
+    if (!result.warnings.empty())
+      failed = absl::Status(
+          failed.code(),
+          absl::StrCat(failed.message(), "; ",
+                       meshed_again_times(static_cast<std::int64_t>(result.warnings.size())),
+                       " with the size halved where it stopped before: ", where,
+                       out_of_work ? absl::StrFormat("; its runs made %d crossing tests, over %g "
+                                                     "times the first run's budget",
+                                                     tests_used, kJobBudgets)
+                                   : ""));
+    if (failed.code() != absl::StatusCode::kFailedPrecondition ||
+        !run.face_environments.empty())
+      return failed;
+    clock.lap("front");
+    mesh = fill_by_delaunay(front, placed, params.max_tets, progress);
+    if (mesh.status().code() == absl::StatusCode::kCancelled) return mesh.status();
+    if (!mesh.ok())
+      return absl::Status(
+          failed.code(),
+          absl::StrCat(failed.message(),
+                       "; nor could the volume be filled from its points (their Delaunay "
+                       "tetrahedralisation, its triangles recovered by flips): ",
+                       mesh.status().message()));
+    result.warnings.push_back(absl::StrFormat(
+        "%s; %s instead (%d points the front had placed, no new boundary point)",
+        failed.message(), kDelaunayFillWords, placed.size()));
+    clock.lap("delaunay fill");
   }
   result.mesh = *std::move(mesh);
   progress.report("front", 1.0);

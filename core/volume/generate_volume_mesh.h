@@ -33,6 +33,14 @@ inline constexpr double kMinAttachedGrowth = 1.2;
 // that a client able to re-triangulate first (`afmesh volume --remesh-surface`) can say how.
 inline constexpr char kRetriangulatedSurfaceAdvice[] = "a surface re-triangulated";
 
+// Not in the paper: the words a result's warning (or a failure) uses where the front could not
+// close and the volume was filled from its points instead (generate_volume_mesh: the Delaunay
+// tetrahedralisation of the front's points and of those its last run placed, its triangles
+// recovered by flips, core/delaunay/conforming_fill.h).
+inline constexpr char kDelaunayFillWords[] =
+    "filled by the Delaunay tetrahedralisation of its points with its triangles recovered by "
+    "flips";
+
 // The most VolumeParams::local_refinements the service accepts (VolumeOptions.max_reruns): each
 // run may do a whole VolumeBudget's work.
 inline constexpr int kMaxLocalRefinements = 32;
@@ -137,9 +145,12 @@ absl::StatusOr<std::unique_ptr<SizeField>> make_size_field(const VolumeParams& p
 // Fills the volume enclosed by `front` (outward-oriented closed triangles) with tetrahedra whose
 // boundary faces are exactly the front's triangles. Where the front gets stuck (its back-off
 // fails), it is meshed again with the size halved within 3 sizes of there, at most 8 times, each
-// said in VolumeResult::warnings (with crossing environments too).
+// said in VolumeResult::warnings (with crossing environments too). When the last run fails too
+// (FAILED_PRECONDITION, on a front without crossing environments), the volume is filled from the
+// front's points and those that run placed (kDelaunayFillWords), said in a warning.
 // Errors: INVALID_ARGUMENT (bad front or params), CANCELLED (progress.cancelled()),
-// FAILED_PRECONDITION (the front could not be closed; the message says where).
+// FAILED_PRECONDITION (the front could not be closed nor the volume filled from its points; the
+// message says where and why).
 absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const VolumeParams& params,
                                                   Progress& progress);
 

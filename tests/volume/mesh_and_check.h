@@ -2,6 +2,8 @@
 // the result against invariants.
 #pragma once
 
+#include <string>
+
 #include "core/quality/validate.h"
 #include "core/volume/generate_volume_mesh.h"
 #include "gtest/gtest.h"
@@ -14,6 +16,9 @@ inline VolumeResult mesh_and_check(const Mesh& front, const VolumeParams& params
   absl::StatusOr<VolumeResult> result = generate_volume_mesh(front, params, no_progress());
   EXPECT_TRUE(result.ok()) << result.status();
   if (!result.ok()) return {};
+  // The front closed: it was not filled from its points instead (kDelaunayFillWords).
+  for (const std::string& warning : result->warnings)
+    EXPECT_EQ(warning.find(kDelaunayFillWords), std::string::npos) << warning;
   const ValidationReport report = validate_volume_mesh(result->mesh, &front);
   EXPECT_TRUE(report.valid()) << report.to_string();
   // The input front's points come first, unchanged.
