@@ -102,7 +102,11 @@ def judge(args, group, name, stl, label, size, timeout, extra=None):
            "wall": round(wall, 3), "timeout": to or (rc == 6 and "did not finish within" in se),
            "cmd": " ".join(cmd[3:])}
     rec.update(extra or {})
-    rec["warnings"] = [l.split("warning:", 1)[1].strip() for l in se.splitlines() if "warning:" in l][:5]
+    warnings = [l.split("warning:", 1)[1].strip() for l in se.splitlines() if "warning:" in l]
+    rec["warnings"] = warnings[:5]
+    # The front could not close and the volume was filled from its points instead
+    # (core/delaunay/conforming_fill.h): valid, but not the front's mesh.
+    rec["filled"] = any("filled by the Delaunay tetrahedralisation" in w for w in warnings)
     if rc == 0:
         try:
             s = json.loads(so)
@@ -198,6 +202,7 @@ def line_of(r):
                 + (f"away={round(r['away_min_dihedral'], 2)}/{r['tets_away']} "
                    if r.get("boundary_slivers") and r.get("tets_away") else "")
                 + f"{'VALID' if r['valid'] else 'INVALID ' + ','.join(r.get('check_fail', []))}"
+                + (" FILLED" if r.get("filled") else "")
                 + (f" t/sphere={rel:.2f}" if rel else ""))
     return (f"{r['group']:11s} {r['name']:28s} {r['label']:>7s} H={r['size'] or 0:<8.4g} rc={r['rc']} "
             f"{r['wall']:7.2f}s {'TIMEOUT ' if r['timeout'] else ''}{r.get('message', '')[:160]}")
@@ -316,7 +321,7 @@ def summarise(results, t_of):
         elif r.get("timeout") and t_of and r.get("size") and r.get("volume"):
             r["est_tets"] = int(kmed * r["volume"] / r["size"] ** 3)
             r["rel_time_lower_bound"] = r["wall"] / t_of(r["est_tets"])
-    for group in ("calibration", "solids", "special", "occt", "corpus", "thin"):
+    for group in ("calibration", "solids", "special", "occt", "corpus", "exporters", "thin"):
         rs = [r for r in results if r["group"] == group]
         if not rs:
             continue
@@ -325,7 +330,10 @@ def summarise(results, t_of):
         # A dirty input (open, non-manifold, self-intersecting) must be refused, naming the
         # problem (issue 10, part 1): exit 3 with "invalid front: ..." is that answer.
         refused = [r for r in rs if refused_as_dirty(r)]
-        lines.append(f"\n== {group}: {len(rs)} runs, {valid} valid, {len(rs) - valid} not valid, {to} timeouts"
+        filled = sum(bool(r.get("filled")) and r["valid"] for r in rs)
+        lines.append(f"\n== {group}: {len(rs)} runs, {valid} valid"
+                     + (f" ({filled} filled from their points, the front having failed)" if filled else "")
+                     + f", {len(rs) - valid} not valid, {to} timeouts"
                      + (f"; of the not valid, {len(refused)} refused as dirty input (exit 3, 'invalid front', "
                         f"at most {max(r['wall'] for r in refused):.1f} s)" if refused else ""))
         causes = {}
