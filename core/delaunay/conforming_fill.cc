@@ -12,19 +12,15 @@
 #include "core/delaunay/recover_faces.h"
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
+#include "core/quality/mesh_topology.h"
 
 namespace afmesh {
 namespace {
 
-using FaceKey = std::array<Index, 3>;
+using FaceKey = Triangle;  // sorted: an unoriented face
 
-FaceKey face_key(const Tet& t, int k) {
-  FaceKey f;
-  for (int i = 0, n = 0; i < 4; ++i)
-    if (i != k) f[n++] = t[i];
-  std::sort(f.begin(), f.end());
-  return f;
-}
+// The face of tet t opposite its corner k, unoriented.
+FaceKey face_key(const Tet& t, int k) { return sorted_triangle(tet_face(t, k)); }
 
 enum class Side : std::uint8_t { kUnknown, kInside, kOutside };
 
@@ -70,9 +66,7 @@ absl::StatusOr<std::vector<Index>> recovered_delaunay(std::span<const Point> poi
     for (int k = 0; k < 4; ++k) present[face_key(t, k)] = true;
   std::vector<Index> missing;
   for (std::size_t i = 0; i < faces.size(); ++i) {
-    FaceKey k = faces[i];
-    std::sort(k.begin(), k.end());
-    if (!present.contains(k)) missing.push_back(static_cast<Index>(i));
+    if (!present.contains(sorted_triangle(faces[i]))) missing.push_back(static_cast<Index>(i));
   }
   for (Tet& t : tets)
     for (Index& q : t) q = point_of[static_cast<std::size_t>(q)];
@@ -141,9 +135,7 @@ absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,
   // The front's triangles by their corners, and the two elements on each face.
   absl::flat_hash_map<FaceKey, Index> front_faces;
   for (std::size_t i = 0; i < front.size(); ++i) {
-    FaceKey k = front[i];
-    std::sort(k.begin(), k.end());
-    front_faces.emplace(k, static_cast<Index>(i));
+    front_faces.emplace(sorted_triangle(front[i]), static_cast<Index>(i));
   }
   absl::flat_hash_map<FaceKey, std::array<Index, 2>> on_face;
   for (std::size_t t = 0; t < tets.size(); ++t)

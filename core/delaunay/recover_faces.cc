@@ -9,26 +9,17 @@
 #include "absl/container/flat_hash_set.h"
 #include "core/geometry/intersect.h"
 #include "core/geometry/predicates.h"
+#include "core/quality/mesh_topology.h"
 
 namespace afmesh {
 namespace {
 
-using FaceKey = std::array<Index, 3>;
+using FaceKey = Triangle;  // sorted: an unoriented face
 
-FaceKey key_of(Index a, Index b, Index c) {
-  FaceKey k{a, b, c};
-  std::sort(k.begin(), k.end());
-  return k;
-}
+FaceKey key_of(Index a, Index b, Index c) { return sorted_triangle({a, b, c}); }
 
 // The face of tet t opposite its corner k, unoriented.
-FaceKey face_of(const Tet& t, int k) {
-  FaceKey f;
-  for (int i = 0, n = 0; i < 4; ++i)
-    if (i != k) f[n++] = t[i];
-  std::sort(f.begin(), f.end());
-  return f;
-}
+FaceKey face_of(const Tet& t, int k) { return sorted_triangle(tet_face(t, k)); }
 
 bool has_vertex(const Tet& t, Index v) { return t[0] == v || t[1] == v || t[2] == v || t[3] == v; }
 

@@ -71,30 +71,28 @@ std::vector<Point> bipyramid(double height) {
   return x;
 }
 
-TEST(RecoverFaces, ThreeTwoFlipBringsInTheFaceAShortEdgeCrosses) {
-  const std::vector<Point> x = bipyramid(0.1);
+// The Delaunay elements of the bipyramid at `height` are `before` in number and lack `face`;
+// the flips bring it in with `after` elements over the same volume.
+void expect_flips_bring_in(double height, const Triangle& face, std::size_t before,
+                           std::size_t after) {
+  const std::vector<Point> x = bipyramid(height);
   std::vector<Tet> tets = delaunay_of(x);
-  ASSERT_EQ(tets.size(), 3u);
-  ASSERT_FALSE(has_face(tets, {0, 1, 2}));
-  const double before = volume_of(x, tets);
-  const std::vector<Triangle> faces = {{0, 1, 2}};
+  ASSERT_EQ(tets.size(), before);
+  ASSERT_FALSE(has_face(tets, face));
+  const double volume = volume_of(x, tets);
+  const std::vector<Triangle> faces = {face};
   EXPECT_EQ(recover_faces_by_flips(x, tets, faces, kTests), 0);
-  EXPECT_EQ(tets.size(), 2u);
-  EXPECT_TRUE(has_face(tets, {0, 1, 2}));
-  EXPECT_NEAR(volume_of(x, tets), before, 1e-12);
+  EXPECT_EQ(tets.size(), after);
+  EXPECT_TRUE(has_face(tets, face));
+  EXPECT_NEAR(volume_of(x, tets), volume, 1e-12);
+}
+
+TEST(RecoverFaces, ThreeTwoFlipBringsInTheFaceAShortEdgeCrosses) {
+  expect_flips_bring_in(0.1, {0, 1, 2}, 3, 2);
 }
 
 TEST(RecoverFaces, TwoThreeFlipBringsInAFaceThroughTheSharedFace) {
-  const std::vector<Point> x = bipyramid(2.0);
-  std::vector<Tet> tets = delaunay_of(x);
-  ASSERT_EQ(tets.size(), 2u);
-  ASSERT_FALSE(has_face(tets, {0, 3, 4}));
-  const double before = volume_of(x, tets);
-  const std::vector<Triangle> faces = {{0, 3, 4}};
-  EXPECT_EQ(recover_faces_by_flips(x, tets, faces, kTests), 0);
-  EXPECT_EQ(tets.size(), 3u);
-  EXPECT_TRUE(has_face(tets, {0, 3, 4}));
-  EXPECT_NEAR(volume_of(x, tets), before, 1e-12);
+  expect_flips_bring_in(2.0, {0, 3, 4}, 2, 3);
 }
 
 // Four coplanar points of a square and an apex: whichever diagonal the tetrahedralisation took,
