@@ -35,7 +35,7 @@ absl::StatusOr<std::vector<Index>> recovered_delaunay(std::span<const Point> poi
                                                       std::span<const Triangle> front,
                                                       const std::vector<bool>& kept,
                                                       std::int64_t max_tests,
-                                                      std::vector<Tet>& tets) {
+                                                      CancelCheck& stop, std::vector<Tet>& tets) {
   std::vector<Point> x;
   std::vector<Index> point_of, local(points.size(), kInvalidIndex);
   for (std::size_t p = 0; p < points.size(); ++p)
@@ -60,7 +60,9 @@ absl::StatusOr<std::vector<Index>> recovered_delaunay(std::span<const Point> poi
     faces.push_back(g);
   }
   tets = std::move(delaunay->tets);
-  recover_faces_by_flips(x, tets, faces, max_tests);
+  if (stop.look()) return absl::CancelledError("volume meshing cancelled");
+  recover_faces_by_flips(x, tets, faces, max_tests, &stop);
+  if (stop.stopped()) return absl::CancelledError("volume meshing cancelled");
   absl::flat_hash_map<FaceKey, bool> present;
   for (const Tet& t : tets)
     for (int k = 0; k < 4; ++k) present[face_key(t, k)] = true;
@@ -107,7 +109,8 @@ std::int64_t drop_points_near(std::span<const Point> points, std::span<const Tri
 
 absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,
                                                  std::span<const Triangle> front,
-                                                 std::int64_t max_tests) {
+                                                 std::int64_t max_tests, Progress& progress) {
+  CancelCheck stop(progress, 64);
   std::vector<bool> corner(points.size(), false), kept(points.size(), true);
   for (const Triangle& f : front)
     for (Index q : f) corner[static_cast<std::size_t>(q)] = true;
@@ -120,7 +123,7 @@ absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,
   std::vector<Tet> tets;
   for (int round = 0;; ++round) {
     absl::StatusOr<std::vector<Index>> missing =
-        recovered_delaunay(points, front, kept, max_tests / kDropRounds, tets);
+        recovered_delaunay(points, front, kept, max_tests / kDropRounds, stop, tets);
     if (!missing.ok()) return missing.status();
     if (missing->empty()) break;
     // Points inside near a missing triangle may be what keeps it out: tried again without them.

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "core/common/progress.h"
 #include "core/mesh/mesh.h"
 
 namespace afmesh {
@@ -28,9 +29,12 @@ namespace afmesh {
 // being a Delaunay face. FAILED_PRECONDITION when a triangle cannot be recovered within
 // `max_tests` element-triangle tests in all (recover_faces_by_flips), or when the elements on
 // the two sides of the front cannot be told apart (a region reached from both sides);
-// INVALID_ARGUMENT when a point is not finite or two front corners coincide.
+// INVALID_ARGUMENT when a point is not finite or two front corners coincide; CANCELLED once
+// progress.cancelled() turns true (asked between the steps and during the flips; not during a
+// Delaunay tetrahedralisation).
 absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,
                                                  std::span<const Triangle> front,
-                                                 std::int64_t max_tests);
+                                                 std::int64_t max_tests,
+                                                 Progress& progress = no_progress());
 
 }  // namespace afmesh

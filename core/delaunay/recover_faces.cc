@@ -259,7 +259,8 @@ void elements_meeting(const FlipComplex& c, std::span<const Point> x, const Tria
 }  // namespace
 
 std::int64_t recover_faces_by_flips(std::span<const Point> points, std::vector<Tet>& tets,
-                                    std::span<const Triangle> faces, std::int64_t max_tests) {
+                                    std::span<const Triangle> faces, std::int64_t max_tests,
+                                    CancelCheck* stop) {
   FlipComplex c(points, tets);
   absl::flat_hash_set<FaceKey> prescribed;
   for (const Triangle& f : faces) prescribed.insert(key_of(f[0], f[1], f[2]));
@@ -283,6 +284,10 @@ std::int64_t recover_faces_by_flips(std::span<const Point> points, std::vector<T
     progress = false;
     for (const Triangle& f : faces) {
       while (!c.has_face(key_of(f[0], f[1], f[2])) && tests < max_tests) {
+        if (stop != nullptr && stop->due()) {
+          tests = max_tests;
+          break;
+        }
         elements_meeting(c, points, f, meeting, tests);
         int best_gain = 0;
         const auto consider = [&](const Flip& candidate) {

@@ -24,6 +24,7 @@
 #include <span>
 #include <vector>
 
+#include "core/common/progress.h"
 #include "core/mesh/mesh.h"
 
 namespace afmesh {
@@ -33,8 +34,10 @@ namespace afmesh {
 // one of them, or no flip that helps is left, or `max_tests` element-triangle tests
 // (tet_triangle_intersect_improperly) have been made. `tets` stays a positive
 // tetrahedralisation of the same region. Returns how many of `faces` are not faces of `tets` at
-// the end (0: all recovered).
+// the end (0: all recovered). Stops early, as if out of work, once `stop` (when given) finds
+// the caller cancelled.
 std::int64_t recover_faces_by_flips(std::span<const Point> points, std::vector<Tet>& tets,
-                                    std::span<const Triangle> faces, std::int64_t max_tests);
+                                    std::span<const Triangle> faces, std::int64_t max_tests,
+                                    CancelCheck* stop = nullptr);
 
 }  // namespace afmesh

@@ -762,7 +762,7 @@ absl::StatusOr<Mesh> fill_by_delaunay(const Mesh& front, const std::vector<Point
   points.insert(points.end(), placed.begin(), placed.end());
   const auto faces = static_cast<std::int64_t>(front.triangles.size());
   absl::StatusOr<std::vector<Tet>> tets =
-      conforming_fill(points, front.triangles, kFillTestsPerFace * faces + kFillTests);
+      conforming_fill(points, front.triangles, kFillTestsPerFace * faces + kFillTests, progress);
   if (!tets.ok()) return tets.status();
   if (static_cast<std::int64_t>(tets->size()) > max_tets)
     return absl::FailedPreconditionError(absl::StrFormat(

@@ -240,5 +240,17 @@ TEST(ConformingFill, LeavesACavityEmpty) {
   expect_fills(front, {{0.5, 0.5, 0.5}, {3.5, 2.5, 1.5}, {3.2, 1.5, 1.0}});
 }
 
+// A cancelled caller gets CANCELLED, not a fill.
+TEST(ConformingFill, StopsWhenCancelled) {
+  struct Cancelled : Progress {
+    bool cancelled() const override { return true; }
+  } cancelled;
+  const Mesh front = testing::closed_cylinder(1.0, 0.5, 64, 2);
+  const absl::StatusOr<std::vector<Tet>> fill =
+      conforming_fill(front.points, front.triangles, kTests, cancelled);
+  ASSERT_FALSE(fill.ok());
+  EXPECT_EQ(fill.status().code(), absl::StatusCode::kCancelled) << fill.status();
+}
+
 }  // namespace
 }  // namespace afmesh
