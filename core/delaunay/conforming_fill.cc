@@ -61,15 +61,8 @@ absl::StatusOr<std::vector<Index>> recovered_delaunay(std::span<const Point> poi
   }
   tets = std::move(delaunay->tets);
   if (stop.look()) return absl::CancelledError("volume meshing cancelled");
-  recover_faces_by_flips(x, tets, faces, max_tests, &stop);
+  std::vector<Index> missing = recover_faces_by_flips(x, tets, faces, max_tests, &stop);
   if (stop.stopped()) return absl::CancelledError("volume meshing cancelled");
-  absl::flat_hash_map<FaceKey, bool> present;
-  for (const Tet& t : tets)
-    for (int k = 0; k < 4; ++k) present[face_key(t, k)] = true;
-  std::vector<Index> missing;
-  for (std::size_t i = 0; i < faces.size(); ++i) {
-    if (!present.contains(sorted_triangle(faces[i]))) missing.push_back(static_cast<Index>(i));
-  }
   for (Tet& t : tets)
     for (Index& q : t) q = point_of[static_cast<std::size_t>(q)];
   return missing;

@@ -21,8 +21,6 @@ FaceKey key_of(Index a, Index b, Index c) { return sorted_triangle({a, b, c}); }
 // The face of tet t opposite its corner k, unoriented.
 FaceKey face_of(const Tet& t, int k) { return sorted_triangle(tet_face(t, k)); }
 
-bool has_vertex(const Tet& t, Index v) { return t[0] == v || t[1] == v || t[2] == v || t[3] == v; }
-
 // A tetrahedralisation that flips: its live elements, the elements on each face (one on the
 // hull) and the elements on each vertex.
 class FlipComplex {
@@ -50,7 +48,7 @@ class FlipComplex {
   void edge_ring(Index a, Index b, std::vector<Index>& out) const {
     out.clear();
     for (Index t : of_vertex_[static_cast<std::size_t>(a)])
-      if (has_vertex(tet(t), b)) out.push_back(t);
+      if (has_corner(tet(t), b)) out.push_back(t);
   }
   const std::vector<Index>& elements_of(Index v) const {
     return of_vertex_[static_cast<std::size_t>(v)];
@@ -134,7 +132,7 @@ bool flip_23(const FlipComplex& c, Index t, int k, Flip& flip) {
   const Index p = a[k];
   Index q = kInvalidIndex;
   for (Index v : b)
-    if (!has_vertex(a, v)) q = v;
+    if (!has_corner(a, v)) q = v;
   const FaceKey f = face_of(a, k);
   int sign = 0;
   for (int i = 0; i < 3; ++i) {
@@ -184,7 +182,7 @@ bool flip_about_edge(const FlipComplex& c, Index a, Index b, std::vector<Index>&
         const Index u = others[i], w = others[j];
         bool together = false;
         for (Index t : ring)
-          together = together || (has_vertex(c.tet(t), u) && has_vertex(c.tet(t), w));
+          together = together || (has_corner(c.tet(t), u) && has_corner(c.tet(t), w));
         if (together) continue;
         if (orient3d(c.at(a), c.at(b), c.at(u), c.at(w)) != 0) continue;
         Index v0 = kInvalidIndex, v1 = kInvalidIndex;  // the other two ring corners
@@ -206,7 +204,7 @@ bool flip_about_edge(const FlipComplex& c, Index a, Index b, std::vector<Index>&
     // The corner both elements share besides a and b is p; the hull faces are (a, b, x), (a, b, y).
     Index p = kInvalidIndex;
     for (Index v : others)
-      if (has_vertex(c.tet(ring[0]), v) && has_vertex(c.tet(ring[1]), v)) p = v;
+      if (has_corner(c.tet(ring[0]), v) && has_corner(c.tet(ring[1]), v)) p = v;
     if (p == kInvalidIndex) return false;
     Index x = kInvalidIndex, y = kInvalidIndex;
     for (Index v : c.tet(ring[0]))
@@ -258,9 +256,9 @@ void elements_meeting(const FlipComplex& c, std::span<const Point> x, const Tria
 
 }  // namespace
 
-std::int64_t recover_faces_by_flips(std::span<const Point> points, std::vector<Tet>& tets,
-                                    std::span<const Triangle> faces, std::int64_t max_tests,
-                                    CancelCheck* stop) {
+std::vector<Index> recover_faces_by_flips(std::span<const Point> points, std::vector<Tet>& tets,
+                                         std::span<const Triangle> faces,
+                                         std::int64_t max_tests, CancelCheck* stop) {
   FlipComplex c(points, tets);
   absl::flat_hash_set<FaceKey> prescribed;
   for (const Triangle& f : faces) prescribed.insert(key_of(f[0], f[1], f[2]));
@@ -319,8 +317,9 @@ std::int64_t recover_faces_by_flips(std::span<const Point> points, std::vector<T
     }
   }
   tets = c.live();
-  std::int64_t missing = 0;
-  for (const Triangle& f : faces) missing += c.has_face(key_of(f[0], f[1], f[2])) ? 0 : 1;
+  std::vector<Index> missing;
+  for (std::size_t i = 0; i < faces.size(); ++i)
+    if (!c.has_face(sorted_triangle(faces[i]))) missing.push_back(static_cast<Index>(i));
   return missing;
 }
 

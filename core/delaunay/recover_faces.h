@@ -33,11 +33,11 @@ namespace afmesh {
 // face) until every triangle of `faces` (vertices of `points`, either orientation) is a face of
 // one of them, or no flip that helps is left, or `max_tests` element-triangle tests
 // (tet_triangle_intersect_improperly) have been made. `tets` stays a positive
-// tetrahedralisation of the same region. Returns how many of `faces` are not faces of `tets` at
-// the end (0: all recovered). Stops early, as if out of work, once `stop` (when given) finds
-// the caller cancelled.
-std::int64_t recover_faces_by_flips(std::span<const Point> points, std::vector<Tet>& tets,
-                                    std::span<const Triangle> faces, std::int64_t max_tests,
-                                    CancelCheck* stop = nullptr);
+// tetrahedralisation of the same region. Returns the triangles (indices into `faces`, ascending)
+// that are not faces of `tets` at the end (none: all recovered). Stops early, as if out of
+// work, once `stop` (when given) finds the caller cancelled.
+std::vector<Index> recover_faces_by_flips(std::span<const Point> points, std::vector<Tet>& tets,
+                                          std::span<const Triangle> faces,
+                                          std::int64_t max_tests, CancelCheck* stop = nullptr);
 
 }  // namespace afmesh
