@@ -13,6 +13,7 @@
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
 #include "core/quality/mesh_topology.h"
+#include "core/quality/tet_complex.h"
 
 namespace afmesh {
 namespace {
@@ -113,10 +114,10 @@ absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,
   std::sort(by_x.begin(), by_x.end(), [&](Index p, Index q) {
     return points[static_cast<std::size_t>(p)][0] < points[static_cast<std::size_t>(q)][0];
   });
-  std::vector<Tet> tets;
+  std::vector<Tet> recovered;
   for (int round = 0;; ++round) {
     absl::StatusOr<std::vector<Index>> missing =
-        recovered_delaunay(points, front, kept, max_tests / kDropRounds, stop, tets);
+        recovered_delaunay(points, front, kept, max_tests / kDropRounds, stop, recovered);
     if (!missing.ok()) return missing.status();
     if (missing->empty()) break;
     // Points inside near a missing triangle may be what keeps it out: tried again without them.
@@ -128,21 +129,20 @@ absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,
           missing->size(), front.size()));
   }
 
-  // The front's triangles by their corners, and the two elements on each face.
+  // The front's triangles by their corners, and the elements' face adjacency.
   absl::flat_hash_map<FaceKey, Index> front_faces;
   for (std::size_t i = 0; i < front.size(); ++i) {
     front_faces.emplace(sorted_triangle(front[i]), static_cast<Index>(i));
   }
-  absl::flat_hash_map<FaceKey, std::array<Index, 2>> on_face;
-  for (std::size_t t = 0; t < tets.size(); ++t)
-    for (int k = 0; k < 4; ++k) {
-      const std::array<Index, 2> one{static_cast<Index>(t), kInvalidIndex};
-      auto [it, fresh] = on_face.try_emplace(face_key(tets[t], k), one);
-      if (!fresh) it->second[1] = static_cast<Index>(t);
-    }
+  Mesh fill;
+  fill.points.assign(points.begin(), points.end());
+  fill.tets = std::move(recovered);
+  absl::StatusOr<TetComplex> complex = TetComplex::build(fill, progress);
+  if (!complex.ok()) return complex.status();
 
   // Regions of elements joined through faces that are not the front's; each is inside (on the
   // inner side of a front triangle) or outside (on its outer side, or on the hull).
+  const std::vector<Tet>& tets = fill.tets;
   std::vector<Index> region(tets.size(), kInvalidIndex);
   std::vector<Side> side;
   std::vector<Index> todo;
@@ -178,8 +178,7 @@ absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,
                 f->second));
           continue;
         }
-        const std::array<Index, 2>& two = on_face.at(key);
-        const Index u = two[0] == t ? two[1] : two[0];
+        const Index u = complex->neighbour(t, k);
         if (u == kInvalidIndex) {
           if (!learn(Side::kOutside))
             return absl::FailedPreconditionError(
