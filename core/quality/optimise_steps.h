@@ -9,6 +9,7 @@
 #include <limits>
 #include <vector>
 
+#include "absl/functional/function_ref.h"
 #include "core/mesh/mesh.h"
 #include "core/quality/optimise.h"
 #include "core/quality/tet_complex.h"
@@ -26,16 +27,42 @@ struct TopologyChange {
   double quality = -std::numeric_limits<double>::infinity();
 };
 
-// Edge removal (Shewchuk 2002, §2): the n <= max_ring tets around the interior edge (a, b) of tet
-// t become the 2(n - 2) tets over the best triangulation of its ring (ring_triangulation.h).
-// `ring` is scratch. False when the edge is on the boundary (its ring is not closed), has more
-// than max_ring tets, or no triangulation gives positive tets better than the ring's worst.
-bool propose_edge_removal(const TetComplex& c, Index t, Index a, Index b, int max_ring,
-                          EdgeRing& ring, TopologyChange& out);
+// A criterion for the tets a topological step makes, larger is better, called on positive tets
+// only (the steps check positivity by exact orient3d themselves). The optimiser's is tet_min_sine;
+// the recovery of prescribed triangles (recover_faces.h) has its own.
+using TetCriterion = absl::FunctionRef<double(const Tet&)>;
+
+// Edge removal (Shewchuk 2002, §2): the n tets of `ring` (TetComplex::edge_ring, an interior
+// edge, n <= kMaxRingSize) become the 2(n - 2) tets over the triangulation of the ring polygon
+// (ring_triangulation.h) whose worst tet by `criterion` is best, among those whose every tet is
+// positive and scores above `floor`. False when no such triangulation exists. out.quality is the
+// worst new tet's score.
+bool propose_edge_removal(const TetComplex& c, const EdgeRing& ring, TetCriterion criterion,
+                          double floor, TopologyChange& out);
+
+// Edge removal on the boundary: the n >= 2 tets of `fan` (TetComplex::edge_fan) around the
+// boundary edge (a, b), whose boundary faces (a, b, r_0) and (a, b, r_n) are coplanar with r_0
+// and r_n on either side of the line ab, become the 2(n - 1) tets over the triangulation of the
+// polygon r_0 .. r_n whose worst tet by `criterion` is best: the boundary's quadrilateral
+// (a, r_0, b, r_n) turns its diagonal to (r_0, r_n), the region stays the same. For n = 2 the
+// 2-2 flip of two tets on a convex hull. Not an optimiser step (the optimiser keeps the boundary);
+// the recovery of prescribed triangles (recover_faces.h) uses it, with
+// TetComplex::replace(..., boundary_may_change = true). False when n + 1 > kMaxRingSize or no
+// triangulation gives positive tets.
+bool propose_boundary_edge_removal(const TetComplex& c, const EdgeRing& fan,
+                                   TetCriterion criterion, TopologyChange& out);
 
 // 2-3 flip: the face of tet t opposite corner `corner` and the tet beyond it become three tets
 // around the edge joining the two apexes. False on a boundary face, when a new tet is not
-// positive, or when the new worst is not better than the old.
+// positive, or when a new tet does not score above `floor` by `criterion`.
+bool propose_face_removal(const TetComplex& c, Index t, int corner, TetCriterion criterion,
+                          double floor, TopologyChange& out);
+
+// The optimiser's steps: by tet_min_sine, each only when its new worst beats the old worst. For
+// edge removal, `ring` is scratch; false when the edge (a, b) of tet t is on the boundary or has
+// more than max_ring tets around it.
+bool propose_edge_removal(const TetComplex& c, Index t, Index a, Index b, int max_ring,
+                          EdgeRing& ring, TopologyChange& out);
 bool propose_face_removal(const TetComplex& c, Index t, int corner, TopologyChange& out);
 
 // Scratch for smooth_point.

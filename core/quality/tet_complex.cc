@@ -1,6 +1,7 @@
 #include "core/quality/tet_complex.h"
 
 #include <algorithm>
+#include <limits>
 #include <utility>
 
 #include "absl/strings/str_format.h"
@@ -104,6 +105,47 @@ bool TetComplex::edge_ring(Index t, Index a, Index b, int max_tets, EdgeRing& ou
   return true;
 }
 
+bool TetComplex::edge_fan(Index t, Index a, Index b, int max_tets, EdgeRing& out) const {
+  out.a = a;
+  out.b = b;
+  out.tets.clear();
+  out.ring.clear();
+  const int ia = corner_of(t, a), ib = corner_of(t, b);
+  if (ia < 0 || ib < 0 || ia == ib) return false;
+  int rest[2], n = 0;
+  for (int i = 0; i < 4; ++i)
+    if (i != ia && i != ib) rest[n++] = i;
+  if (permutation_sign(ia, ib, rest[0], rest[1]) < 0) std::swap(rest[0], rest[1]);
+  // Back to the first tet of the fan: cur = (a, b, u, v) up to an even permutation; the tet
+  // before it is across face (a, b, u).
+  Index u = m_->tets[t][rest[0]], v = m_->tets[t][rest[1]], cur = t;
+  for (int steps = 0;; ++steps) {
+    const Index prev = adjacent_[cur][corner_of(cur, v)];
+    if (prev == kInvalidIndex) break;
+    if (prev == t || steps >= max_tets) return false;  // closed: an interior edge
+    Index w = kInvalidIndex;
+    for (Index p : m_->tets[prev])
+      if (p != a && p != b && p != u) w = p;
+    v = u;
+    u = w;
+    cur = prev;
+  }
+  out.ring.push_back(u);
+  while (true) {
+    if (static_cast<int>(out.tets.size()) >= max_tets) return false;
+    out.tets.push_back(cur);
+    out.ring.push_back(v);
+    const Index next = adjacent_[cur][corner_of(cur, u)];  // across face (a, b, v)
+    if (next == kInvalidIndex) return true;
+    Index w = kInvalidIndex;
+    for (Index p : m_->tets[next])
+      if (p != a && p != b && p != v) w = p;
+    u = v;
+    v = w;
+    cur = next;
+  }
+}
+
 void TetComplex::ball(Index p, std::vector<Index>& out) const {
   out.clear();
   const Index start = point_tet_[p];
@@ -135,7 +177,8 @@ Index TetComplex::new_slot() {
 }
 
 bool TetComplex::replace(absl::Span<const Index> old, absl::Span<const Tet> fresh,
-                         std::vector<Index>& created) {
+                         std::vector<Index>& created, bool boundary_may_change) {
+  constexpr int kNewBoundary = std::numeric_limits<int>::min();
   // The cavity's outside faces, oriented outward, each with the tet beyond it.
   struct Outer {
     Triangle face;
@@ -148,14 +191,17 @@ bool TetComplex::replace(absl::Span<const Index> old, absl::Span<const Tet> fres
     for (int i = 0; i < 4; ++i)
       if (std::find(old.begin(), old.end(), adjacent_[o][i]) == old.end())
         outer.push_back({canonical_rotation(tet_face(m_->tets[o], i)), adjacent_[o][i], false});
+  std::vector<Index> unused;  // points of old that no fresh tet uses
   for (Index o : old)
     for (Index p : m_->tets[o]) {
       bool used = false;
       for (const Tet& f : fresh) used = used || has_corner(f, p);
-      if (!used) return false;
+      if (used || std::find(unused.begin(), unused.end(), p) != unused.end()) continue;
+      if (!boundary_may_change) return false;
+      unused.push_back(p);
     }
-  // link[4 f + i]: the fresh face (4 g + j) glued to face i of fresh[f], or -(k + 1) for the
-  // outside face outer[k].
+  // link[4 f + i]: the fresh face (4 g + j) glued to face i of fresh[f], -(k + 1) for the
+  // outside face outer[k], or kNewBoundary for a new boundary face.
   std::vector<int> link(4 * fresh.size(), 0);
   for (std::size_t f = 0; f < fresh.size(); ++f) {
     for (int i = 0; i < 4; ++i) {
@@ -174,11 +220,12 @@ bool TetComplex::replace(absl::Span<const Index> old, absl::Span<const Tet> fres
             link[4 * f + i] = static_cast<int>(4 * g + j);
             found = 0;
           }
-      if (found < 0) return false;
+      if (found < 0 && !boundary_may_change) return false;
+      if (found < 0) link[4 * f + i] = kNewBoundary;
     }
   }
   for (const Outer& o : outer)
-    if (!o.used) return false;
+    if (!o.used && !boundary_may_change) return false;
   for (std::size_t e = 0; e < link.size(); ++e)
     if (link[e] >= 0 && link[link[e]] != static_cast<int>(e)) return false;
 
@@ -194,10 +241,29 @@ bool TetComplex::replace(absl::Span<const Index> old, absl::Span<const Tet> fres
     for (Index p : f) point_tet_[p] = t;
     created.push_back(t);
   }
+  // Left out: the tets beyond lose their neighbour there, and a point no fresh tet uses is
+  // found again in a tet beyond (or in none).
+  for (const Outer& o : outer) {
+    if (o.used || o.beyond == kInvalidIndex) continue;
+    for (int j = 0; j < 4; ++j) {
+      const Index p = m_->tets[o.beyond][j];
+      if (p != o.face[0] && p != o.face[1] && p != o.face[2])
+        adjacent_[o.beyond][j] = kInvalidIndex;
+    }
+  }
+  for (Index p : unused) {
+    point_tet_[p] = kInvalidIndex;
+    for (const Outer& o : outer)
+      if (o.beyond != kInvalidIndex && has_corner(m_->tets[o.beyond], p)) point_tet_[p] = o.beyond;
+  }
   for (std::size_t f = 0; f < fresh.size(); ++f) {
     const Index t = created[first + f];
     for (int i = 0; i < 4; ++i) {
       const int l = link[4 * f + i];
+      if (l == kNewBoundary) {
+        adjacent_[t][i] = kInvalidIndex;
+        continue;
+      }
       if (l >= 0) {
         adjacent_[t][i] = created[first + l / 4];
         continue;

@@ -4,10 +4,11 @@
 //
 // The tets are those of a Mesh (K×4, positive, conforming: every face in one or two tets),
 // edited in place. A face with no neighbour is a boundary face; replace() keeps the faces on the
-// cavity's outside exactly as they are, so boundary faces are never removed by the operations
-// built on it. Deleted tets leave a slot (first index kInvalidIndex) that the next new tet
-// reuses (last freed, first reused); compact() drops the empty slots at the end. Every result
-// depends only on the order of calls, never on addresses or hashing.
+// cavity's outside exactly as they are unless asked otherwise, so boundary faces are never
+// removed by the optimiser's operations built on it. Deleted tets leave a slot (first index
+// kInvalidIndex) that the next new tet reuses (last freed, first reused); compact() drops the
+// empty slots at the end. Every result depends only on the order of calls, never on addresses or
+// hashing.
 #pragma once
 
 #include <array>
@@ -22,7 +23,9 @@
 namespace afmesh {
 
 // The tets around an edge (a, b): tets[i] = (a, b, ring[i], ring[i+1]) up to an even
-// permutation (so orient3d(a, b, ring[i], ring[i+1]) > 0 for a positive mesh), indices mod n.
+// permutation (so orient3d(a, b, ring[i], ring[i+1]) > 0 for a positive mesh), indices mod n
+// around an interior edge (TetComplex::edge_ring); around a boundary edge (edge_fan) ring has
+// n + 1 corners and does not wrap.
 struct EdgeRing {
   Index a = kInvalidIndex;
   Index b = kInvalidIndex;
@@ -55,6 +58,10 @@ class TetComplex {
   // The ring of tets around edge (a, b) of tet t. False when the edge is on the boundary (the
   // walk around it meets a face with no neighbour) or has more than max_tets tets around it.
   bool edge_ring(Index t, Index a, Index b, int max_tets, EdgeRing& out) const;
+  // The tets around a boundary edge (a, b) of tet t, from one boundary face to the other:
+  // tets[i] = (a, b, ring[i], ring[i+1]) up to an even permutation, so ring has one corner more
+  // than tets. False for an interior edge or more than max_tets tets.
+  bool edge_fan(Index t, Index a, Index b, int max_tets, EdgeRing& out) const;
 
   // The live tets that use point p, in the order of a breadth-first walk from a fixed start
   // (deterministic). Empty for a point no tet uses.
@@ -66,8 +73,13 @@ class TetComplex {
   // orientation; every point of `old` must be used by `fresh`. When that holds the tets are
   // replaced, the new tets' slots are appended to `created` in the order of `fresh` (tags 0),
   // and the result is true; otherwise nothing changes and the result is false.
+  // With boundary_may_change, outside faces of `old` may be left out (the tets beyond them get
+  // a boundary face there), faces of `fresh` that pair with nothing become boundary faces, and
+  // points of `old` may be left unused: a flip of the boundary itself (two coplanar boundary
+  // faces turned), or a cavity refilled in part (recover_faces.h), whose geometry the caller
+  // checks.
   bool replace(absl::Span<const Index> old, absl::Span<const Tet> fresh,
-               std::vector<Index>& created);
+               std::vector<Index>& created, bool boundary_may_change = false);
 
   // Appends a point to mesh.points (used by no tet yet) and returns its index.
   Index add_point(const Point& x);

@@ -6,6 +6,8 @@
 #include <algorithm>
 
 #include "core/geometry/predicates.h"
+#include "core/quality/measures.h"
+#include "core/quality/optimise_steps.h"
 #include "tests/quality/test_meshes.h"
 
 namespace afmesh {
@@ -111,6 +113,88 @@ TEST(TetComplex, ReplaceMakesA23FlipAndRefusesAMismatchedCavity) {
   c->compact();
   EXPECT_EQ(two.tets.size(), 3u);
   EXPECT_EQ(two.tet_tags.size(), 3u);
+}
+
+// Around a boundary edge the fan runs from one boundary face to the other, positively.
+TEST(TetComplex, FanOfABoundaryEdgeRunsBetweenItsBoundaryFaces) {
+  Mesh cube = testing::six_tet_cube();
+  absl::StatusOr<TetComplex> c = TetComplex::build(cube);
+  ASSERT_TRUE(c.ok()) << c.status();
+  std::vector<Index> ball;
+  c->ball(0, ball);
+  Index start = kInvalidIndex;
+  for (Index t : ball)
+    if (c->corner_of(t, 3) >= 0) start = t;
+  ASSERT_NE(start, kInvalidIndex);
+  EdgeRing fan;
+  ASSERT_TRUE(c->edge_fan(start, 0, 3, 12, fan));  // the diagonal of the face z = 0
+  ASSERT_EQ(fan.ring.size(), fan.tets.size() + 1);
+  for (std::size_t i = 0; i < fan.tets.size(); ++i)
+    EXPECT_GT(orient3d(cube.points[0], cube.points[3], cube.points[fan.ring[i]],
+                       cube.points[fan.ring[i + 1]]),
+              0);
+  // Its ends are the face's other corners, 1 and 2, in one order or the other.
+  EXPECT_EQ(std::min(fan.ring.front(), fan.ring.back()), 1);
+  EXPECT_EQ(std::max(fan.ring.front(), fan.ring.back()), 2);
+  // An interior edge has no fan, and too small a limit is refused.
+  EXPECT_FALSE(c->edge_fan(0, 0, 7, 12, fan));
+  EXPECT_FALSE(c->edge_fan(start, 0, 3, 1, fan));
+}
+
+// Edge removal on the boundary turns the diagonal of the cube's face z = 0 from 0-3 to 1-2; the
+// region stays the cube, with the face's new triangles on the boundary.
+TEST(TetComplex, BoundaryEdgeRemovalTurnsAFaceDiagonal) {
+  Mesh cube = testing::six_tet_cube();
+  absl::StatusOr<TetComplex> c = TetComplex::build(cube);
+  ASSERT_TRUE(c.ok()) << c.status();
+  std::vector<Index> ball;
+  c->ball(0, ball);
+  Index start = kInvalidIndex;
+  for (Index t : ball)
+    if (c->corner_of(t, 3) >= 0) start = t;
+  EdgeRing fan;
+  ASSERT_TRUE(c->edge_fan(start, 0, 3, 12, fan));
+  TopologyChange change;
+  ASSERT_TRUE(propose_boundary_edge_removal(*c, fan, [](const Tet&) { return 1.0; }, change));
+  EXPECT_EQ(change.fresh.size(), 2 * (fan.tets.size() - 1));
+  std::vector<Index> created;
+  EXPECT_FALSE(c->replace(change.old, change.fresh, created));  // the boundary would change
+  ASSERT_TRUE(c->replace(change.old, change.fresh, created, /*boundary_may_change=*/true));
+  c->compact();
+  double volume = 0;
+  bool has_12 = false, has_03 = false;
+  for (const Tet& t : cube.tets) {
+    ASSERT_GT(orient3d(cube.points[t[0]], cube.points[t[1]], cube.points[t[2]], cube.points[t[3]]),
+              0);
+    volume += tet_signed_volume(cube.points[t[0]], cube.points[t[1]], cube.points[t[2]],
+                                cube.points[t[3]]);
+    const auto has = [&](Index p) { return std::find(t.begin(), t.end(), p) != t.end(); };
+    has_12 = has_12 || (has(1) && has(2));
+    has_03 = has_03 || (has(0) && has(3));
+  }
+  EXPECT_NEAR(volume, 1.0, 1e-12);
+  EXPECT_TRUE(has_12);
+  EXPECT_FALSE(has_03);
+}
+
+// With boundary_may_change a cavity may be refilled in part: the tet left out leaves a boundary
+// face on its neighbour, and a point no tet uses any more has an empty ball.
+TEST(TetComplex, ReplaceMayLeaveACavityPartlyEmpty) {
+  Mesh two = testing::two_tet_mesh();  // tets (0 1 2 3) and (0 2 1 4) share face (0 1 2)
+  absl::StatusOr<TetComplex> c = TetComplex::build(two);
+  ASSERT_TRUE(c.ok()) << c.status();
+  std::vector<Index> created;
+  const Index old[1] = {1};
+  EXPECT_FALSE(c->replace(old, {}, created));
+  ASSERT_TRUE(c->replace(old, {}, created, /*boundary_may_change=*/true));
+  EXPECT_TRUE(created.empty());
+  EXPECT_FALSE(c->alive(1));
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(c->neighbour(0, i), kInvalidIndex);
+  std::vector<Index> ball;
+  c->ball(4, ball);
+  EXPECT_TRUE(ball.empty());
+  c->ball(0, ball);
+  EXPECT_EQ(ball, std::vector<Index>{0});
 }
 
 }  // namespace
