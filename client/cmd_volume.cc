@@ -25,10 +25,12 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "absl/strings/string_view.h"
 #include "client/commands.h"
 #include "client/mesh_command.h"
 #include "client/volume_call.h"
@@ -104,32 +106,32 @@ void print_summary(const std::string& output, const VolumeSummary& summary) {
 }
 
 // A front that stopped where a re-triangulated surface would not (the server's message says so,
-// kRetriangulatedSurfaceAdvice) is told which flag does that, unless it was given.
-absl::StatusOr<MeshAnswer> with_remesh_hint(absl::StatusOr<MeshAnswer> answer,
-                                            bool remesh_surface) {
-  if (answer.ok() || remesh_surface ||
-      answer.status().code() != absl::StatusCode::kFailedPrecondition ||
-      !absl::StrContains(answer.status().message(), kRetriangulatedSurfaceAdvice))
-    return answer;
-  return absl::FailedPreconditionError(
-      absl::StrCat(answer.status().message(),
-                   "; --remesh-surface re-triangulates IN at the size first, in the same call "
-                   "(OUT's boundary is then the new surface)"));
+// kRetriangulatedSurfaceAdvice) is told which flag does that, unless it was given; and one that
+// stopped again after every rerun the job allowed (the message says "after meshing again N
+// times ...") that --max-reruns allows more, unless N is the most. Said of a failure, and of the
+// warning when the volume was then filled from the front's points instead (the flags may still
+// give a mesh of the size asked).
+std::string with_hints(absl::string_view message, bool remesh_surface, int max_reruns) {
+  std::string out(message);
+  if (!remesh_surface && absl::StrContains(message, kRetriangulatedSurfaceAdvice))
+    absl::StrAppend(&out,
+                    "; --remesh-surface re-triangulates IN at the size first, in the same call "
+                    "(OUT's boundary is then the new surface)");
+  if (max_reruns < kMaxLocalRefinements &&
+      absl::StrContains(message, meshed_again_times(max_reruns)))
+    absl::StrAppend(&out,
+                    absl::StrFormat("; --max-reruns N (up to %d) meshes it again more times, "
+                                    "each run up to as long as one",
+                                    kMaxLocalRefinements));
+  return out;
 }
 
-// A front that stopped again after every rerun the job allowed (the server's message ends "after
-// meshing again N times ...") is told that --max-reruns allows more, unless N is the most.
-absl::StatusOr<MeshAnswer> with_reruns_hint(absl::StatusOr<MeshAnswer> answer, int max_reruns) {
-  if (answer.ok() || max_reruns >= kMaxLocalRefinements ||
-      answer.status().code() != absl::StatusCode::kFailedPrecondition ||
-      !absl::StrContains(answer.status().message(),
-                         meshed_again_times(max_reruns)))
+absl::StatusOr<MeshAnswer> with_hints(absl::StatusOr<MeshAnswer> answer, bool remesh_surface,
+                                      int max_reruns) {
+  if (answer.ok() || answer.status().code() != absl::StatusCode::kFailedPrecondition)
     return answer;
-  return absl::FailedPreconditionError(absl::StrCat(
-      answer.status().message(),
-      absl::StrFormat("; --max-reruns N (up to %d) meshes it again more times, each run up to "
-                      "as long as one",
-                      kMaxLocalRefinements)));
+  return absl::FailedPreconditionError(
+      with_hints(answer.status().message(), remesh_surface, max_reruns));
 }
 
 int run_volume(const VolumeCommandOptions& options) {
@@ -149,12 +151,17 @@ int run_volume(const VolumeCommandOptions& options) {
   command.call = [](const std::string& address, const Mesh& front,
                     const VolumeCallOptions& call_options, const ProgressCallback& on_progress,
                     const WarningCallback& on_warning) -> absl::StatusOr<MeshAnswer> {
-    return with_reruns_hint(
-        with_remesh_hint(
-            mesh_answer(call_mesh_volume(address, front, call_options, on_progress, on_warning),
-                        print_summary),
-            call_options.remesh_surface),
-        call_options.max_reruns.value_or(VolumeParams{}.local_refinements));
+    const int max_reruns = call_options.max_reruns.value_or(VolumeParams{}.local_refinements);
+    const WarningCallback hinted = [&](std::string_view warning) {
+      const absl::string_view message(warning.data(), warning.size());
+      on_warning(absl::StrContains(message, kDelaunayFillWords)
+                     ? with_hints(message, call_options.remesh_surface, max_reruns)
+                     : std::string(warning));
+    };
+    return with_hints(
+        mesh_answer(call_mesh_volume(address, front, call_options, on_progress, hinted),
+                    print_summary),
+        call_options.remesh_surface, max_reruns);
   };
   return run_mesh_command(options.mesh, std::move(command));
 }

@@ -26,8 +26,17 @@ FaceKey face_key(const Tet& t, int k) { return sorted_triangle(tet_face(t, k)); 
 enum class Side : std::uint8_t { kUnknown, kInside, kOutside };
 
 // Rounds of conforming_fill: a first with every point, then again without the points inside
-// near the triangles still missing.
+// near the triangles still missing, and last with the front's corners alone.
 constexpr int kDropRounds = 3;
+
+// The levels of fills within fills (a region of a cavity filled as a front of its own,
+// recover_faces_by_cavities), and the work each of those is allowed per side.
+constexpr int kMaxDepth = 3;
+constexpr std::int64_t kTestsPerFace = 200;
+
+absl::StatusOr<ConformingFill> fill_region(std::span<const Point> points,
+                                           std::span<const Triangle> front,
+                                           std::int64_t max_tests, CancelCheck& stop, int depth);
 
 // The Delaunay tetrahedralisation of the points `kept` (the front's corners are always kept),
 // with the front's triangles recovered by flips; its elements in the numbering of `points`.
@@ -35,8 +44,9 @@ constexpr int kDropRounds = 3;
 absl::StatusOr<std::vector<Index>> recovered_delaunay(std::span<const Point> points,
                                                       std::span<const Triangle> front,
                                                       const std::vector<bool>& kept,
-                                                      std::int64_t max_tests,
-                                                      CancelCheck& stop, std::vector<Tet>& tets) {
+                                                      std::int64_t max_tests, CancelCheck& stop,
+                                                      int depth, std::vector<Tet>& tets,
+                                                      std::vector<Point>& steiner) {
   std::vector<Point> x;
   std::vector<Index> point_of, local(points.size(), kInvalidIndex);
   for (std::size_t p = 0; p < points.size(); ++p)
@@ -64,6 +74,26 @@ absl::StatusOr<std::vector<Index>> recovered_delaunay(std::span<const Point> poi
   if (stop.look()) return absl::CancelledError("volume meshing cancelled");
   std::vector<Index> missing = recover_faces_by_flips(x, tets, faces, max_tests, &stop);
   if (stop.stopped()) return absl::CancelledError("volume meshing cancelled");
+  steiner.clear();
+  if (!missing.empty()) {
+    // A region of a cavity no point sees whole is filled as a front of its own, one level down.
+    const RegionFill fill = [&](std::vector<Point>& corners, std::span<const Triangle> sides)
+        -> std::optional<std::vector<Tet>> {
+      if (depth + 1 >= kMaxDepth) return std::nullopt;
+      absl::StatusOr<ConformingFill> region =
+          fill_region(corners, sides, kTestsPerFace * static_cast<std::int64_t>(sides.size()),
+                      stop, depth + 1);
+      if (!region.ok()) return std::nullopt;
+      corners.insert(corners.end(), region->steiner.begin(), region->steiner.end());
+      return std::move(region->tets);
+    };
+    missing = recover_faces_by_cavities(x, tets, faces, missing, &stop, fill);
+    if (stop.stopped()) return absl::CancelledError("volume meshing cancelled");
+    for (std::size_t i = point_of.size(); i < x.size(); ++i) {
+      point_of.push_back(static_cast<Index>(points.size() + steiner.size()));
+      steiner.push_back(x[i]);
+    }
+  }
   for (Tet& t : tets)
     for (Index& q : t) q = point_of[static_cast<std::size_t>(q)];
   return missing;
@@ -99,12 +129,9 @@ std::int64_t drop_points_near(std::span<const Point> points, std::span<const Tri
   return dropped;
 }
 
-}  // namespace
-
-absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,
-                                                 std::span<const Triangle> front,
-                                                 std::int64_t max_tests, Progress& progress) {
-  CancelCheck stop(progress, 64);
+absl::StatusOr<ConformingFill> fill_region(std::span<const Point> points,
+                                           std::span<const Triangle> front,
+                                           std::int64_t max_tests, CancelCheck& stop, int depth) {
   std::vector<bool> corner(points.size(), false), kept(points.size(), true);
   for (const Triangle& f : front)
     for (Index q : f) corner[static_cast<std::size_t>(q)] = true;
@@ -115,17 +142,26 @@ absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,
     return points[static_cast<std::size_t>(p)][0] < points[static_cast<std::size_t>(q)][0];
   });
   std::vector<Tet> recovered;
+  std::vector<Point> steiner;
   for (int round = 0;; ++round) {
     absl::StatusOr<std::vector<Index>> missing =
-        recovered_delaunay(points, front, kept, max_tests / kDropRounds, stop, recovered);
+        recovered_delaunay(points, front, kept, max_tests, stop, depth, recovered, steiner);
     if (!missing.ok()) return missing.status();
     if (missing->empty()) break;
-    // Points inside near a missing triangle may be what keeps it out: tried again without them.
-    if (round + 1 == kDropRounds ||
-        drop_points_near(points, front, *missing, by_x, kept, corner) == 0)
+    // Points inside near a missing triangle may be what keeps it out: tried again without them,
+    // and the last time with the front's corners alone.
+    std::int64_t dropped = 0;
+    if (round + 2 < kDropRounds)
+      dropped = drop_points_near(points, front, *missing, by_x, kept, corner);
+    if (round + 1 < kDropRounds && dropped == 0)
+      for (Index p : by_x) {
+        dropped += kept[static_cast<std::size_t>(p)] ? 1 : 0;
+        kept[static_cast<std::size_t>(p)] = false;
+      }
+    if (dropped == 0)
       return absl::FailedPreconditionError(absl::StrFormat(
           "%d of the %d front triangles are not faces of the Delaunay tetrahedralisation of its "
-          "points and could not be recovered by flips",
+          "points and could not be recovered by flips nor by refilling their cavities",
           missing->size(), front.size()));
   }
 
@@ -136,9 +172,11 @@ absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,
   }
   Mesh fill;
   fill.points.assign(points.begin(), points.end());
+  fill.points.insert(fill.points.end(), steiner.begin(), steiner.end());
   fill.tets = std::move(recovered);
-  absl::StatusOr<TetComplex> complex = TetComplex::build(fill, progress);
+  absl::StatusOr<TetComplex> complex = TetComplex::build(fill);
   if (!complex.ok()) return complex.status();
+  const std::vector<Point>& x = fill.points;
 
   // Regions of elements joined through faces that are not the front's; each is inside (on the
   // inner side of a front triangle) or outside (on its outer side, or on the hull).
@@ -167,10 +205,10 @@ absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,
         const FaceKey key = face_key(e, k);
         if (const auto f = front_faces.find(key); f != front_faces.end()) {
           const Triangle& v = front[static_cast<std::size_t>(f->second)];
-          const int o = orient3d(points[static_cast<std::size_t>(v[0])],
-                                 points[static_cast<std::size_t>(v[1])],
-                                 points[static_cast<std::size_t>(v[2])],
-                                 points[static_cast<std::size_t>(e[k])]);
+          const int o = orient3d(x[static_cast<std::size_t>(v[0])],
+                                 x[static_cast<std::size_t>(v[1])],
+                                 x[static_cast<std::size_t>(v[2])],
+                                 x[static_cast<std::size_t>(e[k])]);
           if (!learn(o < 0 ? Side::kInside : Side::kOutside))
             return absl::FailedPreconditionError(absl::StrFormat(
                 "the elements on both sides of front triangle %d are joined without crossing "
@@ -205,7 +243,16 @@ absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,
     if (bounded[i] != 1)
       return absl::FailedPreconditionError(absl::StrFormat(
           "front triangle %d bounds %d elements of the fill, not one", i, bounded[i]));
-  return inside;
+  return ConformingFill{std::move(steiner), std::move(inside)};
+}
+
+}  // namespace
+
+absl::StatusOr<ConformingFill> conforming_fill(std::span<const Point> points,
+                                               std::span<const Triangle> front,
+                                               std::int64_t max_tests, Progress& progress) {
+  CancelCheck stop(progress, 64);
+  return fill_region(points, front, max_tests, stop, 0);
 }
 
 }  // namespace afmesh

@@ -7,8 +7,10 @@
 // points whose missing boundary triangles it recovers by flips. This does the same with the
 // points given (the front's, and interior points the front placed before it failed): the Delaunay
 // tetrahedralisation of all of them (delaunay_3d.h), the front's triangles recovered by flips
-// (recover_faces.h, no new points), and the elements on the inner side of the front kept (those
-// reached from an element on a triangle's inner side without crossing a front triangle).
+// and, where flips fail, by refilling cavities with Steiner points inside (recover_faces.h, as
+// TetGen -Y adds Steiner points inside, never on the boundary), and the elements on the inner
+// side of the front kept (those reached from an element on a triangle's inner side without
+// crossing a front triangle).
 #pragma once
 
 #include <cstdint>
@@ -21,20 +23,30 @@
 
 namespace afmesh {
 
-// The positive elements filling the region enclosed by `front` (closed, outward-oriented
-// triangles of `points`), on `points` only, each front triangle a face of exactly one of them
-// (on its inner side). The points beyond the front's corners must lie inside the region.
-// Points inside near a triangle the flips cannot recover are left out and the whole is tried
-// again (three tries in all): a point in the ball about a triangle keeps it from
-// being a Delaunay face. FAILED_PRECONDITION when a triangle cannot be recovered within
-// `max_tests` element-triangle tests in all (recover_faces_by_flips), or when the elements on
+// A fill: the points added inside (Steiner points, numbered after the given points) and the
+// elements on the given points followed by those.
+struct ConformingFill {
+  std::vector<Point> steiner;
+  std::vector<Tet> tets;
+};
+
+// The positive elements filling the region enclosed by `front` (closed, outward-oriented triangles
+// of `points`), on `points` and any Steiner points, each front triangle a face of exactly one of
+// them (on its inner side). The points beyond the front's corners must lie inside the region.
+// Triangles the flips cannot recover are recovered by refilling their cavities
+// (recover_faces_by_cavities, which adds Steiner points; a region no point sees whole is filled as
+// a front of its own, two levels deep at most). Points inside near a triangle still missing are
+// left out and the whole is tried again, and a third time with the front's corners alone: a point
+// in the ball about a triangle keeps it from being a Delaunay face.
+// FAILED_PRECONDITION when a triangle cannot be recovered (flips within `max_tests`
+// element-triangle tests per try, recover_faces_by_flips, then cavities), or when the elements on
 // the two sides of the front cannot be told apart (a region reached from both sides);
 // INVALID_ARGUMENT when a point is not finite or two front corners coincide; CANCELLED once
-// progress.cancelled() turns true (asked between the steps and during the flips; not during a
-// Delaunay tetrahedralisation).
-absl::StatusOr<std::vector<Tet>> conforming_fill(std::span<const Point> points,
-                                                 std::span<const Triangle> front,
-                                                 std::int64_t max_tests,
-                                                 Progress& progress = no_progress());
+// progress.cancelled() turns true (asked between the steps and during the flips and the cavities;
+// not during a Delaunay tetrahedralisation).
+absl::StatusOr<ConformingFill> conforming_fill(std::span<const Point> points,
+                                               std::span<const Triangle> front,
+                                               std::int64_t max_tests,
+                                               Progress& progress = no_progress());
 
 }  // namespace afmesh

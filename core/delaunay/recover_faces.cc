@@ -3,324 +3,710 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
+#include <optional>
 #include <utility>
+
+#include <Eigen/Dense>
 
 #include "absl/container/flat_hash_map.h"
 #include "absl/container/flat_hash_set.h"
 #include "core/geometry/intersect.h"
 #include "core/geometry/predicates.h"
+#include "core/geometry/vec.h"
 #include "core/quality/mesh_topology.h"
+#include "core/quality/optimise_steps.h"
+#include "core/quality/ring_triangulation.h"
+#include "core/quality/tet_complex.h"
 
 namespace afmesh {
 namespace {
 
-using FaceKey = Triangle;  // sorted: an unoriented face
-
-FaceKey key_of(Index a, Index b, Index c) { return sorted_triangle({a, b, c}); }
+constexpr double kUnusable = -std::numeric_limits<double>::infinity();
 
 // The face of tet t opposite its corner k, unoriented.
-FaceKey face_of(const Tet& t, int k) { return sorted_triangle(tet_face(t, k)); }
+Triangle face_of(const Tet& t, int k) { return sorted_triangle(tet_face(t, k)); }
 
-// A tetrahedralisation that flips: its live elements, the elements on each face (one on the
-// hull) and the elements on each vertex.
-class FlipComplex {
- public:
-  FlipComplex(std::span<const Point> x, const std::vector<Tet>& tets) : x_(x) {
-    Index top = 0;
-    for (const Tet& t : tets)
-      for (Index v : t) top = std::max(top, v);
-    of_vertex_.resize(static_cast<std::size_t>(top) + 1);
-    for (const Tet& t : tets) add(t);
-  }
+std::pair<Index, Index> edge_key(Index a, Index b) { return {std::min(a, b), std::max(a, b)}; }
 
-  const Point& at(Index v) const { return x_[static_cast<std::size_t>(v)]; }
-  const Tet& tet(Index t) const { return tets_[static_cast<std::size_t>(t)]; }
-  bool has_face(const FaceKey& k) const { return faces_.contains(k); }
-
-  // The element across tet t's face opposite corner k, or kInvalidIndex on the hull.
-  Index across(Index t, int k) const {
-    const auto it = faces_.find(face_of(tet(t), k));
-    if (it == faces_.end()) return kInvalidIndex;
-    return it->second[0] == t ? it->second[1] : it->second[0];
-  }
-
-  // The live elements on edge (a, b).
-  void edge_ring(Index a, Index b, std::vector<Index>& out) const {
-    out.clear();
-    for (Index t : of_vertex_[static_cast<std::size_t>(a)])
-      if (has_corner(tet(t), b)) out.push_back(t);
-  }
-  const std::vector<Index>& elements_of(Index v) const {
-    return of_vertex_[static_cast<std::size_t>(v)];
-  }
-
-  // Replaces the elements `old` by `fresh` (each positive).
-  void replace(const std::vector<Index>& old, const std::vector<Tet>& fresh) {
-    for (Index t : old) remove(t);
-    for (const Tet& t : fresh) add(t);
-  }
-
-  std::vector<Tet> live() const {
-    std::vector<Tet> out;
-    for (std::size_t t = 0; t < tets_.size(); ++t)
-      if (alive_[t]) out.push_back(tets_[t]);
-    return out;
-  }
-
- private:
-  void add(const Tet& v) {
-    Index t;
-    if (!free_.empty()) {
-      t = free_.back();
-      free_.pop_back();
-      tets_[static_cast<std::size_t>(t)] = v;
-      alive_[static_cast<std::size_t>(t)] = true;
-    } else {
-      t = static_cast<Index>(tets_.size());
-      tets_.push_back(v);
-      alive_.push_back(true);
-    }
-    for (int k = 0; k < 4; ++k) {
-      auto [it, fresh] = faces_.try_emplace(face_of(v, k), std::array<Index, 2>{t, kInvalidIndex});
-      if (!fresh) it->second[1] = t;
-      of_vertex_[static_cast<std::size_t>(v[k])].push_back(t);
-    }
-  }
-  void remove(Index t) {
-    const Tet v = tet(t);
-    alive_[static_cast<std::size_t>(t)] = false;
-    free_.push_back(t);
-    for (int k = 0; k < 4; ++k) {
-      const auto it = faces_.find(face_of(v, k));
-      std::array<Index, 2>& on = it->second;
-      if (on[0] == t) std::swap(on[0], on[1]);
-      on[1] = kInvalidIndex;
-      if (on[0] == kInvalidIndex) faces_.erase(it);
-      std::erase(of_vertex_[static_cast<std::size_t>(v[k])], t);
-    }
-  }
-
-  std::span<const Point> x_;
-  std::vector<Tet> tets_;
-  std::vector<bool> alive_;
-  std::vector<Index> free_;
-  absl::flat_hash_map<FaceKey, std::array<Index, 2>> faces_;
-  std::vector<std::vector<Index>> of_vertex_;
-};
-
-// The positive element on four points, or nothing (kInvalidIndex first) when they are coplanar.
-Tet positive(const FlipComplex& c, Index a, Index b, Index d, Index e) {
-  const int o = orient3d(c.at(a), c.at(b), c.at(d), c.at(e));
-  if (o > 0) return {a, b, d, e};
-  if (o < 0) return {b, a, d, e};
-  return {kInvalidIndex, kInvalidIndex, kInvalidIndex, kInvalidIndex};
-}
-
-// A flip: the elements it removes and those it makes in their place.
-struct Flip {
-  std::vector<Index> old;
-  std::vector<Tet> fresh;
-};
-
-// 2-3: elements t and u sharing the face opposite t's corner k, replaced by three around the
-// edge joining their far corners, when that edge crosses the shared face's interior.
-bool flip_23(const FlipComplex& c, Index t, int k, Flip& flip) {
-  const Index u = c.across(t, k);
-  if (u == kInvalidIndex) return false;
-  const Tet& a = c.tet(t);
-  const Tet& b = c.tet(u);
-  const Index p = a[k];
-  Index q = kInvalidIndex;
-  for (Index v : b)
-    if (!has_corner(a, v)) q = v;
-  const FaceKey f = face_of(a, k);
-  int sign = 0;
-  for (int i = 0; i < 3; ++i) {
-    const int o = orient3d(c.at(p), c.at(q), c.at(f[i]), c.at(f[(i + 1) % 3]));
-    if (o == 0 || (sign != 0 && o != sign)) return false;
-    sign = o;
-  }
-  flip.old = {t, u};
-  flip.fresh.clear();
-  for (int i = 0; i < 3; ++i) flip.fresh.push_back(positive(c, f[i], f[(i + 1) % 3], p, q));
-  return true;
-}
-
-// 3-2, 4-4 and 2-2 about edge (a, b). 3-2: the edge has three elements around it and crosses
-// the interior of the triangle of their other corners; they are replaced by the two elements on
-// that triangle. 4-4: the edge has four elements around it, and it and two opposite corners of
-// their ring make a convex quadrilateral in one plane (two coplanar faces inside, such as a
-// planar CAD face's two triangles); the edge is turned to the quadrilateral's other diagonal.
-// 2-2 on the hull: the edge has two elements, whose faces on the edge that no other element
-// shares are coplanar and make a convex quadrilateral; the edge is turned likewise.
-bool flip_about_edge(const FlipComplex& c, Index a, Index b, std::vector<Index>& ring,
-                     Flip& flip) {
-  c.edge_ring(a, b, ring);
-  std::vector<Index> others;
-  for (Index t : ring)
-    for (Index v : c.tet(t))
-      if (v != a && v != b && std::find(others.begin(), others.end(), v) == others.end())
-        others.push_back(v);
-  if (ring.size() == 3 && others.size() == 3) {
-    const Index d = others[0], e = others[1], g = others[2];
-    const int sa = orient3d(c.at(d), c.at(e), c.at(g), c.at(a));
-    const int sb = orient3d(c.at(d), c.at(e), c.at(g), c.at(b));
-    if (sa == 0 || sb == 0 || sa == sb) return false;
-    const int s1 = orient3d(c.at(a), c.at(b), c.at(d), c.at(e));
-    const int s2 = orient3d(c.at(a), c.at(b), c.at(e), c.at(g));
-    const int s3 = orient3d(c.at(a), c.at(b), c.at(g), c.at(d));
-    if (s1 == 0 || s1 != s2 || s2 != s3) return false;
-    flip.old = ring;
-    flip.fresh = {positive(c, d, e, g, a), positive(c, d, e, g, b)};
-    return true;
-  }
-  if (ring.size() == 4 && others.size() == 4) {
-    // 4-4: a, b and two opposite ring corners u, w (no element holds both) coplanar, the
-    // segments a-b and u-w crossing: the edge is turned to u-w.
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) {
-        const Index u = others[i], w = others[j];
-        bool together = false;
-        for (Index t : ring)
-          together = together || (has_corner(c.tet(t), u) && has_corner(c.tet(t), w));
-        if (together) continue;
-        if (orient3d(c.at(a), c.at(b), c.at(u), c.at(w)) != 0) continue;
-        Index v0 = kInvalidIndex, v1 = kInvalidIndex;  // the other two ring corners
-        for (Index v : others)
-          if (v != u && v != w) (v0 == kInvalidIndex ? v0 : v1) = v;
-        const int su = orient3d(c.at(a), c.at(b), c.at(v0), c.at(u));
-        const int sw = orient3d(c.at(a), c.at(b), c.at(v0), c.at(w));
-        const int sa = orient3d(c.at(u), c.at(w), c.at(v0), c.at(a));
-        const int sb = orient3d(c.at(u), c.at(w), c.at(v0), c.at(b));
-        if (su == 0 || sw == 0 || su == sw || sa == 0 || sb == 0 || sa == sb) continue;
-        flip.old = ring;
-        flip.fresh = {positive(c, u, w, v0, a), positive(c, u, w, v0, b),
-                      positive(c, u, w, v1, a), positive(c, u, w, v1, b)};
-        return true;
-      }
-    return false;
-  }
-  if (ring.size() == 2 && others.size() == 3) {
-    // The corner both elements share besides a and b is p; the hull faces are (a, b, x), (a, b, y).
-    Index p = kInvalidIndex;
-    for (Index v : others)
-      if (has_corner(c.tet(ring[0]), v) && has_corner(c.tet(ring[1]), v)) p = v;
-    if (p == kInvalidIndex) return false;
-    Index x = kInvalidIndex, y = kInvalidIndex;
-    for (Index v : c.tet(ring[0]))
-      if (v != a && v != b && v != p) x = v;
-    for (Index v : c.tet(ring[1]))
-      if (v != a && v != b && v != p) y = v;
-    // Both outer faces must be on the hull (one element each) and coplanar.
-    const auto on_hull = [&](Index t, Index o) {
-      const Tet& v = c.tet(t);
-      for (int k = 0; k < 4; ++k)
-        if (v[k] == p) return c.across(t, k) == kInvalidIndex && o != kInvalidIndex;
-      return false;
-    };
-    if (!on_hull(ring[0], x) || !on_hull(ring[1], y)) return false;
-    if (orient3d(c.at(a), c.at(b), c.at(x), c.at(y)) != 0) return false;
-    // Convex: a and b on opposite sides of the plane (x, y, p), x and y of the plane (a, b, p).
-    const int sa = orient3d(c.at(x), c.at(y), c.at(p), c.at(a));
-    const int sb = orient3d(c.at(x), c.at(y), c.at(p), c.at(b));
-    if (sa == 0 || sb == 0 || sa == sb) return false;
-    flip.old = ring;
-    flip.fresh = {positive(c, x, y, p, a), positive(c, x, y, p, b)};
-    return true;
-  }
+// True when triangle f (either orientation) is a face of a tet of c; `ball` is scratch.
+bool has_face(const TetComplex& c, const Triangle& f, std::vector<Index>& ball) {
+  c.ball(f[0], ball);
+  for (Index t : ball)
+    if (has_corner(c.tet(t), f[1]) && has_corner(c.tet(t), f[2])) return true;
   return false;
 }
 
-// The live elements that meet triangle f improperly (tet_triangle_intersect_improperly): a flood
-// through faces from the elements on f's corners.
-void elements_meeting(const FlipComplex& c, std::span<const Point> x, const Triangle& f,
-                      std::vector<Index>& out, std::int64_t& tests) {
-  out.clear();
-  absl::flat_hash_set<Index> seen;
-  std::vector<Index> todo;
-  for (Index v : f)
-    for (Index t : c.elements_of(v))
-      if (seen.insert(t).second) todo.push_back(t);
-  while (!todo.empty()) {
-    const Index t = todo.back();
-    todo.pop_back();
-    ++tests;
-    if (!tet_triangle_intersect_improperly(x, c.tet(t), f)) continue;
-    out.push_back(t);
-    for (int k = 0; k < 4; ++k) {
-      const Index u = c.across(t, k);
-      if (u != kInvalidIndex && seen.insert(u).second) todo.push_back(u);
-    }
-  }
+// True when (a, b) is an edge of a tet of c; `ball` is scratch.
+bool has_edge(const TetComplex& c, Index a, Index b, std::vector<Index>& ball) {
+  c.ball(a, ball);
+  for (Index t : ball)
+    if (has_corner(c.tet(t), b)) return true;
+  return false;
 }
 
-}  // namespace
+// The recovery of one prescribed triangle after another (recover_faces.h).
+class Recovery {
+ public:
+  Recovery(TetComplex& c, std::span<const Triangle> faces, std::int64_t max_tests,
+           CancelCheck* stop)
+      : c_(c), max_tests_(max_tests), stop_(stop) {
+    for (const Triangle& f : faces) {
+      prescribed_.insert(sorted_triangle(f));
+      for (int i = 0; i < 3; ++i) prescribed_edges_.insert(edge_key(f[i], f[(i + 1) % 3]));
+    }
+  }
 
-std::vector<Index> recover_faces_by_flips(std::span<const Point> points, std::vector<Tet>& tets,
-                                         std::span<const Triangle> faces,
-                                         std::int64_t max_tests, CancelCheck* stop) {
-  FlipComplex c(points, tets);
-  absl::flat_hash_set<FaceKey> prescribed;
-  for (const Triangle& f : faces) prescribed.insert(key_of(f[0], f[1], f[2]));
+  bool out_of_work() const { return tests_ >= max_tests_; }
+
+  // Flips until f is a face, no flip reduces the tets meeting f, or the work is spent. True
+  // when at least one flip was made.
+  bool recover(const Triangle& f) {
+    bool flipped = false;
+    while (!has_face(c_, f, ball_) && !out_of_work()) {
+      if (stop_ != nullptr && stop_->due()) {
+        tests_ = max_tests_;
+        break;
+      }
+      if (!flip_once(f)) break;
+      flipped = true;
+    }
+    return flipped;
+  }
+
+ private:
+  bool meets(const Tet& k, const Triangle& f) {
+    ++tests_;
+    return tet_triangle_intersect_improperly(c_.points(), k, f);
+  }
+
+  // The live tets that meet f improperly (tet_triangle_intersect_improperly): a flood through
+  // faces from the tets on f's corners.
+  void tets_meeting(const Triangle& f) {
+    meeting_.clear();
+    seen_.clear();
+    todo_.clear();
+    for (Index v : f) {
+      c_.ball(v, ball_);
+      for (Index t : ball_)
+        if (seen_.insert(t).second) todo_.push_back(t);
+    }
+    while (!todo_.empty()) {
+      const Index t = todo_.back();
+      todo_.pop_back();
+      if (!meets(c_.tet(t), f)) continue;
+      meeting_.push_back(t);
+      for (int k = 0; k < 4; ++k) {
+        const Index u = c_.neighbour(t, k);
+        if (u != kInvalidIndex && seen_.insert(u).second) todo_.push_back(u);
+      }
+    }
+  }
+
   // A flip may not remove a prescribed triangle that is a face now.
-  const auto keeps_prescribed = [&](const Flip& flip) {
+  bool keeps_prescribed(const TopologyChange& flip) const {
     for (Index t : flip.old)
       for (int k = 0; k < 4; ++k) {
-        const FaceKey f = face_of(c.tet(t), k);
-        if (!prescribed.contains(f)) continue;
+        const Triangle f = face_of(c_.tet(t), k);
+        if (!prescribed_.contains(f)) continue;
         bool kept = false;
         for (const Tet& n : flip.fresh)
           for (int j = 0; j < 4 && !kept; ++j) kept = face_of(n, j) == f;
         if (!kept) return false;
       }
     return true;
-  };
-  std::int64_t tests = 0;  // tet-triangle tests, the work bounded by max_tests
-  std::vector<Index> meeting, ring;
-  Flip flip, best;
-  for (bool progress = true; progress && tests < max_tests;) {
-    progress = false;
-    for (const Triangle& f : faces) {
-      while (!c.has_face(key_of(f[0], f[1], f[2])) && tests < max_tests) {
-        if (stop != nullptr && stop->due()) {
-          tests = max_tests;
-          break;
-        }
-        elements_meeting(c, points, f, meeting, tests);
-        int best_gain = 0;
-        const auto consider = [&](const Flip& candidate) {
-          for (const Tet& n : candidate.fresh)
-            if (n[0] == kInvalidIndex) return;
-          int gain = 0;
-          for (Index t : candidate.old)
-            gain += tet_triangle_intersect_improperly(points, c.tet(t), f) ? 1 : 0;
-          for (const Tet& n : candidate.fresh)
-            gain -= tet_triangle_intersect_improperly(points, n, f) ? 1 : 0;
-          tests += static_cast<std::int64_t>(candidate.old.size() + candidate.fresh.size());
-          if (gain > best_gain && keeps_prescribed(candidate)) {
-            best_gain = gain;
-            best = candidate;
-          }
-        };
-        for (Index t : meeting) {
-          for (int k = 0; k < 4; ++k)
-            if (flip_23(c, t, k, flip)) consider(flip);
-          const Tet v = c.tet(t);
-          for (int i = 0; i < 4; ++i)
-            for (int j = i + 1; j < 4; ++j)
-              if (flip_about_edge(c, v[i], v[j], ring, flip)) consider(flip);
-        }
-        if (best_gain == 0) break;
-        c.replace(best.old, best.fresh);
-        progress = true;
+  }
+
+  // Makes the flip of the tets meeting f that most reduces their number (2-3 flips, edge
+  // removals of edges not on the front, inside or on the boundary). False when none does.
+  bool flip_once(const Triangle& f) {
+    tets_meeting(f);
+    // A new tet scores 1 when it misses f, 0 when it meets it, plus a little for its shape.
+    const auto score = [&](const Tet& k) {
+      return (meets(k, f) ? 0.0 : 1.0) + 1e-3 * tet_min_sine(c_.points(), k);
+    };
+    int best_gain = 0;
+    bool best_on_boundary = false;
+    const auto consider = [&](const TopologyChange& candidate, bool on_boundary) {
+      int gain = 0;
+      for (Index t : candidate.old) gain += meets(c_.tet(t), f) ? 1 : 0;
+      for (const Tet& n : candidate.fresh) gain -= meets(n, f) ? 1 : 0;
+      if (gain > best_gain && keeps_prescribed(candidate)) {
+        best_gain = gain;
+        best_ = candidate;
+        best_on_boundary = on_boundary;
       }
+    };
+    edges_seen_.clear();
+    for (Index t : meeting_) {
+      for (int k = 0; k < 4; ++k)
+        if (propose_face_removal(c_, t, k, score, kUnusable, candidate_))
+          consider(candidate_, false);
+      const Tet v = c_.tet(t);
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+          const auto e = edge_key(v[i], v[j]);
+          if (prescribed_edges_.contains(e) || !edges_seen_.insert(e).second) continue;
+          if (c_.edge_ring(t, v[i], v[j], kMaxRingSize, ring_)) {
+            if (propose_edge_removal(c_, ring_, score, kUnusable, candidate_))
+              consider(candidate_, false);
+          } else if (c_.edge_fan(t, v[i], v[j], kMaxRingSize - 1, ring_) &&
+                     propose_boundary_edge_removal(c_, ring_, score, candidate_)) {
+            consider(candidate_, true);
+          }
+        }
+    }
+    if (best_gain == 0) return false;
+    created_.clear();
+    return c_.replace(best_.old, best_.fresh, created_, best_on_boundary);
+  }
+
+  TetComplex& c_;
+  std::int64_t max_tests_;
+  CancelCheck* stop_;
+  std::int64_t tests_ = 0;  // tet-triangle tests, the work bounded by max_tests
+  absl::flat_hash_set<Triangle> prescribed_;
+  absl::flat_hash_set<std::pair<Index, Index>> prescribed_edges_;
+  std::vector<Index> ball_, meeting_, todo_, created_;
+  absl::flat_hash_set<Index> seen_;
+  absl::flat_hash_set<std::pair<Index, Index>> edges_seen_;
+  EdgeRing ring_;
+  TopologyChange candidate_, best_;
+};
+
+
+// A triangle bounding a region of a cavity, oriented outward from the region: a face of the
+// cavity's boundary, or a front triangle inside the cavity as given (the region on its inner
+// side) or reversed (on its outer side).
+struct Side {
+  Triangle f;
+  enum Kind : std::uint8_t { kCavity, kFront, kReversed } kind;
+  Index twin;  // for a front triangle, the Side of its other orientation; else kInvalidIndex
+};
+
+// The most triangles in a group, and tets in a cavity, that recover_faces_by_cavities refills
+// at once: a larger cavity is left as it was.
+constexpr std::size_t kMaxGroup = 256;
+constexpr std::size_t kMaxCavity = 4096;
+
+// The constraints whose fours kernel_point solves (C(16, 4) = 1820 small systems at most).
+constexpr std::size_t kKernelCandidates = 16;
+
+// The recovery of groups of missing front triangles by refilling their cavities
+// (recover_faces_by_cavities).
+class CavityRecovery {
+ public:
+  CavityRecovery(TetComplex& c, std::span<const Triangle> front, std::span<const Index> missing,
+                 const RegionFill& fill, CancelCheck* stop)
+      : c_(c), front_(front), missing_(missing.begin(), missing.end()), fill_(fill), stop_(stop) {
+    for (std::size_t i = 0; i < front.size(); ++i) {
+      const Triangle& f = front[i];
+      index_of_.emplace(sorted_triangle(f), static_cast<Index>(i));
+      for (int k = 0; k < 3; ++k)
+        on_edge_[edge_key(f[k], f[(k + 1) % 3])].push_back(static_cast<Index>(i));
     }
   }
-  tets = c.live();
+
+  // Recovers the missing triangle `seed` with the missing triangles joined to it through edges
+  // that are not edges of the tets. True when they are faces afterwards.
+  bool recover(Index seed) {
+    if (has_face(c_, front_[static_cast<std::size_t>(seed)], ball_)) return true;
+    if (tried_.contains(seed)) return false;  // its group failed already
+    const bool gathered = gather_group(seed) && gather_cavity();
+    for (Index g : group_) tried_.insert(g);
+    if (!gathered || !gather_sides() || !pair_sides()) return false;
+    fresh_.clear();
+    std::vector<Index> shell;
+    for (std::size_t s = 0; s < sides_.size(); ++s) {
+      if (sides_[s].kind != Side::kFront || shell_of_[s] != kInvalidIndex) continue;
+      if (!collect_shell(static_cast<Index>(s), shell) || !fill_shell(shell)) {
+        drop_new_points();
+        return false;
+      }
+    }
+    created_.clear();
+    if (!c_.replace(cavity_, fresh_, created_, /*boundary_may_change=*/true)) {
+      drop_new_points();
+      return false;
+    }
+    added_.clear();  // used by the new tets: kept
+    for (Index g : group_)
+      if (!has_face(c_, front_[static_cast<std::size_t>(g)], ball_)) return false;
+    return true;
+  }
+
+ private:
+  const Point& at(Index v) const { return c_.point(v); }
+
+  // The missing triangles joined to `seed` through edges no tet has. False when there are
+  // more than kMaxGroup.
+  bool gather_group(Index seed) {
+    group_.assign(1, seed);
+    in_group_.clear();
+    in_group_.insert(seed);
+    for (std::size_t i = 0; i < group_.size(); ++i) {
+      const Triangle f = front_[static_cast<std::size_t>(group_[i])];
+      for (int k = 0; k < 3; ++k) {
+        const Index a = f[k], b = f[(k + 1) % 3];
+        if (has_edge(c_, a, b, ball_)) continue;
+        for (Index g : on_edge_[edge_key(a, b)])
+          if (in_group_.insert(g).second) group_.push_back(g);
+      }
+      if (group_.size() > kMaxGroup) return false;
+    }
+    return true;
+  }
+
+  // The cavity: the tets that meet a triangle of the group improperly, found by floods through
+  // faces from the tets on the triangles' corners; with every missing triangle that meets one
+  // of them joined to the group (and its tets to the cavity), since every front triangle
+  // through the cavity must bound its regions, or a region taken for outside could hold some
+  // of the inside (a face of the tets meets no tet improperly: such a triangle is missing).
+  // False when the cavity grows over kMaxCavity tets, or the group over kMaxGroup triangles,
+  // or the caller cancels.
+  bool gather_cavity() {
+    cavity_.clear();
+    in_cavity_.clear();
+    std::size_t flooded = 0, checked = 0;
+    while (flooded < group_.size()) {
+      for (; flooded < group_.size(); ++flooded) {
+        if (!flood(front_[static_cast<std::size_t>(group_[flooded])])) return false;
+      }
+      for (; checked < cavity_.size(); ++checked) {
+        if (stop_ != nullptr && stop_->due()) return false;
+        const Tet& t = c_.tet(cavity_[checked]);
+        Point low = at(t[0]), high = low;
+        for (Index v : t)
+          for (int i = 0; i < 3; ++i) {
+            low[i] = std::min(low[i], at(v)[i]);
+            high[i] = std::max(high[i], at(v)[i]);
+          }
+        for (Index g : missing_) {
+          if (in_group_.contains(g)) continue;
+          const Triangle& f = front_[static_cast<std::size_t>(g)];
+          bool apart = false;
+          for (int i = 0; i < 3 && !apart; ++i)
+            apart = std::max({at(f[0])[i], at(f[1])[i], at(f[2])[i]}) < low[i] ||
+                    std::min({at(f[0])[i], at(f[1])[i], at(f[2])[i]}) > high[i];
+          if (apart || !tet_triangle_intersect_improperly(c_.points(), t, f)) continue;
+          in_group_.insert(g);
+          group_.push_back(g);
+          if (group_.size() > kMaxGroup) return false;
+        }
+      }
+    }
+    return true;
+  }
+
+  // Adds the tets meeting f improperly to the cavity. False when it grows over kMaxCavity or
+  // the caller cancels.
+  bool flood(const Triangle& f) {
+    seen_.clear();
+    todo_.clear();
+    for (Index v : f) {
+      c_.ball(v, ball_);
+      for (Index t : ball_)
+        if (seen_.insert(t).second) todo_.push_back(t);
+    }
+    while (!todo_.empty()) {
+      if (stop_ != nullptr && stop_->due()) return false;
+      const Index t = todo_.back();
+      todo_.pop_back();
+      if (!tet_triangle_intersect_improperly(c_.points(), c_.tet(t), f)) continue;
+      if (in_cavity_.insert(t).second) cavity_.push_back(t);
+      if (cavity_.size() > kMaxCavity) return false;
+      for (int k = 0; k < 4; ++k) {
+        const Index u = c_.neighbour(t, k);
+        if (u != kInvalidIndex && seen_.insert(u).second) todo_.push_back(u);
+      }
+    }
+    return true;
+  }
+
+  // The sides of the cavity's regions: its boundary faces, outward, and the front triangles
+  // inside it (the group's, and front triangles that are faces of two tets of the cavity) in
+  // both orientations. False when a front triangle inside is on the cavity's boundary too.
+  bool gather_sides() {
+    sides_.clear();
+    absl::flat_hash_set<Index> inside;  // front triangles inside the cavity
+    for (Index g : group_) inside.insert(g);
+    for (Index t : cavity_)
+      for (int k = 0; k < 4; ++k) {
+        const Index u = c_.neighbour(t, k);
+        const Triangle f = tet_face(c_.tet(t), k);
+        if (u == kInvalidIndex || !in_cavity_.contains(u)) {
+          sides_.push_back({f, Side::kCavity, kInvalidIndex});
+          continue;
+        }
+        if (const auto it = index_of_.find(sorted_triangle(f)); it != index_of_.end())
+          inside.insert(it->second);
+      }
+    std::vector<Index> order(inside.begin(), inside.end());
+    std::sort(order.begin(), order.end());  // deterministic, whatever the hashing
+    for (Index i : order) {
+      const Triangle& f = front_[static_cast<std::size_t>(i)];
+      const auto s = static_cast<Index>(sides_.size());
+      sides_.push_back({f, Side::kFront, s + 1});
+      sides_.push_back({{f[0], f[2], f[1]}, Side::kReversed, s});
+    }
+    return true;
+  }
+
+  // Pairs the sides across each of their edges: at an edge, each side running a -> b is paired
+  // with one running b -> a (so the regions' boundaries are closed and consistently oriented),
+  // never with its own reverse. Where that alone does not decide (more than two sides each way,
+  // or two and either pairing allowed), by their order around the edge (pair_around). False
+  // where the sides do not bound regions.
+  bool pair_sides() {
+    absl::flat_hash_map<std::pair<Index, Index>, std::vector<Index>> running;  // a -> b: sides
+    for (std::size_t s = 0; s < sides_.size(); ++s)
+      for (int k = 0; k < 3; ++k)
+        running[{sides_[s].f[k], sides_[s].f[(k + 1) % 3]}].push_back(static_cast<Index>(s));
+    partner_.assign(3 * sides_.size(), kInvalidIndex);
+    shell_of_.assign(sides_.size(), kInvalidIndex);
+    for (const auto& [edge, forward] : running) {
+      if (edge.first > edge.second) continue;  // each edge once, from its smaller end
+      const auto back = running.find({edge.second, edge.first});
+      if (back == running.end() || back->second.size() != forward.size()) return false;
+      const std::vector<Index>& backward = back->second;
+      const auto twins = [&](Index s, Index r) { return sides_[s].twin == r; };
+      std::array<Index, 2> match;  // backward[match[i]] pairs with forward[i]
+      if (forward.size() == 1) {
+        if (twins(forward[0], backward[0])) return false;
+        match = {0, 0};
+      } else if (forward.size() == 2) {
+        const bool straight = !twins(forward[0], backward[0]) && !twins(forward[1], backward[1]);
+        const bool crossed = !twins(forward[0], backward[1]) && !twins(forward[1], backward[0]);
+        if (straight == crossed) {  // both (a side of the cavity's own pinch) or neither
+          if (!pair_around(edge.first, edge.second, forward, backward)) return false;
+          continue;
+        }
+        match = straight ? std::array<Index, 2>{0, 1} : std::array<Index, 2>{1, 0};
+      } else {
+        if (!pair_around(edge.first, edge.second, forward, backward)) return false;
+        continue;
+      }
+      for (std::size_t i = 0; i < forward.size(); ++i) {
+        const Index s = forward[i], r = backward[static_cast<std::size_t>(match[i])];
+        partner_[3 * s + edge_slot(s, edge.first, edge.second)] = r;
+        partner_[3 * r + edge_slot(r, edge.second, edge.first)] = s;
+      }
+    }
+    return true;
+  }
+
+  // Pairs the sides at edge (u, v) by their order around it: `forward` run u -> v, `backward`
+  // v -> u. Around the axis u -> v, a side running u -> v has its region just before its third
+  // corner (turning the negative way), one running v -> u just after; two sides next to each
+  // other that both face the wedge between them are paired, and a wedge that only one of its
+  // sides faces means the sides do not bound regions. The order is exact (orient3d) except for
+  // telling sides in the plane of the first one apart (same way or opposite), and a tie between
+  // two sides at one angle fails.
+  bool pair_around(Index u, Index v, const std::vector<Index>& forward,
+                   const std::vector<Index>& backward) {
+    struct Around {
+      Index side, w;
+      bool forward;
+      int half;  // 0: on the first side's half-plane; 1: (0, pi); 2: opposite it; 3: (pi, 2 pi)
+    };
+    std::vector<Around> around;
+    const auto third = [&](Index s) {
+      for (Index w : sides_[static_cast<std::size_t>(s)].f)
+        if (w != u && w != v) return w;
+      return kInvalidIndex;
+    };
+    for (Index s : forward) around.push_back({s, third(s), true, 0});
+    for (Index s : backward) around.push_back({s, third(s), false, 0});
+    const Index w0 = around.front().w;
+    const Point axis = sub(at(v), at(u));
+    const auto across = [&](Index w) {  // the part of w - u across the axis
+      const Point d = sub(at(w), at(u));
+      return sub(d, scale(axis, dot(d, axis) / dot(axis, axis)));
+    };
+    for (Around& a : around) {
+      if (a.w == w0) continue;
+      const int o = orient3d(at(u), at(v), at(w0), at(a.w));
+      a.half = o > 0 ? 1 : o < 0 ? 3 : dot(across(w0), across(a.w)) > 0 ? 0 : 2;
+    }
+    bool tie = false;
+    std::sort(around.begin(), around.end(), [&](const Around& x, const Around& y) {
+      if (x.half != y.half) return x.half < y.half;
+      if (x.w == y.w) return x.forward && !y.forward;  // twins: the one running u -> v first
+      const int o = x.half % 2 == 1 ? orient3d(at(u), at(v), at(x.w), at(y.w)) : 0;
+      if (o == 0) {
+        tie = true;
+        return x.w < y.w;
+      }
+      return o > 0;
+    });
+    if (tie) return false;
+    for (std::size_t i = 0; i < around.size(); ++i) {
+      const Around& x = around[i];
+      const Around& y = around[(i + 1) % around.size()];
+      const bool x_faces = !x.forward, y_faces = y.forward;
+      if (x_faces != y_faces) return false;
+      if (!x_faces) continue;
+      partner_[3 * static_cast<std::size_t>(x.side) + edge_slot(x.side, v, u)] = y.side;
+      partner_[3 * static_cast<std::size_t>(y.side) + edge_slot(y.side, u, v)] = x.side;
+    }
+    return true;
+  }
+
+  // The position k of the edge a -> b in side s (f[k] = a, f[k + 1] = b).
+  int edge_slot(Index s, Index a, Index b) const {
+    const Triangle& f = sides_[static_cast<std::size_t>(s)].f;
+    for (int k = 0; k < 3; ++k)
+      if (f[k] == a && f[(k + 1) % 3] == b) return k;
+    return -1;
+  }
+
+  // The closed surface of paired sides through side `seed` (a front triangle as given): the
+  // boundary of one region on the inner side of the front. False when it holds a front
+  // triangle reversed too (the region would be on both sides of the front).
+  bool collect_shell(Index seed, std::vector<Index>& shell) {
+    shell.assign(1, seed);
+    shell_of_[static_cast<std::size_t>(seed)] = seed;
+    for (std::size_t i = 0; i < shell.size(); ++i) {
+      const Index s = shell[i];
+      if (sides_[static_cast<std::size_t>(s)].kind == Side::kReversed) return false;
+      for (int k = 0; k < 3; ++k) {
+        const Index r = partner_[3 * static_cast<std::size_t>(s) + k];
+        if (r == kInvalidIndex) return false;
+        if (shell_of_[static_cast<std::size_t>(r)] != kInvalidIndex) continue;
+        shell_of_[static_cast<std::size_t>(r)] = seed;
+        shell.push_back(r);
+      }
+    }
+    return true;
+  }
+
+  // True when every side of `shell` not on point x has x strictly on its inner side.
+  bool sees_all(const std::vector<Index>& shell, const Point& x, Index v) const {
+    for (Index s : shell) {
+      const Triangle& f = sides_[static_cast<std::size_t>(s)].f;
+      if (v != kInvalidIndex && has_corner(f, v)) continue;
+      if (orient3d(at(f[0]), at(f[1]), at(f[2]), x) >= 0) return false;
+    }
+    return true;
+  }
+
+  // A point that sees every side of the shell from inside (its kernel), or nothing: the point
+  // that maximises the smallest distance to the sides' planes (the linear programme: largest
+  // t with n_i . x + t <= n_i . c_i, unit outward normals n_i through corners c_i). Its optimum
+  // is a vertex where four constraints are tight: a subgradient ascent from the centroid of the
+  // corners finds the neighbourhood, then every four of the kKernelCandidates tightest
+  // constraints there are solved and the best point feasible for all is kept. Checked exactly
+  // (sees_all).
+  std::optional<Point> kernel_point(const std::vector<Index>& shell) const {
+    std::vector<Point> normal;
+    std::vector<double> offset;
+    Point centre{0, 0, 0};
+    for (Index s : shell) {
+      const Triangle& f = sides_[static_cast<std::size_t>(s)].f;
+      const Point n = cross(sub(at(f[1]), at(f[0])), sub(at(f[2]), at(f[0])));
+      const double length = norm(n);
+      if (!(length > 0)) return std::nullopt;
+      normal.push_back(scale(n, 1.0 / length));  // outward
+      offset.push_back(dot(normal.back(), at(f[0])));
+      centre = add(centre, scale(add(at(f[0]), add(at(f[1]), at(f[2]))), 1.0 / 3.0));
+    }
+    centre = scale(centre, 1.0 / static_cast<double>(shell.size()));
+    double extent = 0;
+    for (Index s : shell)
+      for (Index v : sides_[static_cast<std::size_t>(s)].f)
+        extent = std::max(extent, distance(at(v), centre));
+    const auto depth_at = [&](const Point& x) {  // smallest distance inside, negative outside
+      double depth = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < normal.size(); ++i)
+        depth = std::min(depth, offset[i] - dot(normal[i], x));
+      return depth;
+    };
+    Point x = centre, best = centre;
+    double best_depth = depth_at(centre);
+    constexpr int kSteps = 200;
+    for (int step = 0; step < kSteps; ++step) {
+      std::size_t nearest = 0;
+      double depth = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < normal.size(); ++i)
+        if (const double d = offset[i] - dot(normal[i], x); d < depth) {
+          depth = d;
+          nearest = i;
+        }
+      if (depth > best_depth) {
+        best_depth = depth;
+        best = x;
+      }
+      x = sub(x, scale(normal[nearest], extent * 0.25 / (1.0 + step)));
+    }
+    // The vertices of the programme among the constraints tightest at the best point so far.
+    std::vector<std::size_t> tight(normal.size());
+    for (std::size_t i = 0; i < tight.size(); ++i) tight[i] = i;
+    const auto slack = [&](std::size_t i) { return offset[i] - dot(normal[i], best); };
+    std::sort(tight.begin(), tight.end(), [&](std::size_t i, std::size_t j) {
+      return slack(i) < slack(j) || (slack(i) == slack(j) && i < j);
+    });
+    tight.resize(std::min(tight.size(), kKernelCandidates));
+    const std::size_t m = tight.size();
+    for (std::size_t a = 0; a < m; ++a)
+      for (std::size_t b = a + 1; b < m; ++b)
+        for (std::size_t c = b + 1; c < m; ++c)
+          for (std::size_t d = c + 1; d < m; ++d) {
+            Eigen::Matrix4d lhs;
+            Eigen::Vector4d rhs;
+            const std::size_t rows[4] = {tight[a], tight[b], tight[c], tight[d]};
+            for (int r = 0; r < 4; ++r) {
+              const std::size_t i = rows[r];
+              lhs.row(r) << normal[i][0], normal[i][1], normal[i][2], 1.0;
+              rhs[r] = offset[i];
+            }
+            const Eigen::FullPivLU<Eigen::Matrix4d> lu(lhs);
+            if (lu.rank() < 4) continue;
+            const Eigen::Vector4d v = lu.solve(rhs);
+            if (!(v[3] > best_depth)) continue;
+            const Point y{v[0], v[1], v[2]};
+            if (const double depth = depth_at(y); depth > best_depth) {
+              best_depth = depth;
+              best = y;
+            }
+          }
+    if (!(best_depth > 0) || !sees_all(shell, best, kInvalidIndex)) return std::nullopt;
+    return best;
+  }
+
+  // Fills the region bounded by `shell` with the tets joining its sides to one point that sees
+  // them all from inside: one of its corners if one does, else a new point in its kernel.
+  bool fill_shell(const std::vector<Index>& shell) {
+    std::vector<Index> corners;
+    for (Index s : shell)
+      for (Index v : sides_[static_cast<std::size_t>(s)].f)
+        if (std::find(corners.begin(), corners.end(), v) == corners.end()) corners.push_back(v);
+    Index apex = kInvalidIndex;
+    for (Index v : corners)
+      if (sees_all(shell, at(v), v)) {
+        apex = v;
+        break;
+      }
+    if (apex == kInvalidIndex) {
+      const std::optional<Point> x = kernel_point(shell);
+      if (!x) return fill_otherwise(shell, corners);
+      apex = c_.add_point(*x);
+      added_.push_back(apex);
+    }
+    for (Index s : shell) {
+      const Triangle& f = sides_[static_cast<std::size_t>(s)].f;
+      if (!has_corner(f, apex)) fresh_.push_back({apex, f[0], f[1], f[2]});
+    }
+    return true;
+  }
+
+  // Fills the region bounded by `shell` (with its corners `corners`) by fill_, if given.
+  bool fill_otherwise(const std::vector<Index>& shell, const std::vector<Index>& corners) {
+    if (!fill_) return false;
+    std::vector<Point> x;
+    for (Index v : corners) x.push_back(at(v));
+    std::vector<Triangle> sides;
+    for (Index s : shell) {
+      Triangle f = sides_[static_cast<std::size_t>(s)].f;
+      for (Index& v : f)
+        v = static_cast<Index>(std::find(corners.begin(), corners.end(), v) - corners.begin());
+      sides.push_back(f);
+    }
+    const std::optional<std::vector<Tet>> tets = fill_(x, sides);
+    if (!tets) return false;
+    std::vector<Index> global = corners;
+    for (std::size_t i = corners.size(); i < x.size(); ++i) {
+      global.push_back(c_.add_point(x[i]));
+      added_.push_back(global.back());
+    }
+    for (const Tet& t : *tets)
+      fresh_.push_back({global[static_cast<std::size_t>(t[0])],
+                        global[static_cast<std::size_t>(t[1])],
+                        global[static_cast<std::size_t>(t[2])],
+                        global[static_cast<std::size_t>(t[3])]});
+    return true;
+  }
+
+  // Takes back the points added for a cavity that was not refilled (the last added first).
+  void drop_new_points() {
+    for (; !added_.empty(); added_.pop_back()) c_.drop_last_point();
+  }
+
+  TetComplex& c_;
+  std::span<const Triangle> front_;
+  std::vector<Index> missing_;  // the triangles missing before the first cavity
+  const RegionFill& fill_;
+  CancelCheck* stop_;
+  absl::flat_hash_set<Index> tried_;  // in a group that could not be refilled
+  absl::flat_hash_map<Triangle, Index> index_of_;  // front triangle by its sorted corners
+  absl::flat_hash_map<std::pair<Index, Index>, std::vector<Index>> on_edge_;
+  std::vector<Index> group_, cavity_, ball_, todo_, added_;
+  absl::flat_hash_set<Index> in_group_, in_cavity_, seen_;
+  std::vector<Side> sides_;
+  std::vector<Index> partner_;   // 3 per side: the side paired across its edge k
+  std::vector<Index> shell_of_;  // per side: the seed of its shell, or kInvalidIndex
+  std::vector<Tet> fresh_;
+  std::vector<Index> created_;
+};
+}  // namespace
+
+std::vector<Index> recover_faces_by_flips(std::span<const Point> points, std::vector<Tet>& tets,
+                                          std::span<const Triangle> faces,
+                                          std::int64_t max_tests, CancelCheck* stop) {
+  Mesh m;
+  m.points.assign(points.begin(), points.end());
+  m.tets = std::move(tets);
+  absl::StatusOr<TetComplex> c = TetComplex::build(m);
   std::vector<Index> missing;
+  if (!c.ok()) {  // not a tetrahedralisation: nothing is recovered
+    tets = std::move(m.tets);
+    for (std::size_t i = 0; i < faces.size(); ++i) missing.push_back(static_cast<Index>(i));
+    return missing;
+  }
+  Recovery recovery(*c, faces, max_tests, stop);
+  for (bool progress = true; progress && !recovery.out_of_work();) {
+    progress = false;
+    for (const Triangle& f : faces) progress = recovery.recover(f) || progress;
+  }
+  std::vector<Index> ball;
   for (std::size_t i = 0; i < faces.size(); ++i)
-    if (!c.has_face(sorted_triangle(faces[i]))) missing.push_back(static_cast<Index>(i));
+    if (!has_face(*c, faces[i], ball)) missing.push_back(static_cast<Index>(i));
+  c->compact();
+  tets = std::move(m.tets);
   return missing;
+}
+
+std::vector<Index> recover_faces_by_cavities(std::vector<Point>& points, std::vector<Tet>& tets,
+                                             std::span<const Triangle> front,
+                                             std::span<const Index> missing, CancelCheck* stop,
+                                             const RegionFill& fill) {
+  Mesh m;
+  m.points = std::move(points);
+  m.tets = std::move(tets);
+  absl::StatusOr<TetComplex> c = TetComplex::build(m);
+  std::vector<Index> still(missing.begin(), missing.end());
+  if (!c.ok()) {
+    points = std::move(m.points);
+    tets = std::move(m.tets);
+    return still;
+  }
+  CavityRecovery recovery(*c, front, missing, fill, stop);
+  still.clear();
+  for (Index i : missing) {
+    if (stop != nullptr && stop->due()) {
+      still.push_back(i);
+      continue;
+    }
+    recovery.recover(i);
+  }
+  std::vector<Index> ball;
+  for (Index i : missing)
+    if (!has_face(*c, front[static_cast<std::size_t>(i)], ball)) still.push_back(i);
+  std::sort(still.begin(), still.end());
+  still.erase(std::unique(still.begin(), still.end()), still.end());
+  c->compact();
+  points = std::move(m.points);
+  tets = std::move(m.tets);
+  return still;
 }
 
 }  // namespace afmesh

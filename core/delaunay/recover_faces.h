@@ -1,19 +1,22 @@
-// Recovery of prescribed triangles in a tetrahedralisation by flips, not in the paper.
+// Recovery of prescribed triangles in a tetrahedralisation, by flips and by refilling
+// cavities, not in the paper.
 //
 // A Delaunay tetrahedralisation of a region's boundary points (delaunay_3d.h) need not have the
 // region's boundary triangles among its faces. Local transformations can bring many of them in
 // without new points (Joe 1991, "Construction of three-dimensional Delaunay triangulations using
 // local transformations"; George, Hecht & Saltel 1991, "Automatic mesh generator with specified
 // boundary", whose flips TetGen's boundary recovery uses too): a 2-3 flip replaces two elements
-// sharing a face by three around the edge joining their far corners, a 3-2 flip the reverse, and
-// a 4-4 flip (two coplanar faces inside) or a 2-2 flip (two coplanar faces on the hull) turns
-// the diagonal of a planar quadrilateral. Here the flips are chosen greedily: for a missing
-// triangle, among the flips of the elements that meet it, the one that most reduces the number
-// of elements meeting it (tet_triangle_intersect_improperly), never one that removes a
-// prescribed triangle already present. No new point is added, so what needs one stays missing
-// and is reported: a twisted prism (Schönhardt), and what the greedy choice cannot reach (a
-// planar cap of many points on one circle fanned from one of them, whose diagonals only flips
-// of more than two hull elements turn; CAD parts such as libcgal-demo's boeing).
+// sharing a face by three around the edge joining their far corners, and an edge removal
+// (Shewchuk 2002; optimise_steps.h) the n elements around an edge by 2(n - 2) over a
+// triangulation of its ring (n = 3: the 3-2 flip; n = 4 with a planar quadrilateral: the 4-4
+// flip); on the boundary, the n elements around an edge whose two boundary faces are coplanar
+// become 2(n - 1), turning the boundary quadrilateral's diagonal (n = 2: the 2-2 flip on a hull).
+// Here the flips are chosen greedily: for a missing triangle, among the flips of the elements
+// that meet it, the one that most reduces the number of elements meeting it
+// (tet_triangle_intersect_improperly), never one that removes a prescribed triangle already
+// present or an edge of one. No new point is added, so what needs one stays missing and is
+// reported: a twisted prism (Schönhardt), and what the greedy choice cannot reach (CAD parts
+// such as libcgal-demo's boeing, sliver scans); recover_faces_by_cavities below adds points.
 //
 // Every test is an exact predicate (core/geometry). Work: per triangle, the elements meeting it
 // are found by a flood from its corners' elements (no scan of the whole complex); the work is
@@ -21,6 +24,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -39,5 +44,34 @@ namespace afmesh {
 std::vector<Index> recover_faces_by_flips(std::span<const Point> points, std::vector<Tet>& tets,
                                           std::span<const Triangle> faces,
                                           std::int64_t max_tests, CancelCheck* stop = nullptr);
+
+// Recovery of the triangles the flips leave missing, with new points inside, not in the paper. The
+// missing triangles are taken in groups joined through edges that no tet has (mostly two sliver
+// triangles whose shared edge is missing). A group's cavity is the tets meeting its triangles; the
+// front triangles inside it (the group's, and those that are faces of two of its tets) split it
+// into regions. Each region on the inner side of the front is refilled with the tets joining its
+// boundary to one point that sees all of it from inside (its kernel): one of its corners, or else a
+// new point (a Steiner point) found by maximising the smallest distance to its sides, or else by
+// `fill` below. The regions on the outer side of the front are left empty: the tets no longer cover
+// the whole hull. A cavity whose regions cannot be told apart at an edge (more than two sides there
+// each way), or a region that cannot be filled, is left as it was.
+//
+// `front`: closed, outward-oriented triangles of `points` (a region's side is its inner side);
+// `tets`, a positive tetrahedralisation of `points` (after recover_faces_by_flips); `missing`,
+// the front triangles (indices) not faces of it. New points are appended to `points`. Returns
+// the triangles still missing, ascending. Stops early, as if nothing were recovered, once `stop`
+// (when given) finds the caller cancelled.
+//
+// `fill`, when given, fills a region no point sees whole: called with the region's corners
+// (`points`) and its sides (closed, outward-oriented triangles of them), it appends any new
+// points to `points` and returns positive tets on them that fill the region, each side a face
+// of one of them; or nothing when it cannot (conforming_fill.h fills regions so, recursively).
+using RegionFill = std::function<std::optional<std::vector<Tet>>(
+    std::vector<Point>& points, std::span<const Triangle> sides)>;
+std::vector<Index> recover_faces_by_cavities(std::vector<Point>& points, std::vector<Tet>& tets,
+                                             std::span<const Triangle> front,
+                                             std::span<const Index> missing,
+                                             CancelCheck* stop = nullptr,
+                                             const RegionFill& fill = {});
 
 }  // namespace afmesh

@@ -750,25 +750,29 @@ double refine_where_stuck(VolumeParams& run, const SizeField& field, const Point
   return kLocalRefinementRadius * local;
 }
 
-// Not in the paper (issue 10, part 3): the fill of a front the volume front could not close
-// however often it meshed it again: the Delaunay tetrahedralisation of its points and of the
-// interior points its last run placed, with the front's triangles recovered by flips
-// (conforming_fill, core/delaunay/conforming_fill.h), as TetGen's -pY meshes sliver fronts as
-// given. The optimiser then improves it as any other mesh. FAILED_PRECONDITION when a triangle
-// cannot be recovered, or the fill has more than `max_tets` elements.
+// Not in the paper (issue 10, part 3): the fill of a front the volume front could not close however
+// often it meshed it again: the Delaunay tetrahedralisation of its points and of the interior
+// points its last run placed, with the front's triangles recovered by flips and by refilling
+// cavities with Steiner points inside (conforming_fill, core/delaunay/conforming_fill.h), as
+// TetGen's -pY meshes sliver fronts as given. The optimiser then improves it as any other mesh.
+// FAILED_PRECONDITION when a triangle cannot be recovered, or the fill has more than `max_tets`
+// elements.
 absl::StatusOr<Mesh> fill_by_delaunay(const Mesh& front, const std::vector<Point>& placed,
-                                      std::int64_t max_tets, Progress& progress) {
+                                      std::int64_t max_tets, Progress& progress,
+                                      std::int64_t& steiner_points) {
   std::vector<Point> points = front.points;
   points.insert(points.end(), placed.begin(), placed.end());
   const auto faces = static_cast<std::int64_t>(front.triangles.size());
-  absl::StatusOr<std::vector<Tet>> tets =
+  absl::StatusOr<ConformingFill> fill =
       conforming_fill(points, front.triangles, kFillTestsPerFace * faces + kFillTests, progress);
-  if (!tets.ok()) return tets.status();
-  if (static_cast<std::int64_t>(tets->size()) > max_tets)
+  if (!fill.ok()) return fill.status();
+  if (static_cast<std::int64_t>(fill->tets.size()) > max_tets)
     return absl::FailedPreconditionError(absl::StrFormat(
-        "the fill has %d tets, over the most allowed (%d)", tets->size(), max_tets));
-  return compacted_mesh(points, static_cast<Index>(front.points.size()), *tets,
-                        static_cast<std::int64_t>(tets->size()), front, progress);
+        "the fill has %d tets, over the most allowed (%d)", fill->tets.size(), max_tets));
+  points.insert(points.end(), fill->steiner.begin(), fill->steiner.end());
+  steiner_points = static_cast<std::int64_t>(fill->steiner.size());
+  return compacted_mesh(points, static_cast<Index>(front.points.size()), fill->tets,
+                        static_cast<std::int64_t>(fill->tets.size()), front, progress);
 }
 
 }  // namespace
@@ -886,18 +890,21 @@ absl::StatusOr<VolumeResult> generate_volume_mesh(const Mesh& front, const Volum
         !run.face_environments.empty())
       return failed;
     clock.lap("front");
-    mesh = fill_by_delaunay(front, placed, params.max_tets, progress);
+    std::int64_t steiner_points = 0;
+    mesh = fill_by_delaunay(front, placed, params.max_tets, progress, steiner_points);
     if (mesh.status().code() == absl::StatusCode::kCancelled) return mesh.status();
     if (!mesh.ok())
       return absl::Status(
           failed.code(),
           absl::StrCat(failed.message(),
                        "; nor could the volume be filled from its points (their Delaunay "
-                       "tetrahedralisation, its triangles recovered by flips): ",
+                       "tetrahedralisation, its triangles recovered by flips or by refilling "
+                       "their cavities): ",
                        mesh.status().message()));
     result.warnings.push_back(absl::StrFormat(
-        "%s; %s instead (%d points the front had placed, no new boundary point)",
-        failed.message(), kDelaunayFillWords, placed.size()));
+        "%s; %s instead (%d points the front had placed, %d points added inside, no new "
+        "boundary point)",
+        failed.message(), kDelaunayFillWords, placed.size(), steiner_points));
     clock.lap("delaunay fill");
   }
   result.mesh = *std::move(mesh);

@@ -36,10 +36,10 @@ inline constexpr char kRetriangulatedSurfaceAdvice[] = "a surface re-triangulate
 // Not in the paper: the words a result's warning (or a failure) uses where the front could not
 // close and the volume was filled from its points instead (generate_volume_mesh: the Delaunay
 // tetrahedralisation of the front's points and of those its last run placed, its triangles
-// recovered by flips, core/delaunay/conforming_fill.h).
+// recovered by flips or by refilling their cavities, core/delaunay/conforming_fill.h).
 inline constexpr char kDelaunayFillWords[] =
-    "filled by the Delaunay tetrahedralisation of its points with its triangles recovered by "
-    "flips";
+    "filled by the Delaunay tetrahedralisation of its points with its triangles recovered (by "
+    "flips, or by refilling their cavities with points inside)";
 
 // The most VolumeParams::local_refinements the service accepts (VolumeOptions.max_reruns): each
 // run may do a whole VolumeBudget's work.

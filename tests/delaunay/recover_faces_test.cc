@@ -1,10 +1,11 @@
 // recover_faces_by_flips (core/delaunay/recover_faces.h) and conforming_fill
 // (core/delaunay/conforming_fill.h): prescribed triangles missing from a Delaunay
-// tetrahedralisation are brought in by 2-3, 3-2 and hull 2-2 flips, the elements still tiling
-// the same region; a Schönhardt prism, which no tetrahedralisation of its corners fills, is
-// reported missing, not forced. The fill of closed fronts is checked against invariants: every
-// element positive, each front triangle a face of exactly one element on its inner side, the
-// volumes adding up to the enclosed volume, and validate_volume_mesh.
+// tetrahedralisation are brought in by 2-3 flips, edge removals and boundary 2-2 flips, the
+// elements still tiling the same region; a Schönhardt prism, which no tetrahedralisation of its
+// corners fills, is reported missing by the flips and filled with one point inside. The fill of
+// closed fronts is checked against invariants: every element positive, each front triangle a
+// face of exactly one element on its inner side, the volumes adding up to the enclosed volume,
+// and validate_volume_mesh.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,9 +20,11 @@
 #include "core/delaunay/delaunay_3d.h"
 #include "core/delaunay/recover_faces.h"
 #include "core/geometry/predicates.h"
+#include "core/io/mesh_io.h"
 #include "core/quality/measures.h"
 #include "core/quality/validate.h"
 #include "core/quality/validate_common.h"
+#include "core/volume/repair_front.h"
 #include "tests/surface/surface_test_shapes.h"
 
 namespace afmesh {
@@ -153,11 +156,19 @@ TEST(RecoverFaces, SchonhardtPrismIsReportedNotForced) {
   EXPECT_GT(recover_faces_by_flips(p.x, tets, p.faces, kTests).size(), 0u);
   EXPECT_NEAR(volume_of(p.x, tets), hull, 1e-12);
 
-  const absl::StatusOr<std::vector<Tet>> fill = conforming_fill(p.x, p.faces, kTests);
-  ASSERT_FALSE(fill.ok());
-  EXPECT_EQ(fill.status().code(), absl::StatusCode::kFailedPrecondition);
-  EXPECT_NE(fill.status().message().find("could not be recovered by flips"), std::string::npos)
-      << fill.status();
+}
+
+// The twisted prism cannot be tetrahedralised on its own corners; its cavity is refilled as the
+// star of one point inside (its kernel is not empty), so the fill has one Steiner point.
+TEST(ConformingFill, FillsSchonhardtPrismWithOnePointInside) {
+  const Prism p = schonhardt();
+  const absl::StatusOr<ConformingFill> fill = conforming_fill(p.x, p.faces, kTests);
+  ASSERT_TRUE(fill.ok()) << fill.status();
+  EXPECT_EQ(fill->steiner.size(), 1u);
+  std::vector<Point> x = p.x;
+  x.insert(x.end(), fill->steiner.begin(), fill->steiner.end());
+  EXPECT_NEAR(volume_of(x, fill->tets), enclosed_volume(p.x, p.faces, nullptr), 1e-12);
+  for (const Tet& t : fill->tets) EXPECT_GT(orient3d(x[t[0]], x[t[1]], x[t[2]], x[t[3]]), 0);
 }
 
 // The work bound holds: with no tests allowed nothing is flipped and the missing face is said.
@@ -174,18 +185,19 @@ TEST(RecoverFaces, NoWorkAllowedFlipsNothing) {
 void expect_fills(const Mesh& front, const std::vector<Point>& inner) {
   std::vector<Point> x = front.points;
   x.insert(x.end(), inner.begin(), inner.end());
-  const absl::StatusOr<std::vector<Tet>> fill = conforming_fill(x, front.triangles, kTests);
+  const absl::StatusOr<ConformingFill> fill = conforming_fill(x, front.triangles, kTests);
   ASSERT_TRUE(fill.ok()) << fill.status();
+  x.insert(x.end(), fill->steiner.begin(), fill->steiner.end());
   Mesh mesh;
   mesh.points = x;
-  mesh.tets = *fill;
+  mesh.tets = fill->tets;
   mesh.tet_tags.assign(mesh.tets.size(), 0);
   mesh.triangles = front.triangles;
   mesh.triangle_tags.assign(front.triangles.size(), 0);
   const ValidationReport report = validate_volume_mesh(mesh, &front);
   EXPECT_TRUE(report.valid()) << report.to_string();
-  EXPECT_NEAR(volume_of(x, *fill), enclosed_volume(front.points, front.triangles, nullptr),
-              1e-9);
+  EXPECT_NEAR(volume_of(x, fill->tets),
+              enclosed_volume(front.points, front.triangles, nullptr), 1e-9);
 }
 
 // Cylinders as STL exporters write them (caps fanned to their centres, the side quads split in
@@ -240,13 +252,46 @@ TEST(ConformingFill, LeavesACavityEmpty) {
   expect_fills(front, {{0.5, 0.5, 0.5}, {3.5, 2.5, 1.5}, {3.2, 1.5, 1.0}});
 }
 
+// A raw CAD tessellation (libcgal-demo's boeing: 2,564 triangles, thin wing edges, angles down
+// to 0.1 degrees) filled on its own points: the flips leave some tens of triangles missing
+// (their shared edges are missing), which are recovered by refilling their cavities, with a few
+// points inside (kernel points, and regions filled as fronts of their own); the result is
+// checked as a mesh against the front.
+TEST(ConformingFill, FillsACadTessellationOnItsOwnPointsWithFewPointsInside) {
+  absl::StatusOr<Mesh> front =
+      read_mesh(std::string(AFMESH_SOURCE_DIR) + "/tests/data/cgal_boeing.stl");
+  ASSERT_TRUE(front.ok()) << front.status();
+  repair_front(*front);  // its facets come in either winding
+  std::vector<Tet> tets = delaunay_of(front->points);
+  const std::vector<Index> missing =
+      recover_faces_by_flips(front->points, tets, front->triangles, kTests);
+  EXPECT_GT(missing.size(), 10u);  // what the cavities are for
+  const absl::StatusOr<ConformingFill> fill =
+      conforming_fill(front->points, front->triangles, kTests);
+  ASSERT_TRUE(fill.ok()) << fill.status();
+  EXPECT_GT(fill->steiner.size(), 0u);
+  EXPECT_LT(fill->steiner.size(), missing.size());
+  std::vector<Point> x = front->points;
+  x.insert(x.end(), fill->steiner.begin(), fill->steiner.end());
+  Mesh mesh;
+  mesh.points = x;
+  mesh.tets = fill->tets;
+  mesh.tet_tags.assign(mesh.tets.size(), 0);
+  mesh.triangles = front->triangles;
+  mesh.triangle_tags.assign(front->triangles.size(), 0);
+  const ValidationReport report = validate_volume_mesh(mesh, &*front);
+  EXPECT_TRUE(report.valid()) << report.to_string();
+  const double enclosed = enclosed_volume(front->points, front->triangles, nullptr);
+  EXPECT_NEAR(volume_of(x, fill->tets), enclosed, 1e-9 * enclosed);
+}
+
 // A cancelled caller gets CANCELLED, not a fill.
 TEST(ConformingFill, StopsWhenCancelled) {
   struct Cancelled : Progress {
     bool cancelled() const override { return true; }
   } cancelled;
   const Mesh front = testing::closed_cylinder(1.0, 0.5, 64, 2);
-  const absl::StatusOr<std::vector<Tet>> fill =
+  const absl::StatusOr<ConformingFill> fill =
       conforming_fill(front.points, front.triangles, kTests, cancelled);
   ASSERT_FALSE(fill.ok());
   EXPECT_EQ(fill.status().code(), absl::StatusCode::kCancelled) << fill.status();
