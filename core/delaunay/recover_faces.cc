@@ -11,6 +11,7 @@
 
 #include "absl/container/flat_hash_map.h"
 #include "absl/container/flat_hash_set.h"
+#include "absl/functional/function_ref.h"
 #include "core/geometry/intersect.h"
 #include "core/geometry/predicates.h"
 #include "core/geometry/vec.h"
@@ -43,6 +44,37 @@ bool has_edge(const TetComplex& c, Index a, Index b, std::vector<Index>& ball) {
   for (Index t : ball)
     if (has_corner(c.tet(t), b)) return true;
   return false;
+}
+
+// Scratch for flood_meeting.
+struct FloodScratch {
+  std::vector<Index> ball, todo;
+  absl::flat_hash_set<Index> seen;
+};
+
+// Calls meeting(t) for each live tet t of c for which meets(t) holds (a tet meeting triangle f
+// improperly), found by a flood through faces from the tets on f's corners, never testing a
+// tet twice. Stops, returning false, as soon as meeting() returns false.
+bool flood_meeting(const TetComplex& c, const Triangle& f, absl::FunctionRef<bool(Index)> meets,
+                   absl::FunctionRef<bool(Index)> meeting, FloodScratch& s) {
+  s.seen.clear();
+  s.todo.clear();
+  for (Index v : f) {
+    c.ball(v, s.ball);
+    for (Index t : s.ball)
+      if (s.seen.insert(t).second) s.todo.push_back(t);
+  }
+  while (!s.todo.empty()) {
+    const Index t = s.todo.back();
+    s.todo.pop_back();
+    if (!meets(t)) continue;
+    if (!meeting(t)) return false;
+    for (int k = 0; k < 4; ++k) {
+      const Index u = c.neighbour(t, k);
+      if (u != kInvalidIndex && s.seen.insert(u).second) s.todo.push_back(u);
+    }
+  }
+  return true;
 }
 
 // The recovery of one prescribed triangle after another (recover_faces.h).
@@ -80,27 +112,16 @@ class Recovery {
     return tet_triangle_intersect_improperly(c_.points(), k, f);
   }
 
-  // The live tets that meet f improperly (tet_triangle_intersect_improperly): a flood through
-  // faces from the tets on f's corners.
+  // The live tets that meet f improperly (tet_triangle_intersect_improperly).
   void tets_meeting(const Triangle& f) {
     meeting_.clear();
-    seen_.clear();
-    todo_.clear();
-    for (Index v : f) {
-      c_.ball(v, ball_);
-      for (Index t : ball_)
-        if (seen_.insert(t).second) todo_.push_back(t);
-    }
-    while (!todo_.empty()) {
-      const Index t = todo_.back();
-      todo_.pop_back();
-      if (!meets(c_.tet(t), f)) continue;
-      meeting_.push_back(t);
-      for (int k = 0; k < 4; ++k) {
-        const Index u = c_.neighbour(t, k);
-        if (u != kInvalidIndex && seen_.insert(u).second) todo_.push_back(u);
-      }
-    }
+    flood_meeting(
+        c_, f, [&](Index t) { return meets(c_.tet(t), f); },
+        [&](Index t) {
+          meeting_.push_back(t);
+          return true;
+        },
+        flood_);
   }
 
   // A flip may not remove a prescribed triangle that is a face now.
@@ -167,8 +188,8 @@ class Recovery {
   std::int64_t tests_ = 0;  // tet-triangle tests, the work bounded by max_tests
   absl::flat_hash_set<Triangle> prescribed_;
   absl::flat_hash_set<std::pair<Index, Index>> prescribed_edges_;
-  std::vector<Index> ball_, meeting_, todo_, created_;
-  absl::flat_hash_set<Index> seen_;
+  std::vector<Index> ball_, meeting_, created_;
+  FloodScratch flood_;
   absl::flat_hash_set<std::pair<Index, Index>> edges_seen_;
   EdgeRing ring_;
   TopologyChange candidate_, best_;
@@ -298,29 +319,16 @@ class CavityRecovery {
     return true;
   }
 
-  // Adds the tets meeting f improperly to the cavity. False when it grows over kMaxCavity or
-  // the caller cancels.
+  // Adds the tets meeting f improperly to the cavity. False when it grows over kMaxCavity.
   bool flood(const Triangle& f) {
-    seen_.clear();
-    todo_.clear();
-    for (Index v : f) {
-      c_.ball(v, ball_);
-      for (Index t : ball_)
-        if (seen_.insert(t).second) todo_.push_back(t);
-    }
-    while (!todo_.empty()) {
-      if (stop_ != nullptr && stop_->due()) return false;
-      const Index t = todo_.back();
-      todo_.pop_back();
-      if (!tet_triangle_intersect_improperly(c_.points(), c_.tet(t), f)) continue;
-      if (in_cavity_.insert(t).second) cavity_.push_back(t);
-      if (cavity_.size() > kMaxCavity) return false;
-      for (int k = 0; k < 4; ++k) {
-        const Index u = c_.neighbour(t, k);
-        if (u != kInvalidIndex && seen_.insert(u).second) todo_.push_back(u);
-      }
-    }
-    return true;
+    return flood_meeting(
+        c_, f,
+        [&](Index t) { return tet_triangle_intersect_improperly(c_.points(), c_.tet(t), f); },
+        [&](Index t) {
+          if (in_cavity_.insert(t).second) cavity_.push_back(t);
+          return cavity_.size() <= kMaxCavity;
+        },
+        flood_);
   }
 
   // The sides of the cavity's regions: its boundary faces, outward, and the front triangles
@@ -639,8 +647,9 @@ class CavityRecovery {
   absl::flat_hash_set<Index> tried_;  // in a group that could not be refilled
   absl::flat_hash_map<Triangle, Index> index_of_;  // front triangle by its sorted corners
   absl::flat_hash_map<std::pair<Index, Index>, std::vector<Index>> on_edge_;
-  std::vector<Index> group_, cavity_, ball_, todo_, added_;
-  absl::flat_hash_set<Index> in_group_, in_cavity_, seen_;
+  std::vector<Index> group_, cavity_, ball_, added_;
+  absl::flat_hash_set<Index> in_group_, in_cavity_;
+  FloodScratch flood_;
   std::vector<Side> sides_;
   std::vector<Index> partner_;   // 3 per side: the side paired across its edge k
   std::vector<Index> shell_of_;  // per side: the seed of its shell, or kInvalidIndex

@@ -66,21 +66,8 @@ bool propose_boundary_edge_removal(const TetComplex& c, const EdgeRing& fan,
   const int s0 = orient3d(p[a], p[b], first, p[r[1]]);
   const int sn = orient3d(p[a], p[b], last, p[r[1]]);
   if (s0 == 0 || sn == 0 || s0 == sn) return false;
-  // As in propose_edge_removal; the polygon's closing side (r_n, r_0) is the new diagonal.
-  const RingTriangulation best = best_ring_triangulation(n, [&](int i, int j, int k) {
-    const double qb = positive_score(p, {r[i], r[j], r[k], b}, criterion);
-    if (qb == kUnusable) return kUnusable;
-    return std::min(qb, positive_score(p, {r[j], r[i], r[k], a}, criterion));
-  });
-  if (best.quality == kUnusable) return false;
-  out.old = fan.tets;
-  out.fresh.clear();
-  for (const auto& [i, j, k] : best.triangles) {
-    out.fresh.push_back({r[i], r[j], r[k], b});
-    out.fresh.push_back({r[j], r[i], r[k], a});
-  }
-  out.quality = best.quality;
-  return true;
+  // The fan's polygon closed by the side (r_n, r_0), the new diagonal.
+  return propose_edge_removal(c, fan, criterion, kUnusable, out);
 }
 
 bool propose_face_removal(const TetComplex& c, Index t, int corner, TetCriterion criterion,

@@ -36,7 +36,8 @@ using TetCriterion = absl::FunctionRef<double(const Tet&)>;
 // edge, n <= kMaxRingSize) become the 2(n - 2) tets over the triangulation of the ring polygon
 // (ring_triangulation.h) whose worst tet by `criterion` is best, among those whose every tet is
 // positive and scores above `floor`. False when no such triangulation exists. out.quality is the
-// worst new tet's score.
+// worst new tet's score. (Given a boundary edge's fan, TetComplex::edge_fan, its polygon is
+// closed by the side from its last corner to its first: propose_boundary_edge_removal.)
 bool propose_edge_removal(const TetComplex& c, const EdgeRing& ring, TetCriterion criterion,
                           double floor, TopologyChange& out);
 

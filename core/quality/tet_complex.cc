@@ -72,20 +72,33 @@ int TetComplex::corner_of(Index t, Index p) const {
   return -1;
 }
 
-bool TetComplex::edge_ring(Index t, Index a, Index b, int max_tets, EdgeRing& out) const {
+bool TetComplex::start_around(Index t, Index a, Index b, EdgeRing& out, Index& u,
+                              Index& v) const {
   out.a = a;
   out.b = b;
   out.tets.clear();
   out.ring.clear();
-  const Tet& q = m_->tets[t];
   const int ia = corner_of(t, a), ib = corner_of(t, b);
   if (ia < 0 || ib < 0 || ia == ib) return false;
   int rest[2], n = 0;
   for (int i = 0; i < 4; ++i)
     if (i != ia && i != ib) rest[n++] = i;
   if (permutation_sign(ia, ib, rest[0], rest[1]) < 0) std::swap(rest[0], rest[1]);
+  u = m_->tets[t][rest[0]];
+  v = m_->tets[t][rest[1]];
+  return true;
+}
+
+Index TetComplex::other_corner(Index t, Index a, Index b, Index c) const {
+  for (Index p : m_->tets[t])
+    if (p != a && p != b && p != c) return p;
+  return kInvalidIndex;
+}
+
+bool TetComplex::edge_ring(Index t, Index a, Index b, int max_tets, EdgeRing& out) const {
   // Invariant: cur = (a, b, u, v) up to an even permutation.
-  Index u = q[rest[0]], v = q[rest[1]], cur = t;
+  Index u, v, cur = t;
+  if (!start_around(t, a, b, out, u, v)) return false;
   out.ring.push_back(u);
   out.tets.push_back(t);
   while (true) {
@@ -93,41 +106,24 @@ bool TetComplex::edge_ring(Index t, Index a, Index b, int max_tets, EdgeRing& ou
     if (next == kInvalidIndex) return false;
     if (next == t) break;
     if (static_cast<int>(out.tets.size()) >= max_tets) return false;
-    Index w = kInvalidIndex;
-    for (Index p : m_->tets[next])
-      if (p != a && p != b && p != v) w = p;
     out.ring.push_back(v);
     out.tets.push_back(next);
-    u = v;
-    v = w;
+    u = std::exchange(v, other_corner(next, a, b, v));
     cur = next;
   }
   return true;
 }
 
 bool TetComplex::edge_fan(Index t, Index a, Index b, int max_tets, EdgeRing& out) const {
-  out.a = a;
-  out.b = b;
-  out.tets.clear();
-  out.ring.clear();
-  const int ia = corner_of(t, a), ib = corner_of(t, b);
-  if (ia < 0 || ib < 0 || ia == ib) return false;
-  int rest[2], n = 0;
-  for (int i = 0; i < 4; ++i)
-    if (i != ia && i != ib) rest[n++] = i;
-  if (permutation_sign(ia, ib, rest[0], rest[1]) < 0) std::swap(rest[0], rest[1]);
   // Back to the first tet of the fan: cur = (a, b, u, v) up to an even permutation; the tet
   // before it is across face (a, b, u).
-  Index u = m_->tets[t][rest[0]], v = m_->tets[t][rest[1]], cur = t;
+  Index u, v, cur = t;
+  if (!start_around(t, a, b, out, u, v)) return false;
   for (int steps = 0;; ++steps) {
     const Index prev = adjacent_[cur][corner_of(cur, v)];
     if (prev == kInvalidIndex) break;
     if (prev == t || steps >= max_tets) return false;  // closed: an interior edge
-    Index w = kInvalidIndex;
-    for (Index p : m_->tets[prev])
-      if (p != a && p != b && p != u) w = p;
-    v = u;
-    u = w;
+    v = std::exchange(u, other_corner(prev, a, b, u));
     cur = prev;
   }
   out.ring.push_back(u);
@@ -137,11 +133,7 @@ bool TetComplex::edge_fan(Index t, Index a, Index b, int max_tets, EdgeRing& out
     out.ring.push_back(v);
     const Index next = adjacent_[cur][corner_of(cur, u)];  // across face (a, b, v)
     if (next == kInvalidIndex) return true;
-    Index w = kInvalidIndex;
-    for (Index p : m_->tets[next])
-      if (p != a && p != b && p != v) w = p;
-    u = v;
-    v = w;
+    u = std::exchange(v, other_corner(next, a, b, v));
     cur = next;
   }
 }

@@ -92,6 +92,11 @@ class TetComplex {
 
  private:
   explicit TetComplex(Mesh& mesh) : m_(&mesh) {}
+  // Clears `out` for edge (a, b) and sets u, v to t's other corners with t = (a, b, u, v) up to
+  // an even permutation; false when a or b is not a corner of t.
+  bool start_around(Index t, Index a, Index b, EdgeRing& out, Index& u, Index& v) const;
+  // The corner of tet t other than a, b and c.
+  Index other_corner(Index t, Index a, Index b, Index c) const;
   Index new_slot();
 
   Mesh* m_;

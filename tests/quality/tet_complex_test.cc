@@ -115,16 +115,21 @@ TEST(TetComplex, ReplaceMakesA23FlipAndRefusesAMismatchedCavity) {
   EXPECT_EQ(two.tet_tags.size(), 3u);
 }
 
+// A tet of c with the edge (a, b), or kInvalidIndex.
+Index tet_on_edge(const TetComplex& c, Index a, Index b) {
+  std::vector<Index> ball;
+  c.ball(a, ball);
+  for (Index t : ball)
+    if (c.corner_of(t, b) >= 0) return t;
+  return kInvalidIndex;
+}
+
 // Around a boundary edge the fan runs from one boundary face to the other, positively.
 TEST(TetComplex, FanOfABoundaryEdgeRunsBetweenItsBoundaryFaces) {
   Mesh cube = testing::six_tet_cube();
   absl::StatusOr<TetComplex> c = TetComplex::build(cube);
   ASSERT_TRUE(c.ok()) << c.status();
-  std::vector<Index> ball;
-  c->ball(0, ball);
-  Index start = kInvalidIndex;
-  for (Index t : ball)
-    if (c->corner_of(t, 3) >= 0) start = t;
+  const Index start = tet_on_edge(*c, 0, 3);
   ASSERT_NE(start, kInvalidIndex);
   EdgeRing fan;
   ASSERT_TRUE(c->edge_fan(start, 0, 3, 12, fan));  // the diagonal of the face z = 0
@@ -147,11 +152,7 @@ TEST(TetComplex, BoundaryEdgeRemovalTurnsAFaceDiagonal) {
   Mesh cube = testing::six_tet_cube();
   absl::StatusOr<TetComplex> c = TetComplex::build(cube);
   ASSERT_TRUE(c.ok()) << c.status();
-  std::vector<Index> ball;
-  c->ball(0, ball);
-  Index start = kInvalidIndex;
-  for (Index t : ball)
-    if (c->corner_of(t, 3) >= 0) start = t;
+  const Index start = tet_on_edge(*c, 0, 3);
   EdgeRing fan;
   ASSERT_TRUE(c->edge_fan(start, 0, 3, 12, fan));
   TopologyChange change;
