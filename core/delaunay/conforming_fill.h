@@ -32,7 +32,8 @@ struct ConformingFill {
 
 // The positive elements filling the region enclosed by `front` (closed, outward-oriented triangles
 // of `points`), on `points` and any Steiner points, each front triangle a face of exactly one of
-// them (on its inner side). The points beyond the front's corners must lie inside the region.
+// them (on its inner side). Points beyond the front's corners lying outside the region are left
+// out (no element kept uses them); none may lie on the front.
 // Triangles the flips cannot recover are recovered by refilling their cavities
 // (recover_faces_by_cavities, which adds Steiner points; a region no point sees whole is filled as
 // a front of its own, two levels deep at most). Points inside near a triangle still missing are

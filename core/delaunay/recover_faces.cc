@@ -1,4 +1,4 @@
-// Greedy flip-based recovery of prescribed triangles (recover_faces.h).
+// Recovery of prescribed triangles by greedy flips and by refilling cavities (recover_faces.h).
 #include "core/delaunay/recover_faces.h"
 
 #include <algorithm>
@@ -210,6 +210,9 @@ struct Side {
 constexpr std::size_t kMaxGroup = 256;
 constexpr std::size_t kMaxCavity = 4096;
 
+// A cavity that cannot be refilled is tried again grown by one layer of tets, up to this many.
+constexpr int kMoreLayers = 5;
+
 // The constraints whose fours kernel_point solves (C(16, 4) = 1820 small systems at most).
 constexpr std::size_t kKernelCandidates = 16;
 
@@ -233,9 +236,18 @@ class CavityRecovery {
   bool recover(Index seed) {
     if (has_face(c_, front_[static_cast<std::size_t>(seed)], ball_)) return true;
     if (tried_.contains(seed)) return false;  // its group failed already
-    const bool gathered = gather_group(seed) && gather_cavity();
+    bool done = false;
+    if (gather_group(seed))
+      for (int layers = 0; layers <= kMoreLayers && !done; ++layers) done = refill(layers);
     for (Index g : group_) tried_.insert(g);
-    if (!gathered || !gather_sides() || !pair_sides()) return false;
+    return done;
+  }
+
+ private:
+  // Refills the group's cavity grown by `layers` layers of tets. True when the group's
+  // triangles are faces afterwards.
+  bool refill(int layers) {
+    if (!gather_cavity(layers) || !gather_sides() || !pair_sides()) return false;
     fresh_.clear();
     std::vector<Index> shell;
     for (std::size_t s = 0; s < sides_.size(); ++s) {
@@ -256,7 +268,6 @@ class CavityRecovery {
     return true;
   }
 
- private:
   const Point& at(Index v) const { return c_.point(v); }
 
   // The missing triangles joined to `seed` through edges no tet has. False when there are
@@ -282,39 +293,58 @@ class CavityRecovery {
   // faces from the tets on the triangles' corners; with every missing triangle that meets one
   // of them joined to the group (and its tets to the cavity), since every front triangle
   // through the cavity must bound its regions, or a region taken for outside could hold some
-  // of the inside (a face of the tets meets no tet improperly: such a triangle is missing).
-  // False when the cavity grows over kMaxCavity tets, or the group over kMaxGroup triangles,
-  // or the caller cancels.
-  bool gather_cavity() {
+  // of the inside (a face of the tets meets no tet improperly: such a triangle is missing);
+  // then grown by `layers` layers of the tets across its faces, each joining its crossing
+  // triangles likewise. False when the cavity grows over kMaxCavity tets, or the group over
+  // kMaxGroup triangles, or the caller cancels.
+  bool gather_cavity(int layers) {
     cavity_.clear();
     in_cavity_.clear();
     std::size_t flooded = 0, checked = 0;
-    while (flooded < group_.size()) {
-      for (; flooded < group_.size(); ++flooded) {
-        if (!flood(front_[static_cast<std::size_t>(group_[flooded])])) return false;
-      }
-      for (; checked < cavity_.size(); ++checked) {
-        if (stop_ != nullptr && stop_->due()) return false;
-        const Tet& t = c_.tet(cavity_[checked]);
-        Point low = at(t[0]), high = low;
-        for (Index v : t)
-          for (int i = 0; i < 3; ++i) {
-            low[i] = std::min(low[i], at(v)[i]);
-            high[i] = std::max(high[i], at(v)[i]);
-          }
-        for (Index g : missing_) {
-          if (in_group_.contains(g)) continue;
-          const Triangle& f = front_[static_cast<std::size_t>(g)];
-          bool apart = false;
-          for (int i = 0; i < 3 && !apart; ++i)
-            apart = std::max({at(f[0])[i], at(f[1])[i], at(f[2])[i]}) < low[i] ||
-                    std::min({at(f[0])[i], at(f[1])[i], at(f[2])[i]}) > high[i];
-          if (apart || !tet_triangle_intersect_improperly(c_.points(), t, f)) continue;
-          in_group_.insert(g);
-          group_.push_back(g);
-          if (group_.size() > kMaxGroup) return false;
+    for (int grown = 0;; ++grown) {
+      while (flooded < group_.size()) {
+        for (; flooded < group_.size(); ++flooded) {
+          if (!flood(front_[static_cast<std::size_t>(group_[flooded])])) return false;
         }
+        for (; checked < cavity_.size(); ++checked)
+          if (!join_crossing(cavity_[checked])) return false;
       }
+      if (grown == layers) return true;
+      // One layer more: the tets across the cavity's faces.
+      const std::size_t size = cavity_.size();
+      for (std::size_t i = 0; i < size; ++i)
+        for (int k = 0; k < 4; ++k) {
+          const Index u = c_.neighbour(cavity_[i], k);
+          if (u != kInvalidIndex && in_cavity_.insert(u).second) cavity_.push_back(u);
+        }
+      if (cavity_.size() > kMaxCavity) return false;
+      for (; checked < cavity_.size(); ++checked)
+        if (!join_crossing(cavity_[checked])) return false;
+    }
+  }
+
+  // Joins to the group the missing triangles that meet tet t improperly. False when the group
+  // grows over kMaxGroup or the caller cancels.
+  bool join_crossing(Index t) {
+    if (stop_ != nullptr && stop_->due()) return false;
+    const Tet& k = c_.tet(t);
+    Point low = at(k[0]), high = low;
+    for (Index v : k)
+      for (int i = 0; i < 3; ++i) {
+        low[i] = std::min(low[i], at(v)[i]);
+        high[i] = std::max(high[i], at(v)[i]);
+      }
+    for (Index g : missing_) {
+      if (in_group_.contains(g)) continue;
+      const Triangle& f = front_[static_cast<std::size_t>(g)];
+      bool apart = false;
+      for (int i = 0; i < 3 && !apart; ++i)
+        apart = std::max({at(f[0])[i], at(f[1])[i], at(f[2])[i]}) < low[i] ||
+                std::min({at(f[0])[i], at(f[1])[i], at(f[2])[i]}) > high[i];
+      if (apart || !tet_triangle_intersect_improperly(c_.points(), k, f)) continue;
+      in_group_.insert(g);
+      group_.push_back(g);
+      if (group_.size() > kMaxGroup) return false;
     }
     return true;
   }
@@ -498,14 +528,14 @@ class CavityRecovery {
     return true;
   }
 
-  // A point that sees every side of the shell from inside (its kernel), or nothing: the point
-  // that maximises the smallest distance to the sides' planes (the linear programme: largest
-  // t with n_i . x + t <= n_i . c_i, unit outward normals n_i through corners c_i). Its optimum
-  // is a vertex where four constraints are tight: a subgradient ascent from the centroid of the
-  // corners finds the neighbourhood, then every four of the kKernelCandidates tightest
-  // constraints there are solved and the best point feasible for all is kept. Checked exactly
-  // (sees_all).
-  std::optional<Point> kernel_point(const std::vector<Index>& shell) const {
+  // The point deepest inside the sides `shell` (a region's, or some of them), and its depth:
+  // the point that maximises the smallest distance to the sides' planes (the linear programme:
+  // largest t with n_i . x + t <= n_i . c_i, unit outward normals n_i through corners c_i),
+  // negative when no point sees every side from inside (the region's kernel is empty). Its
+  // optimum is a vertex where four constraints are tight: a subgradient ascent from the centroid
+  // of the corners finds the neighbourhood, then every four of the kKernelCandidates tightest
+  // constraints there are solved and the best point is kept. Nothing for a degenerate side.
+  std::optional<std::pair<Point, double>> deepest_point(const std::vector<Index>& shell) const {
     std::vector<Point> normal;
     std::vector<double> offset;
     Point centre{0, 0, 0};
@@ -577,8 +607,7 @@ class CavityRecovery {
               best = y;
             }
           }
-    if (!(best_depth > 0) || !sees_all(shell, best, kInvalidIndex)) return std::nullopt;
-    return best;
+    return std::pair<Point, double>{best, best_depth};
   }
 
   // Fills the region bounded by `shell` with the tets joining its sides to one point that sees
@@ -595,9 +624,12 @@ class CavityRecovery {
         break;
       }
     if (apex == kInvalidIndex) {
-      const std::optional<Point> x = kernel_point(shell);
-      if (!x) return fill_otherwise(shell, corners);
-      apex = c_.add_point(*x);
+      const std::optional<std::pair<Point, double>> deepest = deepest_point(shell);
+      if (!deepest) return false;
+      if (!(deepest->second > 0) || !sees_all(shell, deepest->first, kInvalidIndex))
+        return fill_from_two_points(shell, deepest->first) ||
+               fill_otherwise(shell, corners, deepest->first);
+      apex = c_.add_point(deepest->first);
       added_.push_back(apex);
     }
     for (Index s : shell) {
@@ -607,11 +639,58 @@ class CavityRecovery {
     return true;
   }
 
-  // Fills the region bounded by `shell` (with its corners `corners`) by fill_, if given.
-  bool fill_otherwise(const std::vector<Index>& shell, const std::vector<Index>& corners) {
+  // A region whose kernel is empty but nearly not (the deepest point x sees most sides): the
+  // sides x sees from inside are joined to x, the others to a second point y, the point deepest
+  // inside those, and each edge between the two sets of sides (a, b) to both, by the tets
+  // (y, x, a, b). The tets' faces pair up inside and leave exactly the region's sides, so
+  // when every tet is positive (exact orient3d) they fill the region once. Not in the paper.
+  bool fill_from_two_points(const std::vector<Index>& shell, const Point& x) {
+    std::vector<Index> seen_by_x, rest;
+    for (Index s : shell) {
+      const Triangle& f = sides_[static_cast<std::size_t>(s)].f;
+      (orient3d(at(f[0]), at(f[1]), at(f[2]), x) < 0 ? seen_by_x : rest).push_back(s);
+    }
+    if (seen_by_x.empty() || rest.empty()) return false;
+    const std::optional<std::pair<Point, double>> second = deepest_point(rest);
+    if (!second || !sees_all(rest, second->first, kInvalidIndex)) return false;
+    const Point& y = second->first;
+    // The edges a -> b of the sides x sees whose side across is y's.
+    std::vector<std::array<Index, 2>> between;
+    for (Index s : seen_by_x)
+      for (int k = 0; k < 3; ++k) {
+        const Index r = partner_[3 * static_cast<std::size_t>(s) + k];
+        if (std::find(rest.begin(), rest.end(), r) == rest.end()) continue;
+        const Triangle& f = sides_[static_cast<std::size_t>(s)].f;
+        between.push_back({f[k], f[(k + 1) % 3]});
+      }
+    for (const auto& [a, b] : between)
+      if (orient3d(y, x, at(a), at(b)) <= 0) return false;
+    const Index ix = c_.add_point(x);
+    added_.push_back(ix);
+    const Index iy = c_.add_point(y);
+    added_.push_back(iy);
+    for (Index s : seen_by_x) {
+      const Triangle& f = sides_[static_cast<std::size_t>(s)].f;
+      fresh_.push_back({ix, f[0], f[1], f[2]});
+    }
+    for (Index s : rest) {
+      const Triangle& f = sides_[static_cast<std::size_t>(s)].f;
+      fresh_.push_back({iy, f[0], f[1], f[2]});
+    }
+    for (const auto& [a, b] : between) fresh_.push_back({iy, ix, a, b});
+    return true;
+  }
+
+  // Fills the region bounded by `shell` (with its corners `corners`) by fill_, if given, with
+  // `inner` offered as a point inside too (the deepest point: it changes the region's Delaunay
+  // tetrahedralisation, and the fill leaves it out where it is not inside). Only the new points
+  // the fill's tets use are kept.
+  bool fill_otherwise(const std::vector<Index>& shell, const std::vector<Index>& corners,
+                      const Point& inner) {
     if (!fill_) return false;
     std::vector<Point> x;
     for (Index v : corners) x.push_back(at(v));
+    x.push_back(inner);
     std::vector<Triangle> sides;
     for (Index s : shell) {
       Triangle f = sides_[static_cast<std::size_t>(s)].f;
@@ -621,11 +700,15 @@ class CavityRecovery {
     }
     const std::optional<std::vector<Tet>> tets = fill_(x, sides);
     if (!tets) return false;
-    std::vector<Index> global = corners;
-    for (std::size_t i = corners.size(); i < x.size(); ++i) {
-      global.push_back(c_.add_point(x[i]));
-      added_.push_back(global.back());
-    }
+    std::vector<Index> global(x.size(), kInvalidIndex);
+    std::copy(corners.begin(), corners.end(), global.begin());
+    for (const Tet& t : *tets)
+      for (Index v : t) {
+        Index& g = global[static_cast<std::size_t>(v)];
+        if (g != kInvalidIndex) continue;
+        g = c_.add_point(x[static_cast<std::size_t>(v)]);
+        added_.push_back(g);
+      }
     for (const Tet& t : *tets)
       fresh_.push_back({global[static_cast<std::size_t>(t[0])],
                         global[static_cast<std::size_t>(t[1])],
