@@ -19,6 +19,8 @@
 #include "core/quality/optimise_steps.h"
 #include "core/quality/ring_triangulation.h"
 #include "core/quality/tet_complex.h"
+#include "core/spatial/aabb_tree.h"
+#include "core/spatial/box.h"
 
 namespace afmesh {
 namespace {
@@ -216,13 +218,30 @@ constexpr int kMoreLayers = 5;
 // The constraints whose fours kernel_point solves (C(16, 4) = 1820 small systems at most).
 constexpr std::size_t kKernelCandidates = 16;
 
+// The bounding boxes of the triangles `which` of `front`.
+std::vector<Box> boxes_of(const std::vector<Point>& x, std::span<const Triangle> front,
+                          std::span<const Index> which) {
+  std::vector<Box> boxes;
+  for (Index i : which) {
+    Box box = empty_box();
+    for (Index v : front[static_cast<std::size_t>(i)]) enclose(box, x[static_cast<std::size_t>(v)]);
+    boxes.push_back(box);
+  }
+  return boxes;
+}
+
 // The recovery of groups of missing front triangles by refilling their cavities
 // (recover_faces_by_cavities).
 class CavityRecovery {
  public:
   CavityRecovery(TetComplex& c, std::span<const Triangle> front, std::span<const Index> missing,
                  const RegionFill& fill, CancelCheck* stop)
-      : c_(c), front_(front), missing_(missing.begin(), missing.end()), fill_(fill), stop_(stop) {
+      : c_(c),
+        front_(front),
+        missing_(missing.begin(), missing.end()),
+        missing_boxes_(boxes_of(c.points(), front, missing)),
+        fill_(fill),
+        stop_(stop) {
     for (std::size_t i = 0; i < front.size(); ++i) {
       const Triangle& f = front[i];
       index_of_.emplace(sorted_triangle(f), static_cast<Index>(i));
@@ -328,25 +347,19 @@ class CavityRecovery {
   bool join_crossing(Index t) {
     if (stop_ != nullptr && stop_->due()) return false;
     const Tet& k = c_.tet(t);
-    Point low = at(k[0]), high = low;
-    for (Index v : k)
-      for (int i = 0; i < 3; ++i) {
-        low[i] = std::min(low[i], at(v)[i]);
-        high[i] = std::max(high[i], at(v)[i]);
-      }
-    for (Index g : missing_) {
-      if (in_group_.contains(g)) continue;
-      const Triangle& f = front_[static_cast<std::size_t>(g)];
-      bool apart = false;
-      for (int i = 0; i < 3 && !apart; ++i)
-        apart = std::max({at(f[0])[i], at(f[1])[i], at(f[2])[i]}) < low[i] ||
-                std::min({at(f[0])[i], at(f[1])[i], at(f[2])[i]}) > high[i];
-      if (apart || !tet_triangle_intersect_improperly(c_.points(), k, f)) continue;
+    Box box = empty_box();
+    for (Index v : k) enclose(box, at(v));
+    bool within = true;
+    missing_boxes_.for_each_overlap(box, [&](Index i) {
+      const Index g = missing_[static_cast<std::size_t>(i)];
+      if (!within || in_group_.contains(g) ||
+          !tet_triangle_intersect_improperly(c_.points(), k, front_[static_cast<std::size_t>(g)]))
+        return;
       in_group_.insert(g);
       group_.push_back(g);
-      if (group_.size() > kMaxGroup) return false;
-    }
-    return true;
+      within = group_.size() <= kMaxGroup;
+    });
+    return within;
   }
 
   // Adds the tets meeting f improperly to the cavity. False when it grows over kMaxCavity.
@@ -627,8 +640,7 @@ class CavityRecovery {
       const std::optional<std::pair<Point, double>> deepest = deepest_point(shell);
       if (!deepest) return false;
       if (!(deepest->second > 0) || !sees_all(shell, deepest->first, kInvalidIndex))
-        return fill_from_two_points(shell, deepest->first) ||
-               fill_otherwise(shell, corners, deepest->first);
+        return fill_otherwise(shell, corners, deepest->first);
       apex = c_.add_point(deepest->first);
       added_.push_back(apex);
     }
@@ -636,48 +648,6 @@ class CavityRecovery {
       const Triangle& f = sides_[static_cast<std::size_t>(s)].f;
       if (!has_corner(f, apex)) fresh_.push_back({apex, f[0], f[1], f[2]});
     }
-    return true;
-  }
-
-  // A region whose kernel is empty but nearly not (the deepest point x sees most sides): the
-  // sides x sees from inside are joined to x, the others to a second point y, the point deepest
-  // inside those, and each edge between the two sets of sides (a, b) to both, by the tets
-  // (y, x, a, b). The tets' faces pair up inside and leave exactly the region's sides, so
-  // when every tet is positive (exact orient3d) they fill the region once. Not in the paper.
-  bool fill_from_two_points(const std::vector<Index>& shell, const Point& x) {
-    std::vector<Index> seen_by_x, rest;
-    for (Index s : shell) {
-      const Triangle& f = sides_[static_cast<std::size_t>(s)].f;
-      (orient3d(at(f[0]), at(f[1]), at(f[2]), x) < 0 ? seen_by_x : rest).push_back(s);
-    }
-    if (seen_by_x.empty() || rest.empty()) return false;
-    const std::optional<std::pair<Point, double>> second = deepest_point(rest);
-    if (!second || !sees_all(rest, second->first, kInvalidIndex)) return false;
-    const Point& y = second->first;
-    // The edges a -> b of the sides x sees whose side across is y's.
-    std::vector<std::array<Index, 2>> between;
-    for (Index s : seen_by_x)
-      for (int k = 0; k < 3; ++k) {
-        const Index r = partner_[3 * static_cast<std::size_t>(s) + k];
-        if (std::find(rest.begin(), rest.end(), r) == rest.end()) continue;
-        const Triangle& f = sides_[static_cast<std::size_t>(s)].f;
-        between.push_back({f[k], f[(k + 1) % 3]});
-      }
-    for (const auto& [a, b] : between)
-      if (orient3d(y, x, at(a), at(b)) <= 0) return false;
-    const Index ix = c_.add_point(x);
-    added_.push_back(ix);
-    const Index iy = c_.add_point(y);
-    added_.push_back(iy);
-    for (Index s : seen_by_x) {
-      const Triangle& f = sides_[static_cast<std::size_t>(s)].f;
-      fresh_.push_back({ix, f[0], f[1], f[2]});
-    }
-    for (Index s : rest) {
-      const Triangle& f = sides_[static_cast<std::size_t>(s)].f;
-      fresh_.push_back({iy, f[0], f[1], f[2]});
-    }
-    for (const auto& [a, b] : between) fresh_.push_back({iy, ix, a, b});
     return true;
   }
 
@@ -725,6 +695,7 @@ class CavityRecovery {
   TetComplex& c_;
   std::span<const Triangle> front_;
   std::vector<Index> missing_;  // the triangles missing before the first cavity
+  AabbTree missing_boxes_;      // their boxes, in the order of missing_
   const RegionFill& fill_;
   CancelCheck* stop_;
   absl::flat_hash_set<Index> tried_;  // in a group that could not be refilled

@@ -45,34 +45,34 @@ std::vector<Index> recover_faces_by_flips(std::span<const Point> points, std::ve
                                           std::span<const Triangle> faces,
                                           std::int64_t max_tests, CancelCheck* stop = nullptr);
 
-// Recovery of the triangles the flips leave missing, with new points inside, not in the paper.
-// The missing triangles are taken in groups joined through edges that no tet has (mostly two
-// sliver triangles whose shared edge is missing), with any missing triangle through their
-// cavity. A group's cavity is the tets meeting its triangles; the front triangles inside it (the
-// group's, and those that are faces of two of its tets) split it into regions, told apart at each
-// edge by the sides' orientations or, where those do not decide, by the sides' order around the
-// edge (exact orient3d). Each region on the inner side of the front is refilled with the tets
-// joining its boundary to one point that sees all of it from inside (its kernel): one of its
-// corners, or else a new point (a Steiner point), the deepest inside (a small linear programme);
-// where the kernel is empty, by two such points, the deepest and the deepest inside the sides the
-// first does not see, joined across the edges between those sides; or else by `fill` below. The
-// regions on the outer side of the front are left empty: the tets no longer cover the whole
-// hull. A cavity that cannot be refilled so is tried again grown by a layer of tets (five times
-// at most), and then left as it was. Every new tet is checked positive by exact orient3d, and a
-// refill replaces its cavity only when the faces pair up (TetComplex::replace).
+// Recovery of the triangles the flips leave missing, with new points inside, not in the paper. The
+// missing triangles are taken in groups joined through edges that no tet has (mostly two sliver
+// triangles whose shared edge is missing), with any missing triangle through their cavity. A
+// group's cavity is the tets meeting its triangles; the front triangles inside it (the group's, and
+// those that are faces of two of its tets) split it into regions, told apart at each edge by the
+// sides' orientations or, where those do not decide, by the sides' order around the edge (exact
+// orient3d). Each region on the inner side of the front is refilled with the tets joining its
+// boundary to one point that sees all of it from inside (its kernel): one of its corners, or else a
+// new point (a Steiner point), the deepest inside (a small linear programme); or else, where the
+// kernel is empty, by `fill` below. The regions on the outer side of the front are left empty: the
+// tets no longer cover the whole hull. A cavity that cannot be refilled so is tried again grown by
+// a layer of tets (five times at most), and then left as it was. Every new tet is checked positive
+// by exact orient3d, and a refill replaces its cavity only when the faces pair up
+// (TetComplex::replace).
 //
 // `front`: closed, outward-oriented triangles of `points` (a region's side is its inner side);
 // `tets`, a positive tetrahedralisation of `points` (after recover_faces_by_flips); `missing`,
 // the front triangles (indices) not faces of it. New points are appended to `points`. Returns
 // the triangles still missing, ascending. Stops early, as if nothing were recovered, once `stop`
-// (when given) finds the caller cancelled. Work: a group of at most 256 triangles, a cavity of
-// at most 4,096 tets, each tried once.
+// (when given) finds the caller cancelled. Work: a group of at most 256 triangles and a cavity
+// of at most 4,096 tets, each group tried at most six times (grown a layer each time); the
+// missing triangles through a cavity are found in a box tree of the missing triangles.
 //
-// `fill`, when given, fills a region no point or pair of points sees whole: called with the
-// region's corners and then one point inside it or near (`points`), and its sides (closed,
-// outward-oriented triangles of the corners), it appends any new points to `points` and returns
-// positive tets on them that fill the region, each side a face of one of them; or nothing when
-// it cannot (conforming_fill.h fills regions so, recursively).
+// `fill`, when given, fills a region no point sees whole: called with the region's corners and then
+// one point inside it or near (`points`), and its sides (closed, outward-oriented triangles of the
+// corners), it appends any new points to `points` and returns positive tets on them that fill the
+// region, each side a face of one of them; or nothing when it cannot (conforming_fill.h fills
+// regions so, recursively).
 using RegionFill = std::function<std::optional<std::vector<Tet>>(
     std::vector<Point>& points, std::span<const Triangle> sides)>;
 std::vector<Index> recover_faces_by_cavities(std::vector<Point>& points, std::vector<Tet>& tets,
