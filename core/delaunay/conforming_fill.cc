@@ -20,9 +20,6 @@ namespace {
 
 using FaceKey = Triangle;  // sorted: an unoriented face
 
-// The face of tet t opposite its corner k, unoriented.
-FaceKey face_key(const Tet& t, int k) { return sorted_triangle(tet_face(t, k)); }
-
 enum class Side : std::uint8_t { kUnknown, kInside, kOutside };
 
 // Rounds of conforming_fill: a first with every point, then again without the points inside
@@ -30,9 +27,8 @@ enum class Side : std::uint8_t { kUnknown, kInside, kOutside };
 constexpr int kDropRounds = 3;
 
 // The levels of fills within fills (a region of a cavity filled as a front of its own,
-// recover_faces_by_cavities), and the work each of those is allowed per side.
+// recover_faces_by_cavities).
 constexpr int kMaxDepth = 3;
-constexpr std::int64_t kTestsPerFace = 200;
 
 absl::StatusOr<ConformingFill> fill_region(std::span<const Point> points,
                                            std::span<const Triangle> front,
@@ -80,9 +76,8 @@ absl::StatusOr<std::vector<Index>> recovered_delaunay(std::span<const Point> poi
     const RegionFill fill = [&](std::vector<Point>& corners, std::span<const Triangle> sides)
         -> std::optional<std::vector<Tet>> {
       if (depth + 1 >= kMaxDepth) return std::nullopt;
-      absl::StatusOr<ConformingFill> region =
-          fill_region(corners, sides, kTestsPerFace * static_cast<std::int64_t>(sides.size()),
-                      stop, depth + 1);
+      const std::int64_t work = kFillTestsPerTriangle * static_cast<std::int64_t>(sides.size());
+      absl::StatusOr<ConformingFill> region = fill_region(corners, sides, work, stop, depth + 1);
       if (!region.ok()) return std::nullopt;
       corners.insert(corners.end(), region->steiner.begin(), region->steiner.end());
       return std::move(region->tets);
@@ -202,7 +197,7 @@ absl::StatusOr<ConformingFill> fill_region(std::span<const Point> points,
       todo.pop_back();
       const Tet& e = tets[static_cast<std::size_t>(t)];
       for (int k = 0; k < 4; ++k) {
-        const FaceKey key = face_key(e, k);
+        const FaceKey key = tet_face_key(e, k);
         if (const auto f = front_faces.find(key); f != front_faces.end()) {
           const Triangle& v = front[static_cast<std::size_t>(f->second)];
           const int o = orient3d(x[static_cast<std::size_t>(v[0])],
@@ -237,7 +232,7 @@ absl::StatusOr<ConformingFill> fill_region(std::span<const Point> points,
   std::vector<int> bounded(front.size(), 0);
   for (const Tet& e : inside)
     for (int k = 0; k < 4; ++k)
-      if (const auto f = front_faces.find(face_key(e, k)); f != front_faces.end())
+      if (const auto f = front_faces.find(tet_face_key(e, k)); f != front_faces.end())
         ++bounded[static_cast<std::size_t>(f->second)];
   for (std::size_t i = 0; i < front.size(); ++i)
     if (bounded[i] != 1)

@@ -23,6 +23,11 @@
 
 namespace afmesh {
 
+// The work a fill is given per front triangle, in element-triangle tests of the flips
+// (recover_faces_by_flips): by generate_volume_mesh for a whole front, by conforming_fill for a
+// region of a cavity filled as a front of its own.
+inline constexpr std::int64_t kFillTestsPerTriangle = 200;
+
 // A fill: the points added inside (Steiner points, numbered after the given points) and the
 // elements on the given points followed by those.
 struct ConformingFill {

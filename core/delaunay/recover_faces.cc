@@ -27,9 +27,6 @@ namespace {
 
 constexpr double kUnusable = -std::numeric_limits<double>::infinity();
 
-// The face of tet t opposite its corner k, unoriented.
-Triangle face_of(const Tet& t, int k) { return sorted_triangle(tet_face(t, k)); }
-
 std::pair<Index, Index> edge_key(Index a, Index b) { return {std::min(a, b), std::max(a, b)}; }
 
 // True when triangle f (either orientation) is a face of a tet of c; `ball` is scratch.
@@ -130,11 +127,11 @@ class Recovery {
   bool keeps_prescribed(const TopologyChange& flip) const {
     for (Index t : flip.old)
       for (int k = 0; k < 4; ++k) {
-        const Triangle f = face_of(c_.tet(t), k);
+        const Triangle f = tet_face_key(c_.tet(t), k);
         if (!prescribed_.contains(f)) continue;
         bool kept = false;
         for (const Tet& n : flip.fresh)
-          for (int j = 0; j < 4 && !kept; ++j) kept = face_of(n, j) == f;
+          for (int j = 0; j < 4 && !kept; ++j) kept = tet_face_key(n, j) == f;
         if (!kept) return false;
       }
     return true;
@@ -218,15 +215,11 @@ constexpr int kMoreLayers = 5;
 // The constraints whose fours kernel_point solves (C(16, 4) = 1820 small systems at most).
 constexpr std::size_t kKernelCandidates = 16;
 
-// The bounding boxes of the triangles `which` of `front`.
+// The boxes of the triangles `which` of `front` (triangle_box).
 std::vector<Box> boxes_of(const std::vector<Point>& x, std::span<const Triangle> front,
                           std::span<const Index> which) {
   std::vector<Box> boxes;
-  for (Index i : which) {
-    Box box = empty_box();
-    for (Index v : front[static_cast<std::size_t>(i)]) enclose(box, x[static_cast<std::size_t>(v)]);
-    boxes.push_back(box);
-  }
+  for (Index i : which) boxes.push_back(triangle_box(x, front[static_cast<std::size_t>(i)]));
   return boxes;
 }
 
@@ -347,10 +340,8 @@ class CavityRecovery {
   bool join_crossing(Index t) {
     if (stop_ != nullptr && stop_->due()) return false;
     const Tet& k = c_.tet(t);
-    Box box = empty_box();
-    for (Index v : k) enclose(box, at(v));
     bool within = true;
-    missing_boxes_.for_each_overlap(box, [&](Index i) {
+    missing_boxes_.for_each_overlap(tet_box(c_.points(), k), [&](Index i) {
       const Index g = missing_[static_cast<std::size_t>(i)];
       if (!within || in_group_.contains(g) ||
           !tet_triangle_intersect_improperly(c_.points(), k, front_[static_cast<std::size_t>(g)]))

@@ -28,6 +28,11 @@ Triangle sorted_triangle(const Triangle& t);
 // positive (det[b-a, c-a, d-a] > 0): (b,c,d), (a,d,c), (a,b,d), (a,c,b) for corners 0..3.
 Triangle tet_face(const Tet& tet, int corner);
 
+// The same face unoriented: its key, sorted_triangle(tet_face(tet, corner)).
+inline Triangle tet_face_key(const Tet& tet, int corner) {
+  return sorted_triangle(tet_face(tet, corner));
+}
+
 // True when all indices of the element are distinct.
 bool has_distinct_indices(const Triangle& t);
 bool has_distinct_indices(const Tet& t);

@@ -34,9 +34,8 @@ constexpr int kAttemptsBeforeBackOff = 6;  // queue classes a face passes before
 constexpr int kMaxCavityRings = 4;
 constexpr double kMinNewPointSpacing = 0.04;  // of the wanted size; the last class allows 0.044
 constexpr std::size_t kMaxPocketFaces = 256;  // larger unmeshed regions are not pockets
-// fill_by_delaunay's work: at most this many element-triangle tests per front triangle, and
-// this many more (recover_faces_by_flips).
-constexpr std::int64_t kFillTestsPerFace = 200;
+// fill_by_delaunay's work: kFillTestsPerTriangle element-triangle tests per front triangle
+// (conforming_fill.h), and this many more (recover_faces_by_flips).
 constexpr std::int64_t kFillTests = 200000;
 
 // Part fills (fill_part_of_pocket) per region: uncounted, a region whose faces each part fill
@@ -762,9 +761,9 @@ absl::StatusOr<Mesh> fill_by_delaunay(const Mesh& front, const std::vector<Point
                                       std::int64_t& steiner_points) {
   std::vector<Point> points = front.points;
   points.insert(points.end(), placed.begin(), placed.end());
-  const auto faces = static_cast<std::int64_t>(front.triangles.size());
-  absl::StatusOr<ConformingFill> fill =
-      conforming_fill(points, front.triangles, kFillTestsPerFace * faces + kFillTests, progress);
+  const std::int64_t work =
+      kFillTestsPerTriangle * static_cast<std::int64_t>(front.triangles.size()) + kFillTests;
+  absl::StatusOr<ConformingFill> fill = conforming_fill(points, front.triangles, work, progress);
   if (!fill.ok()) return fill.status();
   if (static_cast<std::int64_t>(fill->tets.size()) > max_tets)
     return absl::FailedPreconditionError(absl::StrFormat(

@@ -180,24 +180,31 @@ TEST(RecoverFaces, NoWorkAllowedFlipsNothing) {
   EXPECT_EQ(tets.size(), 3u);
 }
 
-// The fill checked as a mesh: positive, each front triangle once on its inner side
-// (validate_volume_mesh against the front), the volume enclosed.
-void expect_fills(const Mesh& front, const std::vector<Point>& inner) {
-  std::vector<Point> x = front.points;
-  x.insert(x.end(), inner.begin(), inner.end());
-  const absl::StatusOr<ConformingFill> fill = conforming_fill(x, front.triangles, kTests);
-  ASSERT_TRUE(fill.ok()) << fill.status();
-  x.insert(x.end(), fill->steiner.begin(), fill->steiner.end());
+// The fill of `front` on the points `given` checked as a mesh: positive, each front triangle
+// once on its inner side (validate_volume_mesh against the front), the volume enclosed to within
+// `tolerance`.
+void expect_fill_of(const Mesh& front, const std::vector<Point>& given, const ConformingFill& fill,
+                    double tolerance) {
   Mesh mesh;
-  mesh.points = x;
-  mesh.tets = fill->tets;
+  mesh.points = given;
+  mesh.points.insert(mesh.points.end(), fill.steiner.begin(), fill.steiner.end());
+  mesh.tets = fill.tets;
   mesh.tet_tags.assign(mesh.tets.size(), 0);
   mesh.triangles = front.triangles;
   mesh.triangle_tags.assign(front.triangles.size(), 0);
   const ValidationReport report = validate_volume_mesh(mesh, &front);
   EXPECT_TRUE(report.valid()) << report.to_string();
-  EXPECT_NEAR(volume_of(x, fill->tets),
-              enclosed_volume(front.points, front.triangles, nullptr), 1e-9);
+  EXPECT_NEAR(volume_of(mesh.points, fill.tets),
+              enclosed_volume(front.points, front.triangles, nullptr), tolerance);
+}
+
+// The fill of `front` on its points and the points `inner` (expect_fill_of).
+void expect_fills(const Mesh& front, const std::vector<Point>& inner) {
+  std::vector<Point> x = front.points;
+  x.insert(x.end(), inner.begin(), inner.end());
+  const absl::StatusOr<ConformingFill> fill = conforming_fill(x, front.triangles, kTests);
+  ASSERT_TRUE(fill.ok()) << fill.status();
+  expect_fill_of(front, x, *fill, 1e-9);
 }
 
 // Cylinders as STL exporters write them (caps fanned to their centres, the side quads split in
@@ -271,18 +278,8 @@ TEST(ConformingFill, FillsACadTessellationOnItsOwnPointsWithFewPointsInside) {
   ASSERT_TRUE(fill.ok()) << fill.status();
   EXPECT_GT(fill->steiner.size(), 0u);
   EXPECT_LT(fill->steiner.size(), missing.size());
-  std::vector<Point> x = front->points;
-  x.insert(x.end(), fill->steiner.begin(), fill->steiner.end());
-  Mesh mesh;
-  mesh.points = x;
-  mesh.tets = fill->tets;
-  mesh.tet_tags.assign(mesh.tets.size(), 0);
-  mesh.triangles = front->triangles;
-  mesh.triangle_tags.assign(front->triangles.size(), 0);
-  const ValidationReport report = validate_volume_mesh(mesh, &*front);
-  EXPECT_TRUE(report.valid()) << report.to_string();
-  const double enclosed = enclosed_volume(front->points, front->triangles, nullptr);
-  EXPECT_NEAR(volume_of(x, fill->tets), enclosed, 1e-9 * enclosed);
+  expect_fill_of(*front, front->points, *fill,
+                 1e-9 * enclosed_volume(front->points, front->triangles, nullptr));
 }
 
 // A scan's surface (invesalius' five-chamber heart, 14,694 triangles with angles down to 0.135
@@ -294,22 +291,14 @@ TEST(ConformingFill, FillsAScannedSurfaceOnItsOwnPoints) {
       read_mesh(std::string(AFMESH_SOURCE_DIR) + "/../shared/corpus/inv_5ch.stl");
   ASSERT_TRUE(front.ok()) << front.status();
   repair_front(*front);
+  const std::int64_t work =
+      kFillTestsPerTriangle * static_cast<std::int64_t>(front->triangles.size()) + 200000;
   const absl::StatusOr<ConformingFill> fill =
-      conforming_fill(front->points, front->triangles, 200 * 14694 + 200000);
+      conforming_fill(front->points, front->triangles, work);
   ASSERT_TRUE(fill.ok()) << fill.status();
   EXPECT_GT(fill->steiner.size(), 0u);
-  std::vector<Point> x = front->points;
-  x.insert(x.end(), fill->steiner.begin(), fill->steiner.end());
-  Mesh mesh;
-  mesh.points = x;
-  mesh.tets = fill->tets;
-  mesh.tet_tags.assign(mesh.tets.size(), 0);
-  mesh.triangles = front->triangles;
-  mesh.triangle_tags.assign(front->triangles.size(), 0);
-  const ValidationReport report = validate_volume_mesh(mesh, &*front);
-  EXPECT_TRUE(report.valid()) << report.to_string();
-  const double enclosed = enclosed_volume(front->points, front->triangles, nullptr);
-  EXPECT_NEAR(volume_of(x, fill->tets), enclosed, 1e-9 * enclosed);
+  expect_fill_of(*front, front->points, *fill,
+                 1e-9 * enclosed_volume(front->points, front->triangles, nullptr));
 }
 
 // A cancelled caller gets CANCELLED, not a fill.
