@@ -1,4 +1,4 @@
-// Edge removal and 2-3 flips: the topological steps of the optimiser (optimise_steps.h).
+// Edge removal, 2-3 flips and edge contraction: the topological steps of the optimiser (optimise_steps.h).
 #include <algorithm>
 
 #include "core/geometry/predicates.h"
@@ -106,6 +106,28 @@ bool propose_face_removal(const TetComplex& c, Index t, int corner, TopologyChan
   const Index pair[2] = {t, u};
   return propose_face_removal(c, t, corner, [&](const Tet& k) { return tet_min_sine(p, k); },
                               worst_sine(c, pair), out);
+}
+
+bool propose_edge_contraction(const TetComplex& c, Index t, Index a, Index b, Index fixed_points,
+                              std::vector<Index>& ball, TopologyChange& out) {
+  if (b < fixed_points || c.corner_of(t, a) < 0 || c.corner_of(t, b) < 0) return false;
+  c.ball(b, ball);
+  const std::vector<Point>& p = c.mesh().points;
+  out.fresh.clear();
+  double q = std::numeric_limits<double>::infinity();
+  for (Index s : ball) {
+    Tet k = c.tet(s);
+    if (has_corner(k, a)) continue;  // around the edge: it vanishes
+    for (Index& x : k)
+      if (x == b) x = a;
+    q = std::min(q, positive_score(p, k, [&](const Tet& m) { return tet_min_sine(p, m); }));
+    if (q == kUnusable) return false;
+    out.fresh.push_back(k);
+  }
+  if (!(q > worst_sine(c, ball))) return false;
+  out.old = ball;
+  out.quality = q;
+  return true;
 }
 
 }  // namespace afmesh

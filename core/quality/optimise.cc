@@ -86,8 +86,18 @@ class Optimiser {
   // Smooths the movable corners of tet t; the tets around a moved point that are under the
   // target are appended to `next`.
   bool smooth_corners(Index t, std::vector<BadTet>& next);
-  // Splits the interior edge of tet t whose split gives the best worst tet; its tets in created_.
-  bool split_an_edge(Index t);
+  // The edge contraction of tet t (one movable end merged into the other) whose new worst tet
+  // is best, in best_, kept_ and gone_; and its making, which smooths the point kept (the tets
+  // around it in created_).
+  bool propose_contraction(Index t);
+  bool make_contraction();
+  // The split of an interior edge of tet t whose new worst tet is best, in best_split_; and its
+  // making (the new tets in created_).
+  bool propose_split(Index t);
+  bool make_split();
+  // Of the best contraction and the best split (in the rounds that split), the one whose new
+  // worst tet is better, made.
+  bool contract_or_split(Index t);
   // Records a change to `tets` (their points are touched) and queues those under the target.
   void changed(const std::vector<Index>& tets, std::vector<BadTet>& next);
   // True when a tet at one of t's points changed after `since`.
@@ -107,6 +117,8 @@ class Optimiser {
   EdgeRing ring_;
   TopologyChange candidate_, best_;
   EdgeSplit split_, best_split_;
+  std::vector<Index> ball_;
+  Index kept_ = kInvalidIndex, gone_ = kInvalidIndex;  // the contraction in best_
   SmoothingScratch smoothing_;
   std::vector<Index> created_;
 };
@@ -176,18 +188,56 @@ bool Optimiser::smooth_corners(Index t, std::vector<BadTet>& next) {
   return moved;
 }
 
-bool Optimiser::split_an_edge(Index t) {
+bool Optimiser::propose_contraction(Index t) {
+  const Tet k = c_.tet(t);
+  best_.quality = -std::numeric_limits<double>::infinity();
+  kept_ = gone_ = kInvalidIndex;
+  for (const auto& e : kEdges)
+    for (int way = 0; way < 2; ++way) {
+      const Index a = k[e[way]], b = k[e[1 - way]];
+      if (propose_edge_contraction(c_, t, a, b, fixed_, ball_, candidate_) &&
+          candidate_.quality > best_.quality) {
+        best_ = candidate_;
+        kept_ = a;
+        gone_ = b;
+      }
+    }
+  return gone_ != kInvalidIndex;
+}
+
+bool Optimiser::make_contraction() {
+  created_.clear();
+  if (!c_.replace(best_.old, best_.fresh, created_, /*boundary_may_change=*/false, gone_))
+    return false;
+  ++stats.edge_contractions;
+  // The tets around the point kept, its new tets among them, as smoothing leaves them.
+  if (smooth_point(c_, kept_, fixed_, /*climb_too=*/true, smoothing_)) ++stats.points_moved;
+  c_.ball(kept_, created_);
+  return true;
+}
+
+bool Optimiser::propose_split(Index t) {
   const Tet k = c_.tet(t);
   best_split_.quality = -std::numeric_limits<double>::infinity();
   for (const auto& e : kEdges)
     if (propose_edge_split(c_, t, k[e[0]], k[e[1]], params_.max_edge_ring, split_) &&
         split_.quality > best_split_.quality)
       best_split_ = split_;
-  if (best_split_.quality == -std::numeric_limits<double>::infinity()) return false;
+  return best_split_.quality > -std::numeric_limits<double>::infinity();
+}
+
+bool Optimiser::make_split() {
   created_.clear();
   if (!make_edge_split(c_, best_split_, fixed_, smoothing_, created_)) return false;
   ++stats.edge_splits;
   return true;
+}
+
+bool Optimiser::contract_or_split(Index t) {
+  const bool contraction = params_.edge_contraction && propose_contraction(t);
+  const bool split = params_.edge_split && splits_allowed_ && propose_split(t);
+  if (contraction && (!split || best_.quality >= best_split_.quality)) return make_contraction();
+  return split && make_split();
 }
 
 absl::Status Optimiser::round(const std::vector<BadTet>& work, std::vector<BadTet>& next,
@@ -206,8 +256,7 @@ absl::Status Optimiser::round(const std::vector<BadTet>& work, std::vector<BadTe
       changed(created_, next);
     } else if (params_.smoothing && smooth_corners(w.tet, next) && !bad(quality(w.tet))) {
       // smoothed enough
-    } else if (params_.edge_split && splits_allowed_ && bad(quality(w.tet)) &&
-               split_an_edge(w.tet)) {
+    } else if (c_.alive(w.tet) && bad(quality(w.tet)) && contract_or_split(w.tet)) {
       changed(created_, next);
     } else if (c_.alive(w.tet) && bad(quality(w.tet))) {
       next.push_back({quality(w.tet), w.tet, changes_});

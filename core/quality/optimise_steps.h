@@ -66,6 +66,16 @@ bool propose_edge_removal(const TetComplex& c, Index t, Index a, Index b, int ma
                           EdgeRing& ring, TopologyChange& out);
 bool propose_face_removal(const TetComplex& c, Index t, int corner, TopologyChange& out);
 
+// Edge contraction (Klingner and Shewchuk, "Aggressive tetrahedral mesh improvement", 2007,
+// §3): the movable point b (b >= fixed_points, so never a point of the boundary) of tet t is
+// merged into its neighbour a, which stays where it is: the tets around the edge (a, b) vanish
+// and b's other tets take a in its place. out.old is the ball of b, out.fresh its tets without a
+// with b replaced by a; out.quality their worst. False when b is fixed or not a corner of t, when
+// a new tet is not positive by exact orient3d, or when the new worst does not beat the ball's
+// worst (tet_min_sine). `ball` is scratch. Made by TetComplex::replace(..., dropped = b).
+bool propose_edge_contraction(const TetComplex& c, Index t, Index a, Index b, Index fixed_points,
+                              std::vector<Index>& ball, TopologyChange& out);
+
 // Scratch for smooth_point.
 struct SmoothingScratch {
   std::vector<Index> ball;           // the tets around the point

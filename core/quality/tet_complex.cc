@@ -169,7 +169,8 @@ Index TetComplex::new_slot() {
 }
 
 bool TetComplex::replace(absl::Span<const Index> old, absl::Span<const Tet> fresh,
-                         std::vector<Index>& created, bool boundary_may_change) {
+                         std::vector<Index>& created, bool boundary_may_change,
+                         Index dropped) {
   constexpr int kNewBoundary = std::numeric_limits<int>::min();
   // The cavity's outside faces, oriented outward, each with the tet beyond it.
   struct Outer {
@@ -189,9 +190,11 @@ bool TetComplex::replace(absl::Span<const Index> old, absl::Span<const Tet> fres
       bool used = false;
       for (const Tet& f : fresh) used = used || has_corner(f, p);
       if (used || std::find(unused.begin(), unused.end(), p) != unused.end()) continue;
-      if (!boundary_may_change) return false;
+      if (!boundary_may_change && p != dropped) return false;
       unused.push_back(p);
     }
+  if (dropped != kInvalidIndex && std::find(unused.begin(), unused.end(), dropped) == unused.end())
+    return false;
   // link[4 f + i]: the fresh face (4 g + j) glued to face i of fresh[f], -(k + 1) for the
   // outside face outer[k], or kNewBoundary for a new boundary face.
   std::vector<int> link(4 * fresh.size(), 0);
@@ -243,6 +246,7 @@ bool TetComplex::replace(absl::Span<const Index> old, absl::Span<const Tet> fres
         adjacent_[o.beyond][j] = kInvalidIndex;
     }
   }
+  if (dropped != kInvalidIndex) dropped_.push_back(dropped);
   for (Index p : unused) {
     point_tet_[p] = kInvalidIndex;
     for (const Outer& o : outer)
@@ -293,9 +297,23 @@ void TetComplex::compact() {
   }
   m_->tets.resize(n);
   m_->tet_tags.resize(n);
+  if (!dropped_.empty()) {
+    std::vector<Index> renumbered(m_->points.size(), 0);
+    for (Index p : dropped_) renumbered[p] = kInvalidIndex;
+    Index kept = 0;
+    for (std::size_t p = 0; p < m_->points.size(); ++p) {
+      if (renumbered[p] == kInvalidIndex) continue;
+      renumbered[p] = kept;
+      m_->points[kept++] = m_->points[p];
+    }
+    m_->points.resize(kept);
+    for (Tet& k : m_->tets)
+      for (Index& p : k) p = renumbered[p];
+  }
   adjacent_.clear();
   point_tet_.clear();
   free_.clear();
+  dropped_.clear();
 }
 
 }  // namespace afmesh

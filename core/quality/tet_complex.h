@@ -78,16 +78,21 @@ class TetComplex {
   // points of `old` may be left unused: a flip of the boundary itself (two coplanar boundary
   // faces turned), or a cavity refilled in part (recover_faces.h), whose geometry the caller
   // checks.
+  // `dropped`, a point of `old`, may (and must) be left unused by `fresh`: an edge contraction's
+  // removed point (propose_edge_contraction). It is used by no tet afterwards and compact()
+  // removes it from mesh.points.
   bool replace(absl::Span<const Index> old, absl::Span<const Tet> fresh,
-               std::vector<Index>& created, bool boundary_may_change = false);
+               std::vector<Index>& created, bool boundary_may_change = false,
+               Index dropped = kInvalidIndex);
 
   // Appends a point to mesh.points (used by no tet yet) and returns its index.
   Index add_point(const Point& x);
   // Removes the last point, which no tet may use.
   void drop_last_point();
 
-  // Moves the live tets to the front of mesh.tets (keeping their order) and drops the rest.
-  // The complex must not be used afterwards.
+  // Moves the live tets to the front of mesh.tets (keeping their order) and drops the rest;
+  // removes the points replace() dropped from mesh.points (the others keep their order, the
+  // tets' indices follow). The complex must not be used afterwards.
   void compact();
 
  private:
@@ -103,6 +108,7 @@ class TetComplex {
   std::vector<std::array<Index, 4>> adjacent_;  // K×4: neighbour across the face opposite corner i
   std::vector<Index> point_tet_;                // N: one live tet using the point, or kInvalidIndex
   std::vector<Index> free_;                     // deleted slots, reused last-in first-out
+  std::vector<Index> dropped_;                  // points replace() dropped, for compact()
 };
 
 }  // namespace afmesh

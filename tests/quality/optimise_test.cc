@@ -1,5 +1,5 @@
-// Tests of the tet optimiser: the ring triangulation programme, edge removal and edge split on
-// hand-built rings, the flat tet across a boundary quad, and invariants on meshed solids (valid,
+// Tests of the tet optimiser: the ring triangulation programme, edge removal, edge contraction and
+// edge split on hand-built rings, the flat tet across a boundary quad, and invariants on meshed solids (valid,
 // boundary unchanged, fixed points unmoved, worst element never worse, deterministic).
 #include "core/quality/optimise.h"
 
@@ -10,8 +10,10 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <string>
 
+#include "core/delaunay/delaunay_3d.h"
 #include "core/geometry/predicates.h"
 #include "core/quality/measures.h"
 #include "core/quality/mesh_topology.h"
@@ -100,6 +102,19 @@ Mesh folded_pyramid(double fold) {
   return testing::tet_mesh(
       {{0, 0, 0}, {1, 0, fold}, {1, 1, 0}, {0, 1, fold}, {0.5, 0.5, 1}},
       {{0, 1, 2, 3}, {1, 3, 0, 4}, {3, 1, 2, 4}});
+}
+
+// The unit cube's corners (points 0..7) and two interior points 0.02 apart (8 and 9),
+// tetrahedralised by Delaunay: the tets on the short edge (8, 9) are wedges whose faces on it
+// nearly coincide (dihedral angles near 0 at the edges opposite it), and every triangulation of
+// an edge's ring that separates 8 from 9 is as flat.
+Mesh cube_with_two_points_together() {
+  std::vector<Point> points = testing::unit_cube_points();
+  points.push_back({0.5, 0.5, 0.49});
+  points.push_back({0.5, 0.5, 0.51});
+  const absl::StatusOr<DelaunayTets> d = delaunay_tetrahedralise(points);
+  EXPECT_TRUE(d.ok()) << d.status();
+  return testing::tet_mesh(points, d.ok() ? d->tets : std::vector<Tet>{});
 }
 
 Mesh meshed_without_optimisation(const Mesh& front, double h) {
@@ -227,6 +242,54 @@ TEST(EdgeSplit, SplitOfTheFoldedDiagonalKeepsTheBoundary) {
   EXPECT_GT(worst_sine(m), before);
   for (const Tet& t : m.tets)
     EXPECT_GT(orient3d(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]), 0);
+  const ValidationReport report = validate_volume_mesh(m, &boundary);
+  EXPECT_TRUE(report.valid()) << report.to_string();
+}
+
+TEST(EdgeContraction, WedgesOnAShortEdgeGoWithOneOfItsPoints) {
+  Mesh m = cube_with_two_points_together();
+  const Mesh boundary = boundary_of(m);
+  const double before = worst_sine(m);
+  ASSERT_LT(before, std::sin(5.0 * std::numbers::pi / 180.0));
+  absl::StatusOr<TetComplex> c = TetComplex::build(m);
+  ASSERT_TRUE(c.ok()) << c.status();
+  std::vector<Index> around;  // the tets on the edge (8, 9)
+  for (Index t = 0; t < static_cast<Index>(m.tets.size()); ++t)
+    if (has_corner(m.tets[t], 8) && has_corner(m.tets[t], 9)) around.push_back(t);
+  ASSERT_GE(around.size(), 3u);
+  const Index t = around[0];
+  std::vector<Index> ball;
+  TopologyChange change;
+  // With fixed_points = 9, point 8 is fixed: it stays.
+  EXPECT_FALSE(propose_edge_contraction(*c, t, 9, 8, /*fixed_points=*/9, ball, change));
+  ASSERT_TRUE(propose_edge_contraction(*c, t, 8, 9, /*fixed_points=*/8, ball, change));
+  EXPECT_GT(change.quality, before);
+  EXPECT_EQ(change.old.size(), change.fresh.size() + around.size());
+  std::vector<Index> created;
+  EXPECT_FALSE(c->replace(change.old, change.fresh, created));  // point 9 left unused
+  ASSERT_TRUE(c->replace(change.old, change.fresh, created, false, /*dropped=*/9));
+  c->compact();
+  ASSERT_EQ(m.points.size(), 9u);
+  EXPECT_EQ(m.points[8], (Point{0.5, 0.5, 0.49}));
+  EXPECT_GT(worst_sine(m), before);
+  const ValidationReport report = validate_volume_mesh(m, &boundary);
+  EXPECT_TRUE(report.valid()) << report.to_string();
+}
+
+TEST(Optimise, ContractsAShortEdgeNoFlipCanMend) {
+  Mesh m = cube_with_two_points_together();
+  const Mesh boundary = boundary_of(m);
+  const double before = worst_sine(m);
+  OptimiseParams params;
+  params.smoothing = false;  // smoothing alone would pull the two points apart
+  params.smoothing_sweeps = 0;
+  const absl::StatusOr<OptimiseStats> stats =
+      optimise_tets(m, /*fixed_points=*/8, params, no_progress());
+  ASSERT_TRUE(stats.ok()) << stats.status();
+  EXPECT_GE(stats->edge_contractions, 1);
+  EXPECT_EQ(m.points.size(), 10u + stats->edge_splits - stats->edge_contractions);
+  EXPECT_GT(worst_sine(m), before);
+  EXPECT_GT(worst_dihedral(m), 20.0);
   const ValidationReport report = validate_volume_mesh(m, &boundary);
   EXPECT_TRUE(report.valid()) << report.to_string();
 }
