@@ -1,4 +1,5 @@
-// Edge removal, 2-3 flips and edge contraction: the topological steps of the optimiser (optimise_steps.h).
+// Edge removal, 2-3 flips and edge contraction: the topological steps of the optimiser
+// (optimise_steps.h).
 #include <algorithm>
 
 #include "core/geometry/predicates.h"

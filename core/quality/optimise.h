@@ -95,8 +95,8 @@ struct OptimiseStats {
 // Improves `mesh.tets` (K×4, positive, conforming: every face in one or two tets) over
 // `mesh.points` (N×3) in place. Points with index >= fixed_points may move, new points may be
 // appended (edge splits) and points removed (edge contractions; the others keep their order, so
-// the first fixed_points are unchanged); tets are replaced, added and removed (new tets get tag 0; the others
-// keep their order). Returns CANCELLED when progress.cancelled() turns true (the mesh is then
+// the first fixed_points are unchanged); tets are replaced, added and removed (new tets get tag
+// 0; the others keep their order). Returns CANCELLED when progress.cancelled() turns true (the mesh is then
 // still valid, only less optimised) and INVALID_ARGUMENT, naming it, for a tet with an index out
 // of range or repeated, or a face in more than two tets.
 absl::StatusOr<OptimiseStats> optimise_tets(Mesh& mesh, Index fixed_points,

@@ -1,6 +1,7 @@
-// Tests of the tet optimiser: the ring triangulation programme, edge removal, edge contraction and
-// edge split on hand-built rings, the flat tet across a boundary quad, and invariants on meshed solids (valid,
-// boundary unchanged, fixed points unmoved, worst element never worse, deterministic).
+// Tests of the tet optimiser: the ring triangulation programme, edge removal, edge contraction
+// and edge split on hand-built rings, the flat tet across a boundary quad, and invariants on
+// meshed solids (valid, boundary unchanged, fixed points unmoved, worst element never worse,
+// deterministic).
 #include "core/quality/optimise.h"
 
 #include <gtest/gtest.h>
