@@ -755,6 +755,18 @@ std::vector<Index> recover_faces_by_cavities(std::vector<Point>& points, std::ve
   std::vector<Index> ball;
   for (Index i : missing)
     if (!has_face(*c, front[static_cast<std::size_t>(i)], ball)) still.push_back(i);
+  if (!still.empty()) {
+    // Where an outer region was left empty, a point's tets may no longer be joined through
+    // faces (the region pinches there), and its ball, a walk through faces, misses some: the
+    // triangles not found so are looked for among every tet's faces.
+    absl::flat_hash_set<Triangle> faces;
+    for (Index t = 0; t < c->slots(); ++t)
+      if (c->alive(t))
+        for (int k = 0; k < 4; ++k) faces.insert(tet_face_key(c->tet(t), k));
+    std::erase_if(still, [&](Index i) {
+      return faces.contains(sorted_triangle(front[static_cast<std::size_t>(i)]));
+    });
+  }
   std::sort(still.begin(), still.end());
   still.erase(std::unique(still.begin(), still.end()), still.end());
   c->compact();

@@ -64,7 +64,9 @@ class TetComplex {
   bool edge_fan(Index t, Index a, Index b, int max_tets, EdgeRing& out) const;
 
   // The live tets that use point p, in the order of a breadth-first walk from a fixed start
-  // (deterministic). Empty for a point no tet uses.
+  // (deterministic). Empty for a point no tet uses. Once replace(..., boundary_may_change) has
+  // left part of a cavity empty, the tets at p may no longer be joined through faces (the
+  // region pinches at p): the walk then finds those joined to the tet it starts from only.
   void ball(Index p, std::vector<Index>& out) const;
 
   // Replaces the distinct live tets `old` by `fresh` (positive tets filling the same region;
