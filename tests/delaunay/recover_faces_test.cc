@@ -12,6 +12,8 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -282,23 +284,32 @@ TEST(ConformingFill, FillsACadTessellationOnItsOwnPointsWithFewPointsInside) {
                  1e-9 * enclosed_volume(front->points, front->triangles, nullptr));
 }
 
+// The fill of the corpus surface `name` (../shared/corpus/, oriented by repair_front) on its own
+// points, checked as a mesh against it (expect_fill_of); nothing when it fails.
+std::optional<ConformingFill> expect_corpus_front_filled(const std::string& name) {
+  absl::StatusOr<Mesh> front =
+      read_mesh(std::string(AFMESH_SOURCE_DIR) + "/../shared/corpus/" + name);
+  EXPECT_TRUE(front.ok()) << front.status();
+  if (!front.ok()) return std::nullopt;
+  repair_front(*front);
+  const std::int64_t work =
+      kFillTestsPerTriangle * static_cast<std::int64_t>(front->triangles.size()) + 200000;
+  absl::StatusOr<ConformingFill> fill = conforming_fill(front->points, front->triangles, work);
+  EXPECT_TRUE(fill.ok()) << fill.status();
+  if (!fill.ok()) return std::nullopt;
+  expect_fill_of(*front, front->points, *fill,
+                 1e-9 * enclosed_volume(front->points, front->triangles, nullptr));
+  return *std::move(fill);
+}
+
 // A scan's surface (invesalius' five-chamber heart, 14,694 triangles with angles down to 0.135
 // degrees; the volume front fails on it as given): on its own points the flips leave some
 // hundreds of triangles missing, in groups of up to 26 whose cavities' regions no point sees
 // whole; they are filled as fronts of their own. Checked as a mesh against the front.
 TEST(ConformingFill, FillsAScannedSurfaceOnItsOwnPoints) {
-  absl::StatusOr<Mesh> front =
-      read_mesh(std::string(AFMESH_SOURCE_DIR) + "/../shared/corpus/inv_5ch.stl");
-  ASSERT_TRUE(front.ok()) << front.status();
-  repair_front(*front);
-  const std::int64_t work =
-      kFillTestsPerTriangle * static_cast<std::int64_t>(front->triangles.size()) + 200000;
-  const absl::StatusOr<ConformingFill> fill =
-      conforming_fill(front->points, front->triangles, work);
-  ASSERT_TRUE(fill.ok()) << fill.status();
+  const std::optional<ConformingFill> fill = expect_corpus_front_filled("inv_5ch.stl");
+  ASSERT_TRUE(fill);
   EXPECT_GT(fill->steiner.size(), 0u);
-  expect_fill_of(*front, front->points, *fill,
-                 1e-9 * enclosed_volume(front->points, front->triangles, nullptr));
 }
 
 // OpenFOAM's bullet (27,752 triangles, fillets of needles down to 0.08 degrees): on its own
@@ -307,17 +318,7 @@ TEST(ConformingFill, FillsAScannedSurfaceOnItsOwnPoints) {
 // and the walk through faces round one of its corners (TetComplex::ball) did not reach the tet
 // the triangle bounds: the final count looks among every tet's faces.
 TEST(ConformingFill, FillsACadFrontWhereCavitiesPinchAPoint) {
-  absl::StatusOr<Mesh> front =
-      read_mesh(std::string(AFMESH_SOURCE_DIR) + "/../shared/corpus/of_bullet.stl");
-  ASSERT_TRUE(front.ok()) << front.status();
-  repair_front(*front);
-  const std::int64_t work =
-      kFillTestsPerTriangle * static_cast<std::int64_t>(front->triangles.size()) + 200000;
-  const absl::StatusOr<ConformingFill> fill =
-      conforming_fill(front->points, front->triangles, work);
-  ASSERT_TRUE(fill.ok()) << fill.status();
-  expect_fill_of(*front, front->points, *fill,
-                 1e-9 * enclosed_volume(front->points, front->triangles, nullptr));
+  EXPECT_TRUE(expect_corpus_front_filled("of_bullet.stl"));
 }
 
 // A cancelled caller gets CANCELLED, not a fill.

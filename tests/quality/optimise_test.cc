@@ -60,6 +60,13 @@ Mesh boundary_of(const Mesh& m) {
                                    .triangles);
 }
 
+// A valid mesh of `boundary` whose worst tet beats `before` (tet_min_sine).
+void expect_valid_and_better(const Mesh& m, const Mesh& boundary, double before) {
+  EXPECT_GT(worst_sine(m), before);
+  const ValidationReport report = validate_volume_mesh(m, &boundary);
+  EXPECT_TRUE(report.valid()) << report.to_string();
+}
+
 bool has_edge(const Mesh& m, Index a, Index b) {
   for (const Tet& t : m.tets)
     if (std::count(t.begin(), t.end(), a) + std::count(t.begin(), t.end(), b) == 2) return true;
@@ -240,11 +247,9 @@ TEST(EdgeSplit, SplitOfTheFoldedDiagonalKeepsTheBoundary) {
   c->compact();
   ASSERT_EQ(m.points.size(), 6u);
   EXPECT_FALSE(has_edge(m, 1, 3));
-  EXPECT_GT(worst_sine(m), before);
   for (const Tet& t : m.tets)
     EXPECT_GT(orient3d(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]), 0);
-  const ValidationReport report = validate_volume_mesh(m, &boundary);
-  EXPECT_TRUE(report.valid()) << report.to_string();
+  expect_valid_and_better(m, boundary, before);
 }
 
 TEST(EdgeContraction, WedgesOnAShortEdgeGoWithOneOfItsPoints) {
@@ -272,9 +277,7 @@ TEST(EdgeContraction, WedgesOnAShortEdgeGoWithOneOfItsPoints) {
   c->compact();
   ASSERT_EQ(m.points.size(), 9u);
   EXPECT_EQ(m.points[8], (Point{0.5, 0.5, 0.49}));
-  EXPECT_GT(worst_sine(m), before);
-  const ValidationReport report = validate_volume_mesh(m, &boundary);
-  EXPECT_TRUE(report.valid()) << report.to_string();
+  expect_valid_and_better(m, boundary, before);
 }
 
 TEST(Optimise, ContractsAShortEdgeNoFlipCanMend) {
@@ -289,10 +292,8 @@ TEST(Optimise, ContractsAShortEdgeNoFlipCanMend) {
   ASSERT_TRUE(stats.ok()) << stats.status();
   EXPECT_GE(stats->edge_contractions, 1);
   EXPECT_EQ(m.points.size(), 10u + stats->edge_splits - stats->edge_contractions);
-  EXPECT_GT(worst_sine(m), before);
   EXPECT_GT(worst_dihedral(m), 20.0);
-  const ValidationReport report = validate_volume_mesh(m, &boundary);
-  EXPECT_TRUE(report.valid()) << report.to_string();
+  expect_valid_and_better(m, boundary, before);
 }
 
 TEST(Optimise, BadInputIsNamed) {
