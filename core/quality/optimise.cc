@@ -300,7 +300,11 @@ absl::StatusOr<OptimiseStats> optimise_tets(Mesh& mesh, Index fixed_points,
   std::vector<BadTet> work = status.ok() ? opt.bad_tets(stop) : std::vector<BadTet>{}, next;
   if (status.ok() && stop.stopped()) status = absl::CancelledError("mesh optimisation cancelled");
   opt.stats.bad_tets = static_cast<std::int64_t>(work.size());
-  for (int pass = 0; pass < params.passes && status.ok() && !work.empty(); ++pass) {
+  for (int pass = 0; pass < params.passes + params.more_passes && status.ok() && !work.empty();
+       ++pass) {
+    if (pass >= params.passes &&
+        static_cast<std::int64_t>(work.size()) > params.more_passes_max_tets)
+      break;
     bool changed = false;
     next.clear();
     opt.allow_splits(pass < params.split_passes);
