@@ -11,16 +11,17 @@
 //      the change whose worst new tet is best is made when it beats the worst tet it replaces;
 //   2. smoothing: each movable corner of the tet is moved by hill climbing on the smallest quality
 //      around it (Freitag and Ollivier-Gooch 1997);
-//   3. edge contraction (Klingner and Shewchuk, "Aggressive tetrahedral mesh improvement",
-//      2007): when the tet is still under the target, one of its interior points is merged into
-//      a neighbour across one of its edges, the tets around that edge vanishing, when that
-//      raises the worst tet around the point removed; the best such contraction is made, and the
-//      point kept is smoothed. This removes the wedges on a short edge between two points placed
-//      too close (by the front, or by earlier splits) that no flip or move mends;
-//   4. edge split (Klingner and Shewchuk 2007): when the tet is still under the target, a new
-//      interior point splits the interior edge whose split gives the best worst tet. This is what
-//      removes a flat tet across a boundary quad when no triangulation of the ring of the quad's
-//      interior diagonal has only positive tets.
+//   3. when the tet is still under the target, the better (by its new worst tet) of
+//      - edge contraction (Klingner and Shewchuk, "Aggressive tetrahedral mesh improvement",
+//        2007): one of its interior points merged into a neighbour across one of its edges, the
+//        tets around that edge vanishing, when that raises the worst tet around the point
+//        removed; the point kept is then smoothed. This removes the wedges on a short edge
+//        between two points placed too close (by the front, or by earlier splits) that no flip
+//        or move mends;
+//      - edge split (Klingner and Shewchuk 2007; in the first split_passes rounds only): a new
+//        interior point splits the interior edge whose split gives the best worst tet. This is
+//        what removes a flat tet across a boundary quad when no triangulation of the ring of the
+//        quad's interior diagonal has only positive tets.
 // Tets made or changed that are still under the target are worked on in the next round; a tet
 // on which every step failed is tried again only after a change at one of its points.
 // Quality is the minimum over the six dihedral angles of their sine (0 for a flat tet, negative
@@ -86,8 +87,8 @@ struct OptimiseParams {
   // For a tet still under the target: merge one of its movable points into a neighbour across
   // an edge (edge contraction), removing a point.
   bool edge_contraction = true;
-  // Last resort for a tet still under the target: split one of its interior edges by a new
-  // interior point.
+  // For a tet still under the target: split one of its interior edges by a new interior point
+  // (the better of this and the contraction is made).
   bool edge_split = true;
 };
 
@@ -105,9 +106,9 @@ struct OptimiseStats {
 // `mesh.points` (N×3) in place. Points with index >= fixed_points may move, new points may be
 // appended (edge splits) and points removed (edge contractions; the others keep their order, so
 // the first fixed_points are unchanged); tets are replaced, added and removed (new tets get tag
-// 0; the others keep their order). Returns CANCELLED when progress.cancelled() turns true (the mesh is then
-// still valid, only less optimised) and INVALID_ARGUMENT, naming it, for a tet with an index out
-// of range or repeated, or a face in more than two tets.
+// 0; the others keep their order). Returns CANCELLED when progress.cancelled() turns true (the
+// mesh is then still valid, only less optimised) and INVALID_ARGUMENT, naming it, for a tet with
+// an index out of range or repeated, or a face in more than two tets.
 absl::StatusOr<OptimiseStats> optimise_tets(Mesh& mesh, Index fixed_points,
                                             const OptimiseParams& params, Progress& progress);
 
